@@ -1,0 +1,61 @@
+#pragma once
+/// @file
+/// The span's element frame A_e(q_a) and its first and second derivatives with respect to the chord.
+
+#include <Eigen/Core>
+
+#include <array>
+
+namespace SimbodyReeving {
+
+/// The element frame A_e = [i_e j_e k_e] of a span (paper eq 5) as a function of the chord
+/// e = r2 - r1, together with the derivatives the equations of motion need.
+///
+/// **Orthogonalisation.** i_e = e/|e| always.
+/// - Planar (Dim = 2): j_e = z x i_e, the in-plane normal. Smooth and well conditioned for every
+///   non-zero chord.
+/// - Spatial (Dim = 3): A_e = R(i0 -> i_e) A0, where A0 = [i0 j0 k0] is a reference frame fixed for
+///   the simulation (SpanModel builds it from the span's reference chord direction) and R is the
+///   minimal rotation taking i0 to i_e about the axis i0 x i_e:
+///       R = c I + [a]x + a a^T / (1 + c),   a = i0 x i_e,  c = i0 . i_e.
+///   R is a rational function of i_e, smooth and equally well conditioned for any chord direction
+///   except chord reversal (c = -1): a vertical span with a vertical reference is as well
+///   conditioned as a horizontal one. If the reference lies in the scene plane and k0 is its
+///   normal, the frame equals the planar one for in-plane chords.
+///   Evaluation throws std::domain_error when 1 + c < kMinReferenceAlignment (chord turned more than
+///   about 179 degrees away from its reference direction).
+///
+/// Derivatives (all with respect to the chord e):
+/// - dA[m]   = dA/de_m
+/// - Adot    = sum_m dA[m] edot_m          (time derivative for chord rate edot)
+/// - dAdot[m]= d(Adot)/de_m at fixed edot  (= d^2A/de_m de . edot)
+/// - Addot   = sum_m dAdot[m] edot_m       (second time derivative with zero chord acceleration)
+template <int Dim>
+struct ChordFrame {
+    using Mat = Eigen::Matrix<double, Dim, Dim>;
+    Mat A;
+    std::array<Mat, Dim> dA;
+    Mat Adot;
+    std::array<Mat, Dim> dAdot;
+    Mat Addot;
+};
+
+/// 1 + i0 . i_e below this value is treated as a degenerate (reversed) chord in 3D.
+inline constexpr double kMinReferenceAlignment = 1e-4;
+
+/// Computes the frame and its derivatives for chord e and chord rate edot. `reference` is A0
+/// (ignored for Dim = 2). Uses exact forward-mode hyper-dual arithmetic (no finite differences).
+/// @throws std::domain_error for a zero chord or (Dim = 3) a chord reversed against the reference.
+template <int Dim>
+void computeChordFrame(const Eigen::Matrix<double, Dim, 1>& e, const Eigen::Matrix<double, Dim, 1>& edot,
+                       const Eigen::Matrix<double, Dim, Dim>& reference, ChordFrame<Dim>& out);
+
+/// Builds a right-handed orthonormal reference frame [i0 j0 k0] whose first column is the unit
+/// vector along `chordDirection`. If `normalHint` is non-zero and not parallel to the chord, k0 is
+/// its component normal to i0 (so a planar scene keeps k0 = plane normal); otherwise j0 is the
+/// world axis least aligned with i0, orthogonalised.
+/// @throws std::invalid_argument if chordDirection is zero or not finite.
+Eigen::Matrix3d makeReferenceFrame(const Eigen::Vector3d& chordDirection,
+                                   const Eigen::Vector3d& normalHint = Eigen::Vector3d::Zero());
+
+}  // namespace SimbodyReeving

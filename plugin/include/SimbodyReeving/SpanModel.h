@@ -1,0 +1,212 @@
+#pragma once
+/// @file
+/// One ALE wire-rope span element (Mohammadi & Escalona, "Dynamic simulation of reeving systems with
+/// the extension of the modal approach in the axial direction", sections 2.1-2.2, eqs 1-22).
+/// Pure C++17/Eigen: no Simbody include.
+
+#include "SimbodyReeving/ChordFrame.h"
+#include "SimbodyReeving/RopeProperties.h"
+
+#include <Eigen/Core>
+
+namespace SimbodyReeving {
+
+/// Largest number of sine modes per direction (axial or transverse) a span may carry.
+inline constexpr int kMaxModesPerDirection = 16;
+
+/// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
+enum class VelocityModel {
+    /// Paper eq 13 (default): rdot = Ndot q_a + N qdot_a + A_e S qdot_m. Drops the frame-rotation
+    /// term Adot_e S q_m and the mode-convection term A_e Sdot q_m of eq 12.
+    Simplified,
+    /// Paper eq 12 with no term dropped: the exact material velocity of the discretised rope.
+    Complete,
+};
+
+/// Which strain energy the span uses (eq 19-20).
+enum class ElasticEnergyModel {
+    /// Default. U = 1/2 int EA eps^2 ds + 1/2 int EI kappa^2 ds with the Green strain
+    /// eps = 1/2 (|dr/ds|^2 - 1) of the *full* position r (axial and transverse modes), and the
+    /// bending curvature of the transverse displacement, kappa = |d^2 u_perp / ds^2| (linear in the
+    /// modes). The taut-string energy of eq 19 is *not* added: expanding EA eps^2/2 about a
+    /// tension P already contains P (du_t/ds)^2 / 2, so the small-vibration transverse frequencies
+    /// of a taut span are the string's, n/(2L) sqrt(P/rhoA).
+    Consistent,
+    /// Eq 19-20 literally, to reproduce the paper: the Consistent energy plus
+    /// U_str = 1/2 int P (du_perp/ds)^2 ds with P = EA eps (signed, so U stays differentiable), and
+    /// kappa = |d^2 r/ds^2| including the axial modes. U_str counts the geometric stiffness twice:
+    /// taut-string transverse frequencies come out sqrt(2) too high.
+    PaperLiteral,
+};
+
+/// Which integrals of a span a quadrature rule serves.
+enum class Integrand {
+    Kinetic,  ///< M, Q_v and T
+    Strain,   ///< axial (and PaperLiteral string) strain energy and its gradient
+};
+
+/// Mode counts and numerical options of one span.
+struct SpanOptions {
+    /// n_a: number of axial sine modes, 0..16.
+    int axialModes = 0;
+    /// n_t: number of transverse sine modes per transverse direction, 0..16 (one direction in a
+    /// planar span, two in a spatial one).
+    int transverseModes = 1;
+    VelocityModel velocityModel = VelocityModel::Simplified;
+    ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
+    /// Gauss-Legendre points for the kinetic and strain integrals; 0 selects the automatic rule
+    /// SpanModel::automaticQuadraturePoints (exact to round-off); otherwise 1..200.
+    int quadraturePoints = 0;
+};
+
+/// Generalized forces, mass matrix and energies of one span at one state: the per-evaluation
+/// workspace ("Data") of a SpanModel. Fixed maximum sizes: evaluating never allocates.
+template <int Dim>
+struct SpanData {
+    static constexpr int kMaxModal = Dim * kMaxModesPerDirection;
+    static constexpr int kMaxCoordinates = 2 * Dim + kMaxModal + 2;
+    using CoordVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCoordinates, 1>;
+    using CoordMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxCoordinates>;
+    using Jacobian = Eigen::Matrix<double, Dim, Eigen::Dynamic, 0, Dim, kMaxCoordinates>;
+
+    /// M(q) = int rhoA B^T B ds with rdot = B(q) qdot; symmetric positive definite [kg, kg m, ...].
+    CoordMatrix massMatrix;
+    /// Q_v = -Mdot qdot + dT/dq (eq 17), so that M qddot = Q_v + Q_elastic + Q_gravity + Q_other.
+    CoordVector velocityForces;
+    /// Q_elas = -dU/dq (eq 22) [N for positions and material coordinates, N m for modes].
+    CoordVector elasticForces;
+    /// Q_g = -dU_g/dq with U_g = -int rhoA g . r ds.
+    CoordVector gravityForces;
+
+    double kineticEnergy = 0;   ///< T [J]
+    double axialEnergy = 0;     ///< 1/2 int EA eps^2 ds [J]
+    double bendingEnergy = 0;   ///< 1/2 int EI kappa^2 ds [J] (0 when EI = 0)
+    double stringEnergy = 0;    ///< taut-string energy [J], PaperLiteral only
+    double gravityEnergy = 0;   ///< U_g = -int rhoA g . r ds [J]
+
+    double strainEnergy() const { return axialEnergy + bendingEnergy + stringEnergy; }
+    double potentialEnergy() const { return strainEnergy() + gravityEnergy; }
+
+    ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
+    Jacobian velocityJacobian;  ///< scratch: B at the current quadrature point
+};
+
+/// One ALE wire-rope span: the fixed part of the element ("Model": parameters, mode layout,
+/// quadrature tables). Evaluation results go into a SpanData.
+///
+/// **Coordinates** (eq 1-3), in this order, n = 2 Dim + n_a + (Dim-1) n_t + 2 of them:
+/// - q_a = [r1; r2]: absolute positions of the end nodes [m] (Dim each);
+/// - q_m = [a_1..a_na, b_1..b_nt, (c_1..c_nt)]: modal amplitudes [m] of the axial displacement
+///   (along i_e), and of the transverse displacements along j_e (and k_e in 3D);
+/// - q_s = [s1, s2]: material (unstretched arc-length) coordinates of the end nodes [m], s2 > s1.
+///
+/// **Kinematics** (eq 4-11). With xi = (s - s1)/(s2 - s1) in [0, 1] and l = s2 - s1,
+///     r(s, q) = (1 - xi) r1 + xi r2 + A_e(r2 - r1) S(xi) q_m,
+/// N = [(1-xi) I, xi I] the linear shape functions (eq 6-8), A_e the element frame (ChordFrame),
+/// and S the sine modes S_i(xi) = sin(i pi xi) (eq 11) arranged as in eq 10.
+///
+/// **Dynamics** (eq 14-18). T = 1/2 int_0^1 rhoA l |v|^2 dxi with the material velocity
+/// v = B(xi, q) qdot of the chosen VelocityModel (the s-dependence of xi through s1, s2 included,
+/// so the span may gain or lose material over its ends). M and Q_v are derived from this same T,
+/// with the same quadrature, so T + U is an exact invariant of M qddot = Q_v + Q_elastic +
+/// Q_gravity for either velocity model.
+///
+/// **Elastic energy** (eq 19-22): see ElasticEnergyModel. Axial and string energies are integrated
+/// by Gauss-Legendre quadrature; the bending energy (quadratic in q_m with constant coefficients)
+/// and the gravity energy are integrated in closed form.
+///
+/// **Axial force** (eq 21): P(s) = EA eps(s), eps = 1/2 (|dr/ds|^2 - 1).
+///
+/// @tparam Dim 2 for a planar span (x-y plane, one transverse direction: no out-of-plane work at
+///             all), 3 for a spatial span.
+template <int Dim>
+class SpanModel {
+public:
+    using Vec = Eigen::Matrix<double, Dim, 1>;
+    using Mat = Eigen::Matrix<double, Dim, Dim>;
+    using Data = SpanData<Dim>;
+
+    /// @param properties rope properties (see RopeProperties for units and ranges).
+    /// @param options    mode counts and numerical options.
+    /// @param gravity    gravitational acceleration [m/s^2], finite (may be zero).
+    /// @param referenceFrame (Dim = 3 only) orthonormal right-handed [i0 j0 k0], typically
+    ///        makeReferenceFrame(initial chord, plane normal); ignored for Dim = 2.
+    /// @throws std::invalid_argument for rhoA or EA not finite and > 0, EI not finite and >= 0,
+    ///         mode counts outside 0..16, quadraturePoints outside 0..200, non-finite gravity, or a
+    ///         reference frame that is not orthonormal and right-handed.
+    SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
+              const Mat& referenceFrame = Mat::Identity());
+
+    int numCoordinates() const { return 2 * Dim + numModal_ + 2; }
+    int numModalCoordinates() const { return numModal_; }
+    int axialModes() const { return options_.axialModes; }
+    int transverseModes() const { return options_.transverseModes; }
+    /// Gauss-Legendre points used for the kinetic (M, Q_v, T) or strain (U_ax, U_str) integrals.
+    int quadraturePoints(Integrand integrand) const {
+        return static_cast<int>((integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).xi.size());
+    }
+    const RopeProperties& properties() const { return properties_; }
+    const SpanOptions& options() const { return options_; }
+    const Vec& gravity() const { return gravity_; }
+    const Mat& referenceFrame() const { return referenceFrame_; }
+
+    /// Index of r1 (first of Dim), r2, of axial mode i (0-based), of transverse mode i in direction
+    /// dir (0: j_e, 1: k_e), and of s1, s2 in the coordinate vector.
+    static constexpr int r1Index() { return 0; }
+    static constexpr int r2Index() { return Dim; }
+    int axialModeIndex(int i) const { return 2 * Dim + i; }
+    int transverseModeIndex(int dir, int i) const {
+        return 2 * Dim + options_.axialModes + dir * options_.transverseModes + i;
+    }
+    int s1Index() const { return 2 * Dim + numModal_; }
+    int s2Index() const { return 2 * Dim + numModal_ + 1; }
+
+    /// The automatic quadrature rule, exact to round-off for the span's integrands (tested against
+    /// 150 points): with n_max = max(n_a, n_t) and k the integrand's largest number of half-waves
+    /// on [0, 1] (k = 2 n_max for kinetic, 4 n_max for strain integrals), N = ceil(1.15 k) + 12;
+    /// without modes N = 2 (kinetic) and 1 (strain).
+    static int automaticQuadraturePoints(int axialModes, int transverseModes, Integrand integrand);
+
+    /// Evaluates M, Q_v, Q_elastic, Q_gravity and all energies at (q, qdot).
+    /// @throws std::invalid_argument if q or qdot has the wrong size or a non-finite entry, if
+    ///         s2 <= s1 (span length l = s2 - s1 must be > 0), or if the end nodes coincide.
+    /// @throws std::domain_error (Dim = 3) if the chord is reversed against the reference frame.
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                  Data& data) const;
+
+    /// Position r(s) of material point s in [s1, s2] [m].
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    Vec position(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
+    /// Green strain eps(s) = 1/2 (|dr/ds|^2 - 1) at material point s in [s1, s2] [-].
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    double strain(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
+    /// Axial force P(s) = EA eps(s) [N] (eq 21).
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    double axialForce(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
+        return properties_.axialStiffness * strain(q, s);
+    }
+
+private:
+    void checkState(const Eigen::Ref<const Eigen::VectorXd>& q, const char* name) const;
+    double checkMaterialPoint(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
+
+    RopeProperties properties_;
+    SpanOptions options_;
+    Vec gravity_;
+    Mat referenceFrame_;
+    int numModal_ = 0;
+    int maxMode_ = 0;  // max(n_a, n_t)
+    // Quadrature table: xi_k, w_k and, per point, S_i(xi_k) and dS_i/dxi (xi_k), i = 1..maxMode_.
+    struct QuadratureTable {
+        Eigen::VectorXd xi, w;
+        Eigen::MatrixXd sin, dsin;
+    };
+    QuadratureTable kineticTable_, strainTable_;
+    // Closed-form integrals int_0^1 S_i dxi and (i pi)^4 / 2 (bending), i = 1..maxMode_.
+    Eigen::VectorXd sinMean_, bendFactor_;
+};
+
+using PlanarSpanModel = SpanModel<2>;
+using SpatialSpanModel = SpanModel<3>;
+
+}  // namespace SimbodyReeving
