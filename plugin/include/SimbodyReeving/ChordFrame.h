@@ -22,6 +22,9 @@ namespace SimbodyReeving {
 ///   except chord reversal (c = -1): a vertical span with a vertical reference is as well
 ///   conditioned as a horizontal one. If the reference lies in the scene plane and k0 is its
 ///   normal, the frame equals the planar one for in-plane chords.
+///   The twist rate of the frame about the chord grows like tan(theta/2) with the angle theta between
+///   chord and reference (bounded by 1 + tan(theta/2) per radian of chord rotation), so a span whose
+///   chord swings far from its reference should be given a reference near its working direction.
 ///   Evaluation throws std::domain_error when 1 + c < kMinReferenceAlignment (chord turned more than
 ///   about 179 degrees away from its reference direction).
 ///
