@@ -412,3 +412,27 @@ TEST(SpanModel, BadInputThrowsNamingParameterAndValue) {
     }
     expectThrow([&] { model.axialForce(q, 1.5); }, "material coordinate s", "1.5");
 }
+
+// End strain: value, gradient, rate and acceleration bias against finite differences.
+TEST(SpanModel, EndStrainDerivativesMatchFiniteDifferences) {
+    for (const Config& c : allConfigs()) {
+        SCOPED_TRACE(describe(3, c));
+        const auto model = makeModel<3>(c);
+        std::mt19937 rng(77 + c.na * 3 + c.nt);
+        const Eigen::VectorXd q = randomState(model, rng), qd = randomVelocity(model, rng);
+        for (SpanEnd end : {SpanEnd::First, SpanEnd::Second}) {
+            auto eps = [&](const Eigen::VectorXd& x) {
+                return model.strain(x, end == SpanEnd::First ? x[model.s1Index()] : x[model.s2Index()]);
+            };
+            EndStrain<3> es;
+            model.endStrain(q, qd, end, es);
+            EXPECT_NEAR(es.strain, eps(q), 1e-15);
+            const Eigen::VectorXd g = centralGradient(eps, q, 1e-6);
+            EXPECT_LT(relativeError(Eigen::VectorXd(es.gradient), g), 1e-7);
+            EXPECT_NEAR(es.rate, es.gradient.dot(qd), 1e-13 * std::abs(es.rate) + 1e-15);
+            const double h = 1e-4;
+            const double fd = (eps(q + h * qd) - 2 * eps(q) + eps(q - h * qd)) / (h * h);
+            EXPECT_NEAR(es.accelerationBias, fd, 1e-5 * std::abs(fd) + 1e-7);
+        }
+    }
+}

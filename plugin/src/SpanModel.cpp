@@ -362,6 +362,44 @@ double SpanModel<Dim>::strain(const Eigen::Ref<const Eigen::VectorXd>& q, double
     return 0.5 * ((e + F.A * up).squaredNorm() / (l * l) - 1.0);
 }
 
+template <int Dim>
+void SpanModel<Dim>::endStrain(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                               SpanEnd end, EndStrain<Dim>& out) const {
+    checkState(q, "q");
+    checkState(qdot, "qdot");
+    const int na = options_.axialModes, nt = options_.transverseModes, nm = numModal_;
+    const int iM = 2 * Dim, iS1 = s1Index(), iS2 = s2Index();
+    const Vec e = q.template segment<Dim>(Dim) - q.template segment<Dim>(0);
+    const Vec ed = qdot.template segment<Dim>(Dim) - qdot.template segment<Dim>(0);
+    const double l = q[iS2] - q[iS1], ld = qdot[iS2] - qdot[iS1];
+    if (!(l > 0)) throwInvalid("SpanModel::endStrain", "span length l = s2 - s1 [m]", l, "must be > 0");
+    ChordFrame<Dim> F;
+    computeChordFrame<Dim>(e, ed, referenceFrame_, F);
+    // dS_i/dxi at xi = 0 is i pi, at xi = 1 it is i pi (-1)^i.
+    const double pi = std::acos(-1.0);
+    Eigen::Matrix<double, 1, kMaxModesPerDirection> row;
+    for (int i = 0; i < maxMode_; ++i) row[i] = (i + 1) * pi * (end == SpanEnd::Second && (i % 2 == 0) ? -1.0 : 1.0);
+    const Vec up = modesToLocal<Dim>(row, q.segment(iM, nm), na, nt);
+    const Vec upd = modesToLocal<Dim>(row, qdot.segment(iM, nm), na, nt);
+    const Vec t = e + F.A * up;
+    const Vec td = ed + F.Adot * up + F.A * upd;
+    const Vec tdd = F.Addot * up + 2.0 * (F.Adot * upd);  // with qddot = 0
+    const double l2 = l * l, t2 = t.squaredNorm(), ttd = t.dot(td);
+    out.strain = 0.5 * (t2 / l2 - 1.0);
+    out.rate = ttd / l2 - t2 * ld / (l2 * l);
+    out.accelerationBias = (td.squaredNorm() + t.dot(tdd)) / l2 - 4.0 * ttd * ld / (l2 * l) +
+                           3.0 * t2 * ld * ld / (l2 * l2);
+    out.gradient.setZero(numCoordinates());
+    Vec deps_de = t;
+    for (int m = 0; m < Dim; ++m) deps_de[m] += t.dot(F.dA[m] * up);
+    deps_de /= l2;
+    out.gradient.template segment<Dim>(0) = -deps_de;
+    out.gradient.template segment<Dim>(Dim) = deps_de;
+    addLocalToModes<Dim>(row, Vec(F.A.transpose() * t), 1.0 / l2, na, nt, out.gradient.segment(iM, nm));
+    out.gradient[iS1] = t2 / (l2 * l);
+    out.gradient[iS2] = -t2 / (l2 * l);
+}
+
 template class SpanModel<2>;
 template class SpanModel<3>;
 

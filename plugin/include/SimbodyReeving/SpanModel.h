@@ -91,6 +91,19 @@ struct SpanData {
     Jacobian velocityJacobian;  ///< scratch: B at the current quadrature point
 };
 
+/// The two ends of a span: node 1 at s1 (xi = 0) and node 2 at s2 (xi = 1).
+enum class SpanEnd { First, Second };
+
+/// Green strain at a span end with its first and second time derivatives, for constraints on the
+/// axial force there (the sheave tension equality).
+template <int Dim>
+struct EndStrain {
+    double strain = 0;          ///< eps at the end [-]
+    double rate = 0;            ///< d eps/dt = gradient . qdot [1/s]
+    double accelerationBias = 0;  ///< d^2 eps/dt^2 with qddot = 0, i.e. qdot^T (d^2 eps/dq^2) qdot [1/s^2]
+    typename SpanData<Dim>::CoordVector gradient;  ///< d eps/dq [1/m]
+};
+
 /// One ALE wire-rope span: the fixed part of the element ("Model": parameters, mode layout,
 /// quadrature tables). Evaluation results go into a SpanData.
 ///
@@ -185,6 +198,12 @@ public:
     double axialForce(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
         return properties_.axialStiffness * strain(q, s);
     }
+
+    /// Strain at a span end, its gradient d eps/dq, its rate and its acceleration bias (exact,
+    /// analytic). Does not allocate.
+    /// @throws as evaluate().
+    void endStrain(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                   SpanEnd end, EndStrain<Dim>& out) const;
 
 private:
     void checkState(const Eigen::Ref<const Eigen::VectorXd>& q, const char* name) const;
