@@ -1,0 +1,255 @@
+#include "SimbodyReeving/RopeModel.h"
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace SimbodyReeving {
+
+template <int Dim>
+RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength)
+    : spans_(std::move(spans)), length_(unstretchedLength) {
+    if (spans_.empty()) throw std::invalid_argument("RopeModel: a rope needs at least one span (got 0)");
+    if (!std::isfinite(length_) || !(length_ > 0)) {
+        std::ostringstream msg;
+        msg << "RopeModel: unstretchedLength [m] = " << length_ << " must be finite and > 0";
+        throw std::invalid_argument(msg.str());
+    }
+    const RopeProperties& p0 = spans_.front().properties();
+    for (const auto& sp : spans_) {
+        const RopeProperties& p = sp.properties();
+        if (p.massPerLength != p0.massPerLength || p.axialStiffness != p0.axialStiffness ||
+            p.bendingStiffness != p0.bendingStiffness)
+            throw std::invalid_argument("RopeModel: all spans of a rope must have the same RopeProperties");
+    }
+    const int N = numSpans();
+    for (int j = 0; j < N; ++j) {
+        modalOffset_.push_back(numModal_);
+        numModal_ += spans_[j].numModalCoordinates();
+    }
+    const int nn = Dim * (N + 1);
+    for (int j = 0; j < N; ++j) {
+        const auto& sp = spans_[j];
+        std::vector<int> map(sp.numCoordinates());
+        for (int d = 0; d < Dim; ++d) {
+            map[d] = Dim * j + d;
+            map[Dim + d] = Dim * (j + 1) + d;
+        }
+        for (int i = 0; i < sp.numModalCoordinates(); ++i) map[2 * Dim + i] = nn + modalOffset_[j] + i;
+        map[sp.s1Index()] = nn + numModal_ + j;
+        map[sp.s2Index()] = nn + numModal_ + j + 1;
+        spanToRope_.push_back(std::move(map));
+    }
+}
+
+template <int Dim>
+void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+                                     const Eigen::VectorXd& s, Eigen::VectorXd& q) const {
+    const auto& sp = spans_[j];
+    q.resize(sp.numCoordinates());
+    q.template segment<Dim>(0) = nodes.col(j);
+    q.template segment<Dim>(Dim) = nodes.col(j + 1);
+    q.segment(2 * Dim, sp.numModalCoordinates()) = qm.segment(modalOffset_[j], sp.numModalCoordinates());
+    q[sp.s1Index()] = s[j];
+    q[sp.s2Index()] = s[j + 1];
+}
+
+template <int Dim>
+void RopeModel<Dim>::endStrains(const NodeMatrix& nodes, const Eigen::VectorXd& qm, const Eigen::VectorXd& s,
+                                RopeData<Dim>& data) const {
+    const int N = numSpans();
+    data.spanQ.resize(N);
+    data.spanQdot.resize(N);
+    data.firstEnd.resize(N);
+    data.secondEnd.resize(N);
+    for (int j = 0; j < N; ++j) {
+        spanCoordinates(j, nodes, qm, s, data.spanQ[j]);
+        if (data.spanQdot[j].size() != data.spanQ[j].size()) data.spanQdot[j].setZero(data.spanQ[j].size());
+        spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::First, data.firstEnd[j]);
+        spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::Second, data.secondEnd[j]);
+    }
+}
+
+template <int Dim>
+void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+                                              RopeData<Dim>& data) const {
+    const int N = numSpans();
+    Eigen::VectorXd& s = data.materialCoordinates;
+    bool admissible = s.size() == N + 1 && s[0] == 0.0 && s[N] == length_;
+    for (int k = 0; admissible && k < N; ++k) admissible = s[k + 1] > s[k];
+    if (!admissible) {
+        s.resize(N + 1);
+        double total = 0;
+        for (int j = 0; j < N; ++j) total += (nodes.col(j + 1) - nodes.col(j)).norm();
+        s[0] = 0;
+        double acc = 0;
+        for (int j = 0; j < N; ++j) {
+            acc += (nodes.col(j + 1) - nodes.col(j)).norm();
+            s[j + 1] = (j + 1 == N) ? length_ : length_ * acc / total;
+        }
+    }
+    data.newtonIterations = 0;
+    for (auto& v : data.spanQdot) v.setZero();
+    if (N == 1) {
+        endStrains(nodes, qm, s, data);
+        return;
+    }
+    Eigen::VectorXd C(N - 1);
+    Eigen::MatrixXd J(N - 1, N - 1);
+    for (int iter = 0; iter <= 50; ++iter) {
+        endStrains(nodes, qm, s, data);
+        J.setZero();
+        for (int k = 1; k < N; ++k) {
+            const auto& a = data.secondEnd[k - 1];  // span k-1 at its node 2 (= sheave k)
+            const auto& b = data.firstEnd[k];       // span k at its node 1
+            C[k - 1] = a.strain - b.strain;
+            const int as1 = spans_[k - 1].s1Index(), as2 = spans_[k - 1].s2Index();
+            const int bs1 = spans_[k].s1Index(), bs2 = spans_[k].s2Index();
+            if (k - 1 >= 1) J(k - 1, k - 2) += a.gradient[as1];
+            J(k - 1, k - 1) += a.gradient[as2] - b.gradient[bs1];
+            if (k + 1 <= N - 1) J(k - 1, k) -= b.gradient[bs2];
+        }
+        if (C.cwiseAbs().maxCoeff() <= 1e-13) {
+            data.newtonIterations = iter;
+            return;
+        }
+        if (iter == 50) break;
+        const Eigen::VectorXd step = J.partialPivLu().solve(-C);
+        double alpha = 1.0;
+        for (int halve = 0; halve < 30; ++halve, alpha *= 0.5) {
+            bool ok = true;
+            for (int k = 1; k < N && ok; ++k) {
+                const double sk = s[k] + alpha * step[k - 1];
+                const double prev = k - 1 >= 1 ? s[k - 1] + alpha * step[k - 2] : s[0];
+                ok = sk > prev;
+            }
+            if (ok && s[N - 1] + alpha * step[N - 2] < s[N]) break;
+        }
+        for (int k = 1; k < N; ++k) s[k] += alpha * step[k - 1];
+    }
+    std::ostringstream msg;
+    msg << "RopeModel: the sheave tension-equality constraint did not converge in 50 Newton iterations "
+           "(max |eps_a - eps_b| = "
+        << C.cwiseAbs().maxCoeff() << "); the rope may be slack or the configuration infeasible";
+    throw std::runtime_error(msg.str());
+}
+
+template <int Dim>
+void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities,
+                                     const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
+                                     RopeData<Dim>& data) const {
+    const int N = numSpans(), nn = Dim * (N + 1), nm = numModal_, nw = nn + nm, nz = nw + N + 1;
+    const Eigen::VectorXd& s = data.materialCoordinates;
+    // Independent velocities w = [rdot; qdot_m].
+    Eigen::VectorXd w(nw);
+    for (int k = 0; k <= N; ++k) w.template segment<Dim>(Dim * k) = nodeVelocities.col(k);
+    w.tail(nm) = qmdot;
+
+    // Constraint Jacobian C_z = [C_w, C_s] from the end-strain gradients (velocity independent).
+    data.spans.resize(N);
+    data.materialRates.setZero(N + 1);
+    data.G.setZero(nz, nw);
+    data.G.topLeftCorner(nw, nw).setIdentity();
+    data.c.setZero(nz);
+    const int nc = N - 1;
+    auto fillSpanVelocities = [&] {
+        for (int j = 0; j < N; ++j) {
+            const auto& sp = spans_[j];
+            Eigen::VectorXd& qd = data.spanQdot[j];
+            qd.resize(sp.numCoordinates());
+            qd.template segment<Dim>(0) = nodeVelocities.col(j);
+            qd.template segment<Dim>(Dim) = nodeVelocities.col(j + 1);
+            qd.segment(2 * Dim, sp.numModalCoordinates()) = qmdot.segment(modalOffset_[j], sp.numModalCoordinates());
+            qd[sp.s1Index()] = data.materialRates[j];
+            qd[sp.s2Index()] = data.materialRates[j + 1];
+        }
+    };
+    data.spanQdot.resize(N);
+    fillSpanVelocities();
+    endStrains(nodes, qm, s, data);
+    if (nc > 0) {
+        data.Cw.setZero(nc, nw);
+        data.Cs.setZero(nc, nc);
+        for (int k = 1; k < N; ++k) {
+            for (int side = 0; side < 2; ++side) {
+                const int j = side == 0 ? k - 1 : k;
+                const double sign = side == 0 ? 1.0 : -1.0;
+                const auto& g = side == 0 ? data.secondEnd[j].gradient : data.firstEnd[j].gradient;
+                const auto& map = spanToRope_[j];
+                for (int i = 0; i < g.size(); ++i) {
+                    const int zi = map[i];
+                    if (zi < nw) {
+                        data.Cw(k - 1, zi) += sign * g[i];
+                    } else {
+                        const int sk = zi - nw;  // node index of this material coordinate
+                        if (sk >= 1 && sk <= N - 1) data.Cs(k - 1, sk - 1) += sign * g[i];
+                    }
+                }
+            }
+        }
+        const Eigen::PartialPivLU<Eigen::MatrixXd> CsLu(data.Cs);
+        const Eigen::MatrixXd Gs = -CsLu.solve(data.Cw);  // sdot_dep = Gs w
+        data.G.block(nw + 1, 0, nc, nw) = Gs;
+        data.materialRates.segment(1, nc) = Gs * w;
+        // Biases with the complete velocities (sdot included).
+        fillSpanVelocities();
+        endStrains(nodes, qm, s, data);
+        data.bias.resize(nc);
+        for (int k = 1; k < N; ++k)
+            data.bias[k - 1] = data.secondEnd[k - 1].accelerationBias - data.firstEnd[k].accelerationBias;
+        data.c.segment(nw + 1, nc) = -CsLu.solve(data.bias);
+    }
+
+    // Span evaluations scattered into the rope's M and Q.
+    data.Mz.setZero(nz, nz);
+    data.Qz.setZero(nz);
+    data.kineticEnergy = data.strainEnergy = data.gravityEnergy = 0;
+    for (int j = 0; j < N; ++j) {
+        SpanData<Dim>& d = data.spans[j];
+        spans_[j].evaluate(data.spanQ[j], data.spanQdot[j], d);
+        const auto& map = spanToRope_[j];
+        const int n = spans_[j].numCoordinates();
+        for (int a = 0; a < n; ++a) {
+            data.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a];
+            for (int b = 0; b < n; ++b) data.Mz(map[a], map[b]) += d.massMatrix(a, b);
+        }
+        data.kineticEnergy += d.kineticEnergy;
+        data.strainEnergy += d.strainEnergy();
+        data.gravityEnergy += d.gravityEnergy;
+    }
+    data.Mbar.noalias() = data.G.transpose() * data.Mz * data.G;
+    data.Qbar.noalias() = data.G.transpose() * (data.Qz - data.Mz * data.c);
+
+    // Reduce to the nodes: S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, h = Qbar_n - Mbar_nm Mbar_mm^-1 Qbar_m.
+    data.nodeMass = data.Mbar.topLeftCorner(nn, nn);
+    data.nodeForce = data.Qbar.head(nn);
+    if (nm > 0) {
+        data.modalMass.compute(data.Mbar.bottomRightCorner(nm, nm));
+        data.modalCoupling = data.modalMass.solve(data.Mbar.bottomLeftCorner(nm, nn));
+        data.modalFree = data.modalMass.solve(data.Qbar.tail(nm));
+        data.nodeMass.noalias() -= data.Mbar.topRightCorner(nn, nm) * data.modalCoupling;
+        data.nodeForce.noalias() -= data.Mbar.topRightCorner(nn, nm) * data.modalFree;
+    }
+}
+
+template <int Dim>
+void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
+                                        Eigen::VectorXd& qmddot) const {
+    if (numModal_ == 0) {
+        qmddot.resize(0);
+        return;
+    }
+    qmddot = data.modalFree - data.modalCoupling * nodeAccelerations;
+}
+
+template <int Dim>
+double RopeModel<Dim>::constraintError(const RopeData<Dim>& data, int k) const {
+    return properties().axialStiffness * (data.secondEnd[k - 1].strain - data.firstEnd[k].strain);
+}
+
+template class RopeModel<2>;
+template class RopeModel<3>;
+
+}  // namespace SimbodyReeving
