@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -98,6 +99,7 @@ void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eig
     }
     Eigen::VectorXd C(N - 1);
     Eigen::MatrixXd J(N - 1, N - 1);
+    double previous = std::numeric_limits<double>::infinity();
     for (int iter = 0; iter <= 50; ++iter) {
         endStrains(nodes, qm, s, data);
         J.setZero();
@@ -111,10 +113,14 @@ void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eig
             J(k - 1, k - 1) += a.gradient[as2] - b.gradient[bs1];
             if (k + 1 <= N - 1) J(k - 1, k) -= b.gradient[bs2];
         }
-        if (C.cwiseAbs().maxCoeff() <= 1e-13) {
+        // Converged at 1e-15 in strain, or stagnating at round-off below 1e-12 (eps = 1/2(|t|^2/l^2 - 1)
+        // carries about 1e-16 absolute error).
+        const double err = C.cwiseAbs().maxCoeff();
+        if (err <= 1e-15 || (err <= 1e-12 && err > 0.5 * previous)) {
             data.newtonIterations = iter;
             return;
         }
+        previous = err;
         if (iter == 50) break;
         const Eigen::VectorXd step = J.partialPivLu().solve(-C);
         double alpha = 1.0;

@@ -75,7 +75,7 @@ public:
 
     /// Solves the tension-equality constraints for s_1..s_{N-1} by Newton's method (starting from
     /// data.materialCoordinates if it holds an admissible guess, else from a split proportional to
-    /// the chord lengths) to |eps_a - eps_b| <= 1e-13.
+    /// the chord lengths) to |eps_a - eps_b| <= 1e-15, or until it stagnates at round-off below 1e-12.
     /// @throws std::runtime_error if Newton does not converge in 50 iterations or a span length
     ///         would become non-positive (the rope cannot carry the configuration).
     void solveMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
