@@ -515,6 +515,18 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
 }
 
 double ReevingSubsystem::getAxialForce(const State& s, int rope, int span, double sMaterial) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const double eps = strainAt(s, rope, span, sMaterial);
+    return r.spec.properties.axialStiffness * eps;
+}
+
+double ReevingSubsystem::getTension(const State& s, int rope, int span, double sMaterial) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const double eps = strainAt(s, rope, span, sMaterial);
+    return r.spec.properties.axialStiffness * eps * std::sqrt(1.0 + 2.0 * eps);
+}
+
+double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMaterial) const {
     const Guts& g = getGuts();
     const RopeRecord& r = ropeAt(g, rope);
     getSpanMaterialRange(s, rope, span);  // validates span
@@ -523,10 +535,10 @@ double ReevingSubsystem::getAxialForce(const State& s, int rope, int span, doubl
     const Eigen::VectorXd qm = g.modal(g.getZ(s), r, false);
     if (r.planar) {
         r.planarModel->spanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar.materialCoordinates, q);
-        return r.planarModel->span(span).axialForce(q, sMaterial);
+        return r.planarModel->span(span).strain(q, sMaterial);
     }
     r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial.materialCoordinates, q);
-    return r.spatialModel->span(span).axialForce(q, sMaterial);
+    return r.spatialModel->span(span).strain(q, sMaterial);
 }
 
 double ReevingSubsystem::getMaterialCoordinate(const State& s, int rope, int node) const {

@@ -101,6 +101,9 @@ public:
     /// Axial force P = EA eps at material point s of a span [N].
     /// @throws std::invalid_argument if rope, span or s is out of range.
     double getAxialForce(const SimTK::State& state, int rope, int span, double s) const;
+    /// Physical tension T = EA eps |dr/ds| at material point s of a span [N] (see SpanModel::tension).
+    /// @throws std::invalid_argument if rope, span or s is out of range.
+    double getTension(const SimTK::State& state, int rope, int span, double s) const;
     /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m].
     double getMaterialCoordinate(const SimTK::State& state, int rope, int node) const;
     /// Material coordinate range [s1, s2] of a span [m].
@@ -130,6 +133,10 @@ public:
     void setDecorationResolution(int pointsPerSpan);
 
     class Guts;
+private:
+    double strainAt(const SimTK::State& state, int rope, int span, double s) const;
+
+public:
     SimTK_PIMPL_DOWNCAST(ReevingSubsystem, SimTK::ForceSubsystem);
     Guts& updGuts();
     const Guts& getGuts() const;

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 namespace SimbodyReeving {
 
 /// Largest number of sine modes per direction (axial or transverse) a span may carry.
@@ -197,6 +199,14 @@ public:
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double axialForce(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
         return properties_.axialStiffness * strain(q, s);
+    }
+    /// Physical tension T(s) = EA eps |dr/ds| [N]: the magnitude of the internal force vector
+    /// EA eps dr/ds that balances the loads (a hanging rope has T = weight below). It exceeds the
+    /// paper's axial force P = EA eps by the stretch factor |dr/ds| = sqrt(1 + 2 eps).
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    double tension(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
+        const double eps = strain(q, s);
+        return properties_.axialStiffness * eps * std::sqrt(1.0 + 2.0 * eps);
     }
 
     /// Strain at a span end, its gradient d eps/dq, its rate and its acceleration bias (exact,
