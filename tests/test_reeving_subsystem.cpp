@@ -1,0 +1,314 @@
+// ReevingSubsystem on the paper's pendulum: bad input, topology errors, static equilibrium tension
+// profile against the hanging-rope solution, vertical bounce frequency, small-swing period of the
+// compound pendulum, queries and decorations.
+#include "SimbodyReeving/PendulumScene.h"
+#include "SimbodyReeving/ReevingSubsystem.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+using SimTK::MobilizedBody;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::Vec3;
+using namespace SimbodyReeving;
+
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+SpanOptions spans(int na, int nt = 1) {
+    SpanOptions o;
+    o.axialModes = na;
+    o.transverseModes = nt;
+    return o;
+}
+
+template <class F>
+void expectInvalid(F&& f, const std::string& needle) {
+    try {
+        f();
+        ADD_FAILURE() << "no std::invalid_argument for " << needle;
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+}
+
+// Integrates with RK-Merson and returns the times at which y(t) - mean crosses zero upwards.
+std::vector<double> upwardCrossings(const std::vector<double>& t, const std::vector<double>& y) {
+    double mean = 0;
+    for (double v : y) mean += v;
+    mean /= y.size();
+    std::vector<double> out;
+    for (size_t k = 1; k < y.size(); ++k) {
+        const double a = y[k - 1] - mean, b = y[k] - mean;
+        if (a < 0 && b >= 0) out.push_back(t[k - 1] + (t[k] - t[k - 1]) * (-a) / (b - a));
+    }
+    return out;
+}
+
+}  // namespace
+
+// Acceptance 7: bad input -> std::invalid_argument naming it.
+TEST(ReevingSubsystem, BadRopeInputThrowsNamingIt) {
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter(system);
+    SimTK::GeneralForceSubsystem forces(system);
+    ReevingSubsystem reeving(system, Vec3(0, -9.81, 0));
+    MobilizedBody::Free payload(matter.updGround(), SimTK::Transform(),
+                                SimTK::Body::Rigid(SimTK::MassProperties(1, Vec3(0), SimTK::Inertia(1))),
+                                SimTK::Transform());
+    auto good = [&] {
+        RopeSpec r;
+        r.start = {matter.Ground(), Vec3(0)};
+        r.sheaves = {{matter.Ground(), Vec3(3, 0, 0), 0.1}};
+        r.end = {payload, Vec3(0, 0.3, 0)};
+        r.properties = {0.6, 1e6, 1};
+        r.unstretchedLength = 23;
+        r.planeNormal = Vec3(0, 0, 1);
+        return r;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    {
+        RopeSpec r = good();
+        r.end.body = MobilizedBody();  // a path needs two points on bodies
+        expectInvalid([&] { reeving.addRope(r); }, "end anchor has no body");
+    }
+    {
+        RopeSpec r = good();
+        r.sheaves[0].centre = Vec3(0);  // coincides with the start anchor
+        expectInvalid([&] { reeving.addRope(r); }, "coincide");
+    }
+    for (double bad : {0.0, -1.0, nan}) {
+        RopeSpec r = good();
+        r.unstretchedLength = bad;
+        expectInvalid([&] { reeving.addRope(r); }, "unstretchedLength");
+        r = good();
+        r.sheaves[0].radius = bad;
+        expectInvalid([&] { reeving.addRope(r); }, "radius");
+        r = good();
+        r.properties.axialStiffness = bad;
+        expectInvalid([&] { reeving.addRope(r); }, "EA");
+    }
+    {
+        RopeSpec r = good();
+        r.start.station = Vec3(nan, 0, 0);
+        expectInvalid([&] { reeving.addRope(r); }, "start anchor station");
+        r = good();
+        r.sheaves[0].centre = Vec3(0, SimTK::Infinity, 0);
+        expectInvalid([&] { reeving.addRope(r); }, "centre");
+    }
+    for (int bad : {-1, 17}) {
+        RopeSpec r = good();
+        r.spanDefaults.axialModes = bad;
+        expectInvalid([&] { reeving.addRope(r); }, "n_a");
+        r = good();
+        r.spanOverrides = {{1, spans(0, bad)}};
+        expectInvalid([&] { reeving.addRope(r); }, "n_t");
+    }
+    {
+        RopeSpec r = good();
+        r.spanOverrides = {{2, spans(1)}};
+        expectInvalid([&] { reeving.addRope(r); }, "span override index = 2");
+        r = good();
+        r.planeNormal = Vec3(0, 1, 0);  // gravity out of plane
+        expectInvalid([&] { reeving.addRope(r); }, "not in the rope plane");
+    }
+    expectInvalid([&] { ReevingSubsystem(system, Vec3(nan, 0, 0)); }, "gravity");
+}
+
+TEST(ReevingSubsystem, WrongOrderIsAnErrorAtRealizeTopology) {
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter(system);
+    ReevingSubsystem reeving(system, Vec3(0, -9.81, 0));
+    SimTK::GeneralForceSubsystem forces(system);  // added after: its forces would be missed
+    try {
+        system.realizeTopology();
+        ADD_FAILURE() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("after the ReevingSubsystem"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ReevingSubsystem, BodyOfAnotherSystemIsAnErrorAtRealizeTopology) {
+    SimTK::MultibodySystem other;
+    SimTK::SimbodyMatterSubsystem otherMatter(other);
+    MobilizedBody::Free alien(otherMatter.updGround(), SimTK::Transform(),
+                              SimTK::Body::Rigid(SimTK::MassProperties(1, Vec3(0), SimTK::Inertia(1))),
+                              SimTK::Transform());
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter(system);
+    SimTK::GeneralForceSubsystem forces(system);
+    ReevingSubsystem reeving(system, Vec3(0, -9.81, 0));
+    RopeSpec r;
+    r.start = {matter.Ground(), Vec3(0)};
+    r.end = {alien, Vec3(0)};
+    r.properties = {0.6, 1e6, 1};
+    r.unstretchedLength = 10;
+    reeving.addRope(r);
+    try {
+        system.realizeTopology();
+        ADD_FAILURE() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("another system"), std::string::npos) << e.what();
+    }
+}
+
+// Acceptance 4: static tension along the hanging span approaches M g + rhoA g (distance to the
+// payload); the sine modes represent the linear strain by a truncated cosine series, so the error
+// is largest at the span ends and shrinks roughly like 1/n_a there.
+TEST(ReevingSubsystem, StaticTensionApproachesHangingRopeSolution) {
+    const PendulumParameters p;
+    const double range = p.rhoA * p.g * p.L;
+    std::vector<double> endError;
+    double payloadEndWithoutModes = 0;
+    for (int na : {0, 1, 3, 8}) {
+        PendulumScene scene(p, spans(na));
+        const State s = scene.makeInitialState(0, 0);
+        const ReevingSubsystem& rv = scene.reeving();
+        EXPECT_LE(rv.getMaxConstraintError(s), 1e-10 * p.EA);
+        const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, 1);
+        double worst = 0;
+        for (int k = 0; k <= 100; ++k) {
+            const double sk = s1 + (s2 - s1) * k / 100.0;
+            const double exact = p.M * p.g + p.rhoA * p.g * (s2 - sk);
+            worst = std::max(worst, std::abs(rv.getTension(s, 0, 1, sk) - exact));
+        }
+        const double payloadEnd = rv.getTension(s, 0, 1, s2);
+        const double err = std::abs(payloadEnd - p.M * p.g);
+        std::printf("[ static ] n_a=%d: payload-end tension %.4f N (exact %.4f), end error %.4f N = %.2f %% of "
+                    "rhoA g L, worst along span %.2f %%\n",
+                    na, payloadEnd, p.M * p.g, err, 100 * err / range, 100 * worst / range);
+        if (na == 0) {
+            payloadEndWithoutModes = rv.getAxialForce(s, 0, 1, s2);
+        } else {
+            EXPECT_LT(rv.getAxialForce(s, 0, 1, s2), payloadEndWithoutModes);
+        }
+        if (na == 8) {
+            EXPECT_LE(worst, 0.03 * range);
+        }
+        if (!endError.empty()) {
+            EXPECT_LT(err, endError.back());
+        }
+        endError.push_back(err);
+    }
+}
+
+// Acceptance 5: vertical bounce of the payload, n_a = 0: frequency of a spring of the whole rope
+// (the sheave lets rope flow between spans) with rope-mass and Green-strain corrections.
+TEST(ReevingSubsystem, VerticalBounceFrequencyMatchesRopeSpring) {
+    const PendulumParameters p;
+    PendulumScene scene(p, spans(0));
+    State s = scene.makeInitialState(0.0, 1e-3);
+    const ReevingSubsystem& rv = scene.reeving();
+    // Linearised rope spring: T = EA eps lambda, eps = (lambda^2 - 1)/2 -> dT/dlambda = EA (lambda^2 + eps);
+    // total unstretched length L + a, so k = EA (lambda^2 + eps) / (L + a). The rope's material moves
+    // along it with speed growing linearly from the anchor to the payload: effective mass rhoA (L+a)/3.
+    const auto range = rv.getSpanMaterialRange(s, 0, 1);
+    const double T = rv.getTension(s, 0, 1, range.second);
+    const double eps = rv.getAxialForce(s, 0, 1, range.second) / p.EA;
+    const double lambda = std::sqrt(1 + 2 * eps);
+    (void)T;
+    const double k = p.EA * (lambda * lambda + eps) / (p.L + p.a);
+    const double mEff = p.M + p.rhoA * (p.L + p.a) / 3.0;
+    const double fExpected = std::sqrt(k / mEff) / (2 * kPi);
+    const double fUncorrected = std::sqrt(p.EA / ((p.L + p.a) * p.M)) / (2 * kPi);
+
+    SimTK::RungeKuttaMersonIntegrator integ(scene.system());
+    integ.setAccuracy(1e-10);
+    SimTK::TimeStepper ts(scene.system(), integ);
+    ts.initialize(s);
+    std::vector<double> t, y;
+    const double dt = 1e-3;
+    for (int n = 1; n <= 2000; ++n) {
+        ts.stepTo(n * dt);
+        t.push_back(integ.getState().getTime());
+        y.push_back(scene.payloadPosition(integ.getState())[1]);
+    }
+    const std::vector<double> up = upwardCrossings(t, y);
+    ASSERT_GE(up.size(), 4u);
+    const double f = (up.size() - 1) / (up.back() - up.front());
+    std::printf("[ bounce ] f = %.5f Hz, expected %.5f Hz (uncorrected sqrt(EA/((L+a)M))/2pi = %.5f Hz), "
+                "error %.3f %%\n",
+                f, fExpected, fUncorrected, 100 * (f / fExpected - 1));
+    EXPECT_NEAR(f, fExpected, 0.005 * fExpected);
+}
+
+// Acceptance 6: small horizontal swing with rhoA / 1000: period of the two-degree-of-freedom compound
+// pendulum (string of length l from the sheave to the attachment, payload centre d below it,
+// inertia J): M = [[m l^2, m l d], [m l d, m d^2 + J]], K = diag(m g l, m g d).
+TEST(ReevingSubsystem, SmallSwingPeriodMatchesCompoundPendulum) {
+    PendulumParameters p;
+    p.rhoA /= 1000;
+    PendulumScene scene(p, spans(0));
+    State s = scene.makeInitialState(0.02, 0.0);
+    const double l = -(scene.payloadPosition(s)[1] + p.d);  // sheave at y = 0
+    Eigen::Matrix2d M, K;
+    M << p.M * l * l, p.M * l * p.d, p.M * l * p.d, p.M * p.d * p.d + p.J;
+    K << p.M * p.g * l, 0, 0, p.M * p.g * p.d;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> eig(K, M);
+    const double periodExpected = 2 * kPi / std::sqrt(eig.eigenvalues()[0]);
+
+    SimTK::RungeKuttaMersonIntegrator integ(scene.system());
+    integ.setAccuracy(1e-10);
+    SimTK::TimeStepper ts(scene.system(), integ);
+    ts.initialize(s);
+    std::vector<double> t, x;
+    const double dt = 0.01;
+    for (int n = 1; n <= static_cast<int>(2.2 * periodExpected / dt); ++n) {
+        ts.stepTo(n * dt);
+        t.push_back(integ.getState().getTime());
+        x.push_back(scene.payloadPosition(integ.getState())[0]);
+    }
+    // Zero crossings of x - a (the payload swings about x = a).
+    std::vector<double> down;
+    for (size_t k = 1; k < x.size(); ++k) {
+        const double a0 = x[k - 1] - p.a, b0 = x[k] - p.a;
+        if (a0 > 0 && b0 <= 0) down.push_back(t[k - 1] + (t[k] - t[k - 1]) * a0 / (a0 - b0));
+    }
+    ASSERT_GE(down.size(), 2u);
+    const double period = down[1] - down[0];
+    std::printf("[ swing ] period %.5f s, compound pendulum %.5f s (l = %.4f m), error %.4f %%\n", period,
+                periodExpected, l, 100 * (period / periodExpected - 1));
+    EXPECT_NEAR(period, periodExpected, 0.001 * periodExpected);
+}
+
+TEST(ReevingSubsystem, QueriesAndDecorations) {
+    PendulumScene scene(PendulumParameters{}, spans(2, 2));
+    const State s = scene.makeInitialState(1.0, 0.0);
+    const ReevingSubsystem& rv = scene.reeving();
+    EXPECT_EQ(rv.getNumRopes(), 1);
+    EXPECT_EQ(rv.getNumSpans(0), 2);
+    EXPECT_TRUE(rv.isPlanar(0));
+    EXPECT_EQ(rv.getNumModalCoordinates(0), 2 * (2 + 2));
+    EXPECT_EQ(rv.getMaterialCoordinate(s, 0, 0), 0.0);
+    EXPECT_EQ(rv.getMaterialCoordinate(s, 0, 2), 23.0);
+    const double sSheave = rv.getMaterialCoordinate(s, 0, 1);
+    EXPECT_NEAR(sSheave, 3.0, 0.01);
+    // Axial forces of both spans at the sheave are equal (the constraint).
+    EXPECT_NEAR(rv.getAxialForce(s, 0, 0, sSheave), rv.getAxialForce(s, 0, 1, sSheave), 1e-10 * 16.5e6);
+    const std::vector<Vec3> pts = rv.sampleSpan(s, 0, 1, 11);
+    ASSERT_EQ(pts.size(), 11u);
+    EXPECT_NEAR(pts.front()[0], 3.0, 1e-12);
+    EXPECT_NEAR(pts.back()[1], scene.payloadPosition(s)[1] + 0.3, 1e-9);
+    SimTK::Array_<SimTK::DecorativeGeometry> geometry;
+    scene.system().calcDecorativeGeometryAndAppend(s, Stage::Position, geometry);
+    EXPECT_GE(geometry.size(), 2u * 19u);  // two spans drawn as 19-segment polylines
+    expectInvalid([&] { rv.getAxialForce(s, 0, 2, 5.0); }, "span index = 2");
+    expectInvalid([&] { rv.getAxialForce(s, 0, 1, 1.0); }, "material coordinate s");
+    expectInvalid([&] { rv.getConstraintError(s, 0, 0); }, "sheave node index = 0");
+    // Energy bookkeeping: mechanical energy = bodies' T + potential (gravity + rope) + rope T.
+    const double e = rv.calcMechanicalEnergy(s);
+    EXPECT_NEAR(e,
+                scene.system().calcKineticEnergy(s) + scene.system().calcPotentialEnergy(s) +
+                    rv.calcRopeKineticEnergy(s),
+                1e-9 * std::abs(e));
+    EXPECT_GT(rv.calcRopeKineticEnergy(s), 0.0);
+}
