@@ -1,0 +1,38 @@
+#pragma once
+// Command line of the reeving-pendulum demo: options, defaults and validation.
+
+#include <SimbodyReeving/PendulumScene.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pendulum_demo {
+
+/// A bad command line: what() is the one-line message naming the option and value.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Options {
+    std::vector<int> axialModes{0, 1, 2, 3};
+    int transverseModes = 1;
+    double tEnd = 20.0;            // [s]
+    double vx0 = 1.0, vy0 = 0.0;   // [m/s], added after static equilibrium
+    std::string integrator = "rk-merson";
+    double accuracy = 1e-6;
+    double step = 0.0;             // fixed step [s]; 0 = variable step
+    double reportInterval = 0.01;  // [s]
+    std::string outDir = "out/pendulum";
+    bool plots = true, quiet = false, visualize = false, help = false;
+    SimbodyReeving::PendulumParameters parameters;
+};
+
+/// Parses argv. @throws UsageError for an unknown option, a missing or malformed value, an unknown
+/// integrator or an out-of-range value.
+Options parseCommandLine(int argc, char** argv);
+
+/// The --help text.
+std::string usage();
+
+}  // namespace pendulum_demo

@@ -1,0 +1,317 @@
+// reeving-pendulum: the paper's two-branch pendulum study (Mohammadi & Escalona, section 3, Table 1),
+// reproducible from one command. See --help and README.md.
+#include "PendulumCli.h"
+
+#include <SimbodyReeving/Integrators.h>
+#include <SimbodyReeving/PendulumScene.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+namespace fs = std::filesystem;
+using SimTK::Stage;
+using SimTK::State;
+using namespace pendulum_demo;
+using namespace SimbodyReeving;
+
+namespace {
+
+struct Row {
+    double t, x, y, theta, tensionPayload, tensionSheave, sSheave, energy, constraintError;
+};
+struct StaticRow {
+    int span;
+    double s, axialForce;
+};
+struct CaseResult {
+    int axialModes = 0;
+    std::vector<Row> rows;
+    std::vector<StaticRow> staticRows;
+    long steps = 0, rhsEvaluations = 0;
+    double wallSeconds = 0, initialKineticEnergy = 0, maxEnergyDrift = 0, maxConstraintError = 0;
+};
+
+Row observe(const PendulumScene& scene, const State& s) {
+    scene.system().realize(s, Stage::Velocity);
+    const SimTK::Vec3 p = scene.payloadPosition(s);
+    const ReevingSubsystem& rv = scene.reeving();
+    return {s.getTime(),
+            p[0],
+            p[1],
+            scene.payloadAngle(s),
+            scene.tensionAtPayload(s),
+            scene.tensionAtSheave(s),
+            scene.sheaveMaterialCoordinate(s),
+            rv.calcMechanicalEnergy(s),
+            rv.getConstraintError(s, 0, 1)};
+}
+
+CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool visualize) {
+    SpanOptions spans;
+    spans.axialModes = na;
+    spans.transverseModes = o.transverseModes;
+    const PendulumScene scene(o.parameters, spans);
+    CaseResult r;
+    r.axialModes = na;
+    State s = scene.makeInitialState(o.vx0, o.vy0);
+    const ReevingSubsystem& rv = scene.reeving();
+    for (int span = 0; span < 2; ++span) {
+        const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, span);
+        for (int k = 0; k < 60; ++k) {
+            const double sk = s1 + (s2 - s1) * k / 59.0;
+            r.staticRows.push_back({span, sk, rv.getAxialForce(s, 0, span, std::min(sk, s2))});
+        }
+    }
+    r.initialKineticEnergy = scene.system().calcKineticEnergy(s) + rv.calcRopeKineticEnergy(s);
+    const double e0 = rv.calcMechanicalEnergy(s);
+
+    std::unique_ptr<SimTK::Visualizer> viz;
+    if (visualize) {
+        try {
+            viz = std::make_unique<SimTK::Visualizer>(scene.system());
+            viz->setMode(SimTK::Visualizer::RealTime);
+            viz->report(s);
+        } catch (const std::exception& e) {
+            std::cerr << "reeving-pendulum: --visualize: the Simbody Visualizer could not start (" << e.what()
+                      << "); running without it\n";
+            viz.reset();
+        }
+    }
+    auto integ = makeIntegrator(o.integrator, scene.system());
+    integ->setAccuracy(o.accuracy);
+    if (o.step > 0) integ->setFixedStepSize(o.step);
+    SimTK::TimeStepper ts(scene.system(), *integ);
+    ts.initialize(s);
+    const auto start = std::chrono::steady_clock::now();
+    r.rows.push_back(observe(scene, integ->getState()));
+    const int reports = static_cast<int>(std::floor(o.tEnd / o.reportInterval + 1e-9));
+    for (int n = 1; n <= reports; ++n) {
+        ts.stepTo(n * o.reportInterval);
+        const State& st = integ->getState();
+        r.rows.push_back(observe(scene, st));
+        if (viz) viz->report(st);
+        progress = st.getTime() / o.tEnd;
+    }
+    r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.steps = integ->getNumStepsTaken();
+    r.rhsEvaluations = integ->getNumRealizations();
+    for (const Row& row : r.rows) {
+        r.maxEnergyDrift = std::max(r.maxEnergyDrift, std::abs(row.energy - e0));
+        r.maxConstraintError = std::max(r.maxConstraintError, std::abs(row.constraintError));
+    }
+    progress = 1.0;
+    return r;
+}
+
+std::string jsonNumber(double v) {
+    std::ostringstream o;
+    o << std::setprecision(12) << v;
+    return o.str();
+}
+
+void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
+    fs::create_directories(dir);
+    std::ofstream ts(dir / "timeseries.csv");
+    ts << "t,x,y,theta,tension_payload,tension_sheave,s_sheave,energy,constraint_error\n" << std::setprecision(12);
+    for (const Row& w : r.rows)
+        ts << w.t << ',' << w.x << ',' << w.y << ',' << w.theta << ',' << w.tensionPayload << ',' << w.tensionSheave
+           << ',' << w.sSheave << ',' << w.energy << ',' << w.constraintError << '\n';
+    std::ofstream st(dir / "static_axial_force.csv");
+    st << "span,s,axial_force\n" << std::setprecision(12);
+    for (const StaticRow& w : r.staticRows) st << w.span << ',' << w.s << ',' << w.axialForce << '\n';
+    const auto& p = o.parameters;
+    std::ofstream js(dir / "summary.json");
+    js << "{\n"
+       << "  \"integrator\": \"" << o.integrator << "\",\n"
+       << "  \"accuracy\": " << jsonNumber(o.accuracy) << ",\n"
+       << "  \"fixed_step\": " << jsonNumber(o.step) << ",\n"
+       << "  \"axial_modes\": " << r.axialModes << ",\n"
+       << "  \"transverse_modes\": " << o.transverseModes << ",\n"
+       << "  \"t_end\": " << jsonNumber(o.tEnd) << ",\n"
+       << "  \"vx0\": " << jsonNumber(o.vx0) << ",\n"
+       << "  \"vy0\": " << jsonNumber(o.vy0) << ",\n"
+       << "  \"steps\": " << r.steps << ",\n"
+       << "  \"rhs_evaluations\": " << r.rhsEvaluations << ",\n"
+       << "  \"wall_seconds\": " << jsonNumber(r.wallSeconds) << ",\n"
+       << "  \"initial_kinetic_energy_J\": " << jsonNumber(r.initialKineticEnergy) << ",\n"
+       << "  \"max_energy_drift_J\": " << jsonNumber(r.maxEnergyDrift) << ",\n"
+       << "  \"max_constraint_error_N\": " << jsonNumber(r.maxConstraintError) << ",\n"
+       << "  \"parameters\": {\"a\": " << jsonNumber(p.a) << ", \"L\": " << jsonNumber(p.L)
+       << ", \"d\": " << jsonNumber(p.d) << ", \"r\": " << jsonNumber(p.r) << ", \"g\": " << jsonNumber(p.g)
+       << ", \"rhoA\": " << jsonNumber(p.rhoA) << ", \"EA\": " << jsonNumber(p.EA) << ", \"EI\": " << jsonNumber(p.EI)
+       << ", \"M\": " << jsonNumber(p.M) << ", \"J\": " << jsonNumber(p.J) << "}\n"
+       << "}\n";
+}
+
+// One CSV with every case side by side (same report times), for the comparison figures.
+void writeComparison(const fs::path& dir, const std::vector<CaseResult>& cases) {
+    std::ofstream c(dir / "comparison.csv");
+    c << "t";
+    for (const auto& r : cases) c << ",x_" << r.axialModes << ",tension_payload_" << r.axialModes;
+    c << '\n' << std::setprecision(12);
+    for (size_t k = 0; k < cases.front().rows.size(); ++k) {
+        c << cases.front().rows[k].t;
+        for (const auto& r : cases) c << ',' << r.rows[k].x << ',' << r.rows[k].tensionPayload;
+        c << '\n';
+    }
+}
+
+bool makePlots(const fs::path& dir, const std::vector<CaseResult>& cases, bool single, const Options& o) {
+    if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+        std::cerr << "reeving-pendulum: gnuplot not found, figures skipped (apt-get install gnuplot-nox)\n";
+        return false;
+    }
+    std::ofstream gp(dir / "plots.gp");
+    gp << "set terminal pngcairo size 900,560 font 'DejaVu Sans,11'\nset datafile separator ','\nset grid\n"
+       << "set key outside right\n";
+    auto path = [&](const CaseResult& r, const char* file) {
+        return single ? std::string(file) : "modes-" + std::to_string(r.axialModes) + "/" + file;
+    };
+    auto label = [](const CaseResult& r) { return "n_a = " + std::to_string(r.axialModes); };
+    const double a = o.parameters.a;
+    gp << "set output 'fig2_payload_displacement.png'\nset title 'Payload horizontal displacement'\n"
+       << "set xlabel 't [s]'\nset ylabel 'x - a [m]'\nplot ";
+    for (size_t i = 0; i < cases.size(); ++i)
+        gp << (i ? ", " : "") << "'" << path(cases[i], "timeseries.csv") << "' every ::1 using 1:($2-" << a
+           << ") with lines lw 2 title '" << label(cases[i]) << "'";
+    gp << "\nset output 'fig3_static_axial_force.png'\nset title 'Axial force along the rope at static equilibrium'\n"
+       << "set xlabel 's [m]'\nset ylabel 'P = EA eps [N]'\nplot ";
+    for (size_t i = 0; i < cases.size(); ++i)
+        gp << (i ? ", " : "") << "'" << path(cases[i], "static_axial_force.csv")
+           << "' every ::1 using 2:3 with lines lw 2 title '" << label(cases[i]) << "'";
+    gp << "\nset output 'fig4_payload_end_axial_force.png'\nset title 'Axial force at the payload end'\n"
+       << "set xlabel 't [s]'\nset ylabel 'P [N]'\nplot ";
+    for (size_t i = 0; i < cases.size(); ++i)
+        gp << (i ? ", " : "") << "'" << path(cases[i], "timeseries.csv") << "' every ::1 using 1:5 with lines lw 2 title '"
+           << label(cases[i]) << "'";
+    gp << "\n";
+    int zeroColumn = -1;
+    for (size_t i = 0; i < cases.size(); ++i)
+        if (cases[i].axialModes == 0) zeroColumn = 3 + 2 * static_cast<int>(i);
+    if (!single && zeroColumn > 0 && cases.size() > 1) {
+        gp << "set output 'fig5_axial_force_difference.png'\n"
+           << "set title 'Payload-end axial force minus the n_a = 0 case'\n"
+           << "set xlabel 't [s]'\nset ylabel 'P - P(n_a = 0) [N]'\nplot ";
+        bool first = true;
+        for (size_t i = 0; i < cases.size(); ++i) {
+            if (cases[i].axialModes == 0) continue;
+            gp << (first ? "" : ", ") << "'comparison.csv' every ::1 using 1:($" << 3 + 2 * i << "-$" << zeroColumn
+               << ") with lines lw 2 title '" << label(cases[i]) << "'";
+            first = false;
+        }
+        gp << "\n";
+    } else {
+        std::cerr << "reeving-pendulum: fig5 needs n_a = 0 and another n_a in --axial-modes; skipped\n";
+    }
+    gp.close();
+    const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp";
+    if (std::system(cmd.c_str()) != 0) {
+        std::cerr << "reeving-pendulum: gnuplot failed; see " << (dir / "plots.gp").string() << "\n";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    try {
+        o = parseCommandLine(argc, argv);
+    } catch (const UsageError& e) {
+        std::cerr << "reeving-pendulum: " << e.what() << "\nTry 'reeving-pendulum --help'.\n";
+        return 2;
+    }
+    if (o.help) {
+        std::cout << usage();
+        return 0;
+    }
+    bool visualize = o.visualize;
+    if (visualize) {
+        const char* display = std::getenv("DISPLAY");
+        if (!display || !*display) {
+            std::cerr << "reeving-pendulum: --visualize: no display (DISPLAY is not set); running without "
+                         "the Visualizer\n";
+            visualize = false;
+        }
+        std::signal(SIGPIPE, SIG_IGN);  // a closed visualizer window must not kill the run
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::atomic<double>> progress(o.axialModes.size());
+    for (auto& p : progress) p = 0.0;
+    std::vector<CaseResult> cases(o.axialModes.size());
+    try {
+        // Cases run concurrently (one Simbody system each); the Visualizer shows the first one alone.
+        std::vector<std::future<CaseResult>> futures;
+        const size_t workers = visualize ? 1 : std::max(1u, std::thread::hardware_concurrency());
+        size_t next = 0;
+        std::vector<size_t> running;
+        auto launch = [&](size_t i) {
+            futures.resize(o.axialModes.size());
+            futures[i] = std::async(std::launch::async, [&, i] {
+                return runCase(o, o.axialModes[i], progress[i], visualize && i == 0);
+            });
+            running.push_back(i);
+        };
+        while (next < o.axialModes.size() && running.size() < workers) launch(next++);
+        auto lastPrint = std::chrono::steady_clock::now();
+        bool printed = false;
+        while (!running.empty()) {
+            for (size_t k = 0; k < running.size(); ++k) {
+                const size_t i = running[k];
+                if (futures[i].wait_for(std::chrono::milliseconds(50)) == std::future_status::ready) {
+                    cases[i] = futures[i].get();
+                    running.erase(running.begin() + static_cast<long>(k));
+                    if (next < o.axialModes.size()) launch(next++);
+                    break;
+                }
+            }
+            const auto now = std::chrono::steady_clock::now();
+            if (!o.quiet && std::chrono::duration<double>(now - start).count() > 2.0 &&
+                std::chrono::duration<double>(now - lastPrint).count() > 1.0) {
+                std::ostringstream line;
+                line << "\rreeving-pendulum: " << std::fixed << std::setprecision(0);
+                for (size_t i = 0; i < o.axialModes.size(); ++i)
+                    line << "n_a=" << o.axialModes[i] << " " << 100 * progress[i].load() << "%  ";
+                line << std::setprecision(1) << std::chrono::duration<double>(now - start).count() << " s";
+                std::cerr << line.str() << std::flush;
+                lastPrint = now;
+                printed = true;
+            }
+        }
+        if (printed) std::cerr << "\n";
+    } catch (const std::exception& e) {
+        std::cerr << "reeving-pendulum: simulation failed: " << e.what() << "\n";
+        return 1;
+    }
+
+    const fs::path out(o.outDir);
+    const bool single = cases.size() == 1;
+    for (const CaseResult& r : cases)
+        writeCase(single ? out : out / ("modes-" + std::to_string(r.axialModes)), o, r);
+    if (!single) writeComparison(out, cases);
+    if (o.plots) makePlots(out, cases, single, o);
+
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    long steps = 0;
+    double drift = 0;
+    for (const CaseResult& r : cases) {
+        steps += r.steps;
+        drift = std::max(drift, r.maxEnergyDrift);
+    }
+    std::printf("reeving-pendulum: %zu case(s), %.1f s simulated each, wall %.2f s, %ld steps, max energy drift %.3e J, "
+                "outputs in %s\n",
+                cases.size(), o.tEnd, wall, steps, drift, out.string().c_str());
+    return 0;
+}

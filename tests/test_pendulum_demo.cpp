@@ -1,0 +1,148 @@
+// The reeving-pendulum executable end to end (issue 4): outputs with their columns and keys, every
+// integrator name, and bad input (exit 2, output folder untouched).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kExe = REEVING_PENDULUM_EXE;
+
+int run(const std::string& args, const std::string& log) {
+    const std::string cmd = "'" + kExe + "' " + args + " > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("reeving_pendulum_test_" + name);
+    fs::remove_all(p);
+    return p;
+}
+
+// Every value of every data row is a finite number; returns the header.
+std::string checkCsv(const fs::path& p, size_t minRows) {
+    std::ifstream in(p);
+    std::string header, line;
+    std::getline(in, header);
+    size_t rows = 0;
+    while (std::getline(in, line)) {
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ',')) {
+            char* end = nullptr;
+            const double v = std::strtod(cell.c_str(), &end);
+            EXPECT_TRUE(end != cell.c_str() && std::isfinite(v)) << p << ": '" << cell << "'";
+        }
+        ++rows;
+    }
+    EXPECT_GE(rows, minRows) << p;
+    return header;
+}
+
+void checkSummary(const fs::path& p) {
+    const std::string json = slurp(p);
+    for (const char* key : {"integrator", "accuracy", "axial_modes", "transverse_modes", "steps", "rhs_evaluations",
+                            "wall_seconds", "initial_kinetic_energy_J", "max_energy_drift_J", "max_constraint_error_N",
+                            "parameters"})
+        EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
+    EXPECT_EQ(json.find("nan"), std::string::npos);
+    EXPECT_EQ(json.find("inf"), std::string::npos);
+}
+
+}  // namespace
+
+TEST(PendulumDemo, WritesAllOutputsForSeveralModeCounts) {
+    const fs::path out = scratch("several");
+    ASSERT_EQ(run("--axial-modes 0,1 --t-end 0.3 --report-interval 0.05 --quiet --out '" + out.string() + "'",
+                  out.string() + ".log"),
+              0)
+        << slurp(out.string() + ".log");
+    for (int na : {0, 1}) {
+        const fs::path dir = out / ("modes-" + std::to_string(na));
+        const std::string header = checkCsv(dir / "timeseries.csv", 7);
+        for (const char* col : {"t", "x", "y", "theta", "tension_payload", "tension_sheave", "s_sheave", "energy",
+                                "constraint_error"})
+            EXPECT_NE(("," + header + ",").find(std::string(",") + col + ","), std::string::npos) << col;
+        EXPECT_EQ(checkCsv(dir / "static_axial_force.csv", 100), "span,s,axial_force");
+        checkSummary(dir / "summary.json");
+    }
+    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+        for (const char* fig : {"fig2_payload_displacement.png", "fig3_static_axial_force.png",
+                                "fig4_payload_end_axial_force.png", "fig5_axial_force_difference.png"})
+            EXPECT_GT(fs::exists(out / fig) ? fs::file_size(out / fig) : 0u, 1000u) << fig;
+    }
+}
+
+TEST(PendulumDemo, SingleModeCountWritesDirectlyIntoOutDir) {
+    const fs::path out = scratch("single");
+    ASSERT_EQ(run("--axial-modes 2 --t-end 0.1 --report-interval 0.05 --no-plots --quiet --out '" + out.string() + "'",
+                  out.string() + ".log"),
+              0);
+    checkCsv(out / "timeseries.csv", 3);
+    checkSummary(out / "summary.json");
+    EXPECT_FALSE(fs::exists(out / "modes-2"));
+}
+
+TEST(PendulumDemo, AcceptsEveryIntegrator) {
+    for (const char* name : {"rk-merson", "rk3", "rk-feldberg", "cpodes", "verlet", "semi-explicit-euler2",
+                             "explicit-euler"}) {
+        const fs::path out = scratch(std::string("integrator_") + name);
+        EXPECT_EQ(run(std::string("--integrator ") + name +
+                          " --axial-modes 0 --t-end 0.05 --report-interval 0.01 --no-plots --quiet --out '" +
+                          out.string() + "'",
+                      out.string() + ".log"),
+                  0)
+            << name << ": " << slurp(out.string() + ".log");
+        checkCsv(out / "timeseries.csv", 6);
+        EXPECT_NE(slurp(out / "summary.json").find(std::string("\"") + name + "\""), std::string::npos);
+    }
+    const fs::path out = scratch("fixed_step");
+    EXPECT_EQ(run("--integrator explicit-euler --step 1e-4 --axial-modes 0 --t-end 0.02 --no-plots --quiet --out '" +
+                      out.string() + "'",
+                  out.string() + ".log"),
+              0);
+}
+
+TEST(PendulumDemo, BadInputExitsTwoAndWritesNothing) {
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"--bogus", "--bogus"},
+        {"--t-end abc", "--t-end 'abc'"},
+        {"--t-end -1", "--t-end '-1'"},
+        {"--integrator rk45", "--integrator 'rk45'"},
+        {"--axial-modes 0,17", "--axial-modes '0,17'"},
+        {"--axial-modes 1,,2", "--axial-modes"},
+        {"--transverse-modes -1", "--transverse-modes '-1'"},
+        {"--accuracy 0", "--accuracy '0'"},
+        {"--set EA=-5", "--set 'EA=-5'"},
+        {"--set Q=1", "--set 'Q=1'"},
+        {"--set M", "--set 'M'"},
+        {"--step 0", "--step '0'"},
+        {"--report-interval nan", "--report-interval 'nan'"},
+        {"--vx0", "--vx0"},
+    };
+    for (const auto& [args, needle] : cases) {
+        const fs::path out = scratch("bad");
+        const std::string log = out.string() + ".log";
+        EXPECT_EQ(run(args + " --out '" + out.string() + "'", log), 2) << args;
+        const std::string msg = slurp(log);
+        EXPECT_NE(msg.find(needle), std::string::npos) << args << " -> " << msg;
+        EXPECT_NE(msg.find("--help"), std::string::npos) << msg;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
+}
