@@ -5,6 +5,7 @@
 #include <SimbodyReeving/Integrators.h>
 #include <SimbodyReeving/PendulumScene.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -264,7 +265,12 @@ int main(int argc, char** argv) {
             });
             running.push_back(i);
         };
-        while (next < o.axialModes.size() && running.size() < workers) launch(next++);
+        // Launch the costliest cases (most axial modes: stiffest) first.
+        std::vector<size_t> order(o.axialModes.size());
+        for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return o.axialModes[a] > o.axialModes[b]; });
+        while (next < order.size() && running.size() < workers) launch(order[next++]);
         auto lastPrint = std::chrono::steady_clock::now();
         bool printed = false;
         while (!running.empty()) {
@@ -273,7 +279,7 @@ int main(int argc, char** argv) {
                 if (futures[i].wait_for(std::chrono::milliseconds(50)) == std::future_status::ready) {
                     cases[i] = futures[i].get();
                     running.erase(running.begin() + static_cast<long>(k));
-                    if (next < o.axialModes.size()) launch(next++);
+                    if (next < order.size()) launch(order[next++]);
                     break;
                 }
             }

@@ -82,13 +82,25 @@ struct PositionCache {
 class ReevingSubsystem::Guts : public ForceSubsystem::Guts {
 public:
     explicit Guts(const Vec3& gravity) : ForceSubsystem::Guts("ReevingSubsystem", "0.1"), gravity_(gravity) {}
-    Guts* cloneImpl() const override { return new Guts(*this); }
+    Guts* cloneImpl() const override {
+        Guts* copy = new Guts(*this);
+        copy->system_ = nullptr;  // a clone belongs to another System
+        copy->matter_ = nullptr;
+        return copy;
+    }
 
     std::vector<RopeRecord> ropes;
     int decorationPoints = 20;
 
-    const MultibodySystem& mbs() const { return MultibodySystem::downcast(getSystem()); }
-    const SimbodyMatterSubsystem& matter() const { return mbs().getMatterSubsystem(); }
+    // Cached at realizeTopology (MultibodySystem::downcast is a dynamic_cast: not per evaluation).
+    const MultibodySystem& mbs() const {
+        if (!system_) system_ = &MultibodySystem::downcast(getSystem());
+        return *system_;
+    }
+    const SimbodyMatterSubsystem& matter() const {
+        if (!matter_) matter_ = &mbs().getMatterSubsystem();
+        return *matter_;
+    }
     const Vec3& gravity() const { return gravity_; }
 
     // ---- realization -----------------------------------------------------------------------
@@ -101,6 +113,8 @@ public:
                     "ReevingSubsystem: force subsystem '" + sys.getSubsystem(i).getName() +
                     "' was added after the ReevingSubsystem; construct the ReevingSubsystem after every other "
                     "force subsystem (GeneralForceSubsystem included) so it sees all forces in its coupled solve");
+        system_ = nullptr;
+        matter_ = nullptr;
         int z = 0;
         auto& self = const_cast<Guts&>(*this);
         for (RopeRecord& r : self.ropes) {
@@ -368,6 +382,8 @@ public:
 private:
     Vec3 gravity_;
     mutable CacheEntryIndex positionCache_;
+    mutable const MultibodySystem* system_ = nullptr;
+    mutable const SimbodyMatterSubsystem* matter_ = nullptr;
 };
 
 // ---- ReevingSubsystem ------------------------------------------------------------------------

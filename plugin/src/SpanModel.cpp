@@ -247,7 +247,11 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         B.col(iS2) = g2 * tv;
 
         const double wm = rhoA * l * w;
-        for (int r = 0; r < Dim; ++r) d.massMatrix.template selfadjointView<Eigen::Lower>().rankUpdate(B.row(r).transpose(), wm);
+        // Lower triangle of M += wm B^T B (B is Dim x n: a plain loop beats a rank update here).
+        for (int b = 0; b < n; ++b) {
+            const Vec Bb = B.col(b);
+            for (int a = b; a < n; ++a) d.massMatrix(a, b) += wm * B.col(a).dot(Bb);
+        }
 
         // Q_v -= rhoA w [ B^T (ldot v + l a) + l D ];  + 1/2 rhoA delta sum w |v|^2
         const Vec x = ld * v + l * a;
