@@ -4,12 +4,12 @@
 
 #include <SimbodyReeving/Integrators.h>
 #include <SimbodyReeving/PendulumScene.h>
+#include <SimbodyReeving/Visualization.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -62,7 +62,7 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     SpanOptions spans;
     spans.axialModes = na;
     spans.transverseModes = o.transverseModes;
-    const PendulumScene scene(o.parameters, spans);
+    PendulumScene scene(o.parameters, spans);
     CaseResult r;
     r.axialModes = na;
     State s = scene.makeInitialState(o.vx0, o.vy0);
@@ -79,14 +79,15 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
 
     std::unique_ptr<SimTK::Visualizer> viz;
     if (visualize) {
-        try {
-            viz = std::make_unique<SimTK::Visualizer>(scene.system());
+        std::string whyNot;
+        viz = tryStartVisualizer(scene.system(), whyNot);
+        if (viz) {
             viz->setMode(SimTK::Visualizer::RealTime);
+            viz->setBackgroundType(SimTK::Visualizer::SolidColor);
+            viz->setCameraTransform(SimTK::Transform(SimTK::Vec3(1.5, -10, 45)));
             viz->report(s);
-        } catch (const std::exception& e) {
-            std::cerr << "reeving-pendulum: --visualize: the Simbody Visualizer could not start (" << e.what()
-                      << "); running without it\n";
-            viz.reset();
+        } else {
+            std::cerr << "reeving-pendulum: --visualize: " << whyNot << "; running without the Visualizer\n";
         }
     }
     auto integ = makeIntegrator(o.integrator, scene.system());
@@ -104,6 +105,7 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
         if (viz) viz->report(st);
         progress = st.getTime() / o.tEnd;
     }
+    if (viz) stopVisualizer(*viz);
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhsEvaluations = integ->getNumRealizations();
@@ -238,16 +240,7 @@ int main(int argc, char** argv) {
         std::cout << usage();
         return 0;
     }
-    bool visualize = o.visualize;
-    if (visualize) {
-        const char* display = std::getenv("DISPLAY");
-        if (!display || !*display) {
-            std::cerr << "reeving-pendulum: --visualize: no display (DISPLAY is not set); running without "
-                         "the Visualizer\n";
-            visualize = false;
-        }
-        std::signal(SIGPIPE, SIG_IGN);  // a closed visualizer window must not kill the run
-    }
+    const bool visualize = o.visualize;
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::atomic<double>> progress(o.axialModes.size());
     for (auto& p : progress) p = 0.0;
