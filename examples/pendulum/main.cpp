@@ -188,11 +188,17 @@ bool makePlots(const fs::path& dir, const std::vector<CaseResult>& cases, bool s
     for (size_t i = 0; i < cases.size(); ++i)
         gp << (i ? ", " : "") << "'" << path(cases[i], "timeseries.csv") << "' every ::1 using 1:($2-" << a
            << ") with lines lw 2 title '" << label(cases[i]) << "'";
+    // Reference: the hanging rope below the sheave, T(s) = M g + rhoA g (a + L - s), as the axial
+    // force P = EA eps = T / sqrt(1 + 2 eps) ~ T (1 - T/EA).
+    const auto& pp = o.parameters;
     gp << "\nset output 'fig3_static_axial_force.png'\nset title 'Axial force along the rope at static equilibrium'\n"
-       << "set xlabel 's [m]'\nset ylabel 'P = EA eps [N]'\nplot ";
+       << "set xlabel 's [m]'\nset ylabel 'P = EA eps [N]'\nset samples 200\n"
+       << "T(s) = " << pp.M * pp.g << " + " << pp.rhoA * pp.g << " * (" << pp.a + pp.L << " - s)\n"
+       << "hanging(s) = (s >= " << pp.a << ") ? T(s) * (1 - T(s) / " << pp.EA << ") : 1/0\nplot ";
     for (size_t i = 0; i < cases.size(); ++i)
         gp << (i ? ", " : "") << "'" << path(cases[i], "static_axial_force.csv")
            << "' every ::1 using 2:3 with lines lw 2 title '" << label(cases[i]) << "'";
+    gp << ", [" << pp.a << ":" << pp.a + pp.L << "] hanging(x) with lines dt 2 lw 2 lc 'black' title 'hanging rope'";
     gp << "\nset output 'fig4_payload_end_axial_force.png'\nset title 'Axial force at the payload end'\n"
        << "set xlabel 't [s]'\nset ylabel 'P [N]'\nplot ";
     for (size_t i = 0; i < cases.size(); ++i)
