@@ -26,7 +26,8 @@ void PendulumParameters::validate() const {
     check("J", J, J > 0, "> 0");
 }
 
-PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spans) : parameters_(p) {
+PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spans, bool planarRope)
+    : parameters_(p) {
     p.validate();
     using namespace SimTK;
     system_ = std::make_unique<MultibodySystem>();
@@ -45,7 +46,7 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
     rope.properties = {p.rhoA, p.EA, p.EI};
     rope.unstretchedLength = p.a + p.L;
     rope.spanDefaults = spans;
-    rope.planeNormal = Vec3(0, 0, 1);
+    rope.planeNormal = planarRope ? Vec3(0, 0, 1) : Vec3(0);
     reeving_->addRope(rope);
     system_->realizeTopology();
 }

@@ -32,8 +32,10 @@ struct PendulumParameters {
 /// the rope is planar (plane normal z).
 class PendulumScene {
 public:
+    /// @param planarRope true (default): planar spans in the x-y plane; false: spatial spans (same
+    ///        physics for this in-plane motion, with out-of-plane modes and work).
     /// @throws std::invalid_argument for bad parameters or span options.
-    PendulumScene(const PendulumParameters& parameters, const SpanOptions& spans);
+    PendulumScene(const PendulumParameters& parameters, const SpanOptions& spans, bool planarRope = true);
 
     SimTK::MultibodySystem& system() { return *system_; }
     const SimTK::MultibodySystem& system() const { return *system_; }
