@@ -66,7 +66,9 @@ struct RopeRecord {
     }
 };
 
-/// Per-rope evaluation cache.
+/// Per-rope evaluation cache, allocated at Stage::Position. realizeVelocity refreshes its
+/// velocity-level part (material rates, span evaluations, the rope reduced to its nodes) every time
+/// velocities are realized; velocity-level queries check the stage.
 struct RopeCache {
     Eigen::Matrix3Xd nodes3, nodeVelocities3;
     RopeData<2> planar;
@@ -620,6 +622,10 @@ std::vector<Vec3> ReevingSubsystem::sampleSpan(const State& s, int rope, int spa
 
 double ReevingSubsystem::calcRopeKineticEnergy(const State& s) const {
     const Guts& g = getGuts();
+    // The velocity-level rope data live beside the position-level data and are refreshed by every
+    // realize(Velocity): reading them below that stage would return stale numbers.
+    if (s.getSystemStage() < Stage::Velocity)
+        throw std::logic_error("ReevingSubsystem::calcRopeKineticEnergy: realize the state to Stage::Velocity first");
     double t = 0;
     for (size_t i = 0; i < g.ropes.size(); ++i) {
         const RopeCache& c = g.positionCache(s).ropes[i];
