@@ -59,7 +59,7 @@ SimTK::State PendulumScene::makeInitialState(double vx, double vy) const {
     const double P = (p.M + p.rhoA * p.L) * p.g;
     const double stretch = std::sqrt(1.0 + 2.0 * P / p.EA);
     payload_->setQToFitTranslation(s, Vec3(p.a, -p.L * stretch - p.d, 0));
-    reeving_->findStaticEquilibrium(s, 1e-10);
+    reeving_->findStaticEquilibrium(s, 1e-9);
     payload_->setUToFitLinearVelocity(s, Vec3(vx, vy, 0));
     system_->realize(s, Stage::Velocity);
     return s;

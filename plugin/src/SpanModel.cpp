@@ -4,7 +4,9 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -126,12 +128,16 @@ double SpanModel<Dim>::checkMaterialPoint(const Eigen::Ref<const Eigen::VectorXd
     const double s1 = q[s1Index()], s2 = q[s2Index()];
     const double l = s2 - s1;
     if (!(l > 0)) throwInvalid("SpanModel", "span length l = s2 - s1 [m]", l, "must be > 0");
-    if (!std::isfinite(s) || s < s1 || s > s2) {
+    // Points computed as s1 + (s2 - s1) k / n may round a few ulp past an end: accept 1e-12 l.
+    const double slack = 1e-12 * l;
+    if (!std::isfinite(s) || s < s1 - slack || s > s2 + slack) {
         std::ostringstream range;
-        range << "is outside the span [s1, s2] = [" << s1 << ", " << s2 << "]";
-        throwInvalid("SpanModel", "material coordinate s [m]", s, range.str());
+        range << std::setprecision(17) << "is outside the span [s1, s2] = [" << s1 << ", " << s2 << "]";
+        std::ostringstream value;
+        value << std::setprecision(17) << s;
+        throwInvalid("SpanModel", "material coordinate s [m]", value.str(), range.str());
     }
-    return (s - s1) / l;
+    return std::clamp((s - s1) / l, 0.0, 1.0);
 }
 
 namespace {

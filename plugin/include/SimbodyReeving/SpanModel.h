@@ -189,7 +189,8 @@ public:
     void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
                   Data& data) const;
 
-    /// Position r(s) of material point s in [s1, s2] [m].
+    /// Position r(s) of material point s in [s1, s2] [m] (points within 1e-12 l outside an end,
+    /// round-off of s1 + (s2 - s1) k / n, are taken at that end).
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     Vec position(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
     /// Green strain eps(s) = 1/2 (|dr/ds|^2 - 1) at material point s in [s1, s2] [-].
