@@ -13,7 +13,9 @@
 //
 // Each run prints one line: case, integrator, steps, wall s, drift/KE0, constraint/weight, status,
 // followed by diagnostics (minimum axial force in the rope, highest payload point relative to the
-// sheave, simulated time reached).
+// sheave, simulated time reached). The status carries WARNINGs, not failures, when the run left the
+// model's physical validity while staying numerically sound: the rope in compression (a rope cannot
+// push; the spans treat compression elastically) or the attachment above the sheave.
 #include "SimbodyReeving/Integrators.h"
 #include "SimbodyReeving/PendulumScene.h"
 
@@ -51,9 +53,6 @@ struct StressCase {
     int nt = 1;
     double vx0 = 1.0;   // [m/s]
     double tEnd = 20.0; // [s]
-    /// 0: PendulumScene::makeInitialState (static equilibrium to 1e-10). Otherwise the same steps
-    /// with this equilibrium tolerance (diagnostic variants only).
-    double equilibriumTolerance = 0;
 };
 
 std::vector<StressCase> stressCases() {
@@ -67,13 +66,6 @@ std::vector<StressCase> stressCases() {
     add("Baseline", "Table 1, n_a=3, n_t=1, vx0=1 m/s, 20 s (reference)");
     add("EAx10", "EA x10 (165e6 N)").params.EA *= 10.0;
     add("EAx100", "EA x100 (1.65e9 N)").params.EA *= 100.0;
-    {
-        // Diagnostic: makeInitialState's 1e-10 equilibrium is not reached at EA x100; this variant
-        // starts from a 1e-9 equilibrium to see whether the dynamics themselves survive.
-        StressCase& eq = add("EAx100Eq1e9", "EA x100, static equilibrium to 1e-9 (diagnostic)");
-        eq.params.EA *= 100.0;
-        eq.equilibriumTolerance = 1e-9;
-    }
     add("ShortSpan", "horizontal span a = 0.2 m").params.a = 0.2;
     add("Push5", "vx0 = 5 m/s").vx0 = 5.0;
     add("Push20", "vx0 = 20 m/s").vx0 = 20.0;
@@ -144,18 +136,7 @@ Measurement runCase(const StressRun& run) {
     try {
         const PendulumScene scene(c.params, spans);
         const ReevingSubsystem& rv = scene.reeving();
-        State s;
-        if (c.equilibriumTolerance == 0) {
-            s = scene.makeInitialState(c.vx0, 0.0);
-        } else {  // PendulumScene::makeInitialState with another tolerance
-            const PendulumParameters& p = c.params;
-            s = scene.system().getDefaultState();
-            const double P = (p.M + p.rhoA * p.L) * p.g;
-            scene.payload().setQToFitTranslation(s, Vec3(p.a, -p.L * std::sqrt(1.0 + 2.0 * P / p.EA) - p.d, 0));
-            rv.findStaticEquilibrium(s, c.equilibriumTolerance);
-            scene.payload().setUToFitLinearVelocity(s, Vec3(c.vx0, 0, 0));
-            scene.system().realize(s, Stage::Velocity);
-        }
+        State s = scene.makeInitialState(c.vx0, 0.0);
         r.ke0 = scene.system().calcKineticEnergy(s) + rv.calcRopeKineticEnergy(s);
         r.weight = c.params.M * c.params.g;
         const double e0 = rv.calcMechanicalEnergy(s);
