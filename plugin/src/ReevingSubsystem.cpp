@@ -48,6 +48,7 @@ struct RopeRecord {
     RopeSpec spec;
     bool planar = false;
     Eigen::Vector3d e1, e2, normal;  // plane basis (planar ropes)
+    Eigen::Matrix<double, 3, 2> planeBasis = Eigen::Matrix<double, 3, 2>::Zero();  // [e1 e2]
     std::vector<SpanOptions> spanOptions;
     std::shared_ptr<const RopeModel<2>> planarModel;
     // Spatial spans take their reference frames from the first configuration the rope is
@@ -71,12 +72,36 @@ struct RopeRecord {
 /// velocities are realized; velocity-level queries check the stage.
 struct RopeCache {
     Eigen::Matrix3Xd nodes3, nodeVelocities3;
+    Eigen::Matrix2Xd nodes2, nodeVelocities2;  // planar ropes: in the plane basis
+    Eigen::VectorXd modalCoordinates, modalRates;
     RopeData<2> planar;
     RopeData<3> spatial;
+    // dynamics
+    Eigen::Matrix3Xd nodeAccelerations3;
+    Eigen::Matrix2Xd nodeAccelerations2;
+    Eigen::VectorXd modalAccelerations;
+};
+
+/// Workspace of the coupled rope/body solve (sized once, reused every evaluation).
+struct CouplingWorkspace {
+    Eigen::MatrixXd S, Lambda, lhs;
+    Eigen::VectorXd h, f, rdd, a0, aUnit, rhs;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    Vector udot, generalizedForce, udotUnit;
+    SimTK::Matrix stationJacobian;
+    Vector_<SpatialVec> A_GB, bodyForcesUnit;
 };
 
 struct PositionCache {
     std::vector<RopeCache> ropes;
+    CouplingWorkspace coupling;
+};
+
+/// A rope node on a body other than Ground: it takes part in the coupled solve.
+struct MobileNode {
+    int rope = 0, node = 0;
+    const MobilizedBody* body = nullptr;
+    Vec3 station{0};
 };
 
 }  // namespace
@@ -130,6 +155,17 @@ public:
             z += 2 * r.numModal;
             r.spatialModel.reset();
         }
+        self.mobileNodes_.clear();
+        self.mobileBodies_.clear();
+        self.mobileStations_.clear();
+        for (size_t i = 0; i < ropes.size(); ++i)
+            for (int k = 0; k < ropes[i].numNodes(); ++k) {
+                const auto [body, station] = ropes[i].node(k);
+                if (body->isGround()) continue;
+                self.mobileNodes_.push_back({static_cast<int>(i), k, body, station});
+                self.mobileBodies_.push_back(body->getMobilizedBodyIndex());
+                self.mobileStations_.push_back(station);
+            }
         if (z > 0) allocateZ(s, Vector(z, 0.0));
         positionCache_ = allocateCacheEntry(s, Stage::Position, new Value<PositionCache>());
         return 0;
@@ -165,103 +201,147 @@ public:
         return 0;
     }
 
+    // The modal coordinates q_m and rates live in Z, and Simbody invalidates only Stage::Dynamics when Z
+    // alone changes (Verlet refines z at fixed q, for one). So every stage checks that the rope's cached
+    // position- and velocity-level quantities were computed from the current Z and refreshes them if not.
     int realizeSubsystemPositionImpl(const State& s) const override {
         PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
         pc.ropes.resize(ropes.size());
-        const Vector& z = getZ(s);
-        for (size_t i = 0; i < ropes.size(); ++i) {
-            const RopeRecord& r = ropes[i];
-            RopeCache& c = pc.ropes[i];
-            c.nodes3.resize(3, r.numNodes());
-            for (int k = 0; k < r.numNodes(); ++k) {
-                const auto [body, station] = r.node(k);
-                c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
-            }
-            const Eigen::VectorXd qm = modal(z, r, false);
-            if (r.planar) {
-                r.planarModel->solveMaterialCoordinates(planarNodes(r, c.nodes3), qm, c.planar);
-            } else {
-                spatialModel(r, c.nodes3).solveMaterialCoordinates(c.nodes3, qm, c.spatial);
-            }
-        }
+        for (size_t i = 0; i < ropes.size(); ++i) updatePositionPart(s, ropes[i], pc.ropes[i]);
         markCacheValueRealized(s, positionCache_);
         return 0;
     }
 
     int realizeSubsystemVelocityImpl(const State& s) const override {
         PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
-        const Vector& z = getZ(s);
         for (size_t i = 0; i < ropes.size(); ++i) {
-            const RopeRecord& r = ropes[i];
-            RopeCache& c = pc.ropes[i];
-            c.nodeVelocities3.resize(3, r.numNodes());
-            for (int k = 0; k < r.numNodes(); ++k) {
-                const auto [body, station] = r.node(k);
-                c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
-            }
-            const Eigen::VectorXd qm = modal(z, r, false), qmd = modal(z, r, true);
-            if (r.planar)
-                r.planarModel->computeDynamics(planarNodes(r, c.nodes3), planarNodes(r, c.nodeVelocities3), qm, qmd,
-                                               c.planar);
-            else
-                spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, qm, qmd, c.spatial);
+            if (!matchesZ(s, ropes[i], pc.ropes[i].modalCoordinates, false))
+                updatePositionPart(s, ropes[i], pc.ropes[i]);
+            updateVelocityPart(s, ropes[i], pc.ropes[i]);
         }
         return 0;
     }
 
+    /// Refreshes rope i's cache if Z changed after it was computed (see realizeSubsystemPositionImpl).
+    void refreshFromZ(const State& s, PositionCache& pc, bool velocityLevel) const {
+        for (size_t i = 0; i < ropes.size(); ++i) {
+            RopeCache& c = pc.ropes[i];
+            const bool positionsCurrent = matchesZ(s, ropes[i], c.modalCoordinates, false);
+            if (!positionsCurrent) updatePositionPart(s, ropes[i], c);
+            if (velocityLevel && (!positionsCurrent || !matchesZ(s, ropes[i], c.modalRates, true)))
+                updateVelocityPart(s, ropes[i], c);
+        }
+    }
+
+    bool matchesZ(const State& s, const RopeRecord& r, const Eigen::VectorXd& cached, bool rates) const {
+        if (cached.size() != r.numModal) return false;
+        const Vector& z = getZ(s);
+        const int offset = r.zOffset + (rates ? r.numModal : 0);
+        for (int j = 0; j < r.numModal; ++j)
+            if (cached[j] != z[offset + j]) return false;
+        return true;
+    }
+
+    void updatePositionPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+        c.nodes3.resize(3, r.numNodes());
+        for (int k = 0; k < r.numNodes(); ++k) {
+            const auto [body, station] = r.node(k);
+            c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
+        }
+        modal(getZ(s), r, false, c.modalCoordinates);
+        if (r.planar) {
+            c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
+            r.planarModel->solveMaterialCoordinates(c.nodes2, c.modalCoordinates, c.planar);
+        } else {
+            spatialModel(r, c.nodes3).solveMaterialCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
+        }
+    }
+
+    void updateVelocityPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+        c.nodeVelocities3.resize(3, r.numNodes());
+        for (int k = 0; k < r.numNodes(); ++k) {
+            const auto [body, station] = r.node(k);
+            c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
+        }
+        modal(getZ(s), r, true, c.modalRates);
+        if (r.planar) {
+            c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
+            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.modalCoordinates, c.modalRates, c.planar);
+        } else {
+            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.modalCoordinates, c.modalRates,
+                                                      c.spatial);
+        }
+    }
+
     int realizeSubsystemDynamicsImpl(const State& s) const override {
-        const PositionCache& pc = positionCache(s);
+        PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+        refreshFromZ(s, pc, true);
+        CouplingWorkspace& ws = pc.coupling;
         Vector_<SpatialVec>& bodyForces = mbs().updRigidBodyForces(s, Stage::Dynamics);
         const Vector& mobilityForces = mbs().updMobilityForces(s, Stage::Dynamics);
 
-        // Mobile nodes (on bodies other than Ground) of all ropes, and the rope-side S, h in 3D.
-        struct MobileNode {
-            int rope, node;
-            const MobilizedBody* body;
-            Vec3 station;
-        };
-        std::vector<MobileNode> mobile;
-        for (size_t i = 0; i < ropes.size(); ++i)
-            for (int k = 0; k < ropes[i].numNodes(); ++k) {
-                const auto [body, station] = ropes[i].node(k);
-                if (!body->isGround()) mobile.push_back({static_cast<int>(i), k, body, station});
-            }
-        const int m = static_cast<int>(mobile.size());
-        Eigen::MatrixXd S = Eigen::MatrixXd::Zero(3 * m, 3 * m);
-        Eigen::VectorXd h = Eigen::VectorXd::Zero(3 * m);
+        // Rope-side S and h of the mobile nodes (on bodies other than Ground), in 3D.
+        const int m = static_cast<int>(mobileNodes_.size());
+        ws.S.setZero(3 * m, 3 * m);
+        ws.h.setZero(3 * m);
         for (int a = 0; a < m; ++a)
             for (int b = 0; b < m; ++b) {
-                if (mobile[a].rope != mobile[b].rope) continue;
-                const RopeRecord& r = ropes[mobile[a].rope];
-                const RopeCache& c = pc.ropes[mobile[a].rope];
-                S.block<3, 3>(3 * a, 3 * b) = nodeMass3(r, c, mobile[a].node, mobile[b].node);
-                if (a == b) h.segment<3>(3 * a) = nodeForce3(r, c, mobile[a].node);
+                if (mobileNodes_[a].rope != mobileNodes_[b].rope) continue;
+                const RopeRecord& r = ropes[mobileNodes_[a].rope];
+                const RopeCache& c = pc.ropes[mobileNodes_[a].rope];
+                ws.S.block<3, 3>(3 * a, 3 * b) = nodeMass3(r, c, mobileNodes_[a].node, mobileNodes_[b].node);
+                if (a == b) ws.h.segment<3>(3 * a) = nodeForce3(r, c, mobileNodes_[a].node);
             }
 
-        Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * m), rdd = Eigen::VectorXd::Zero(3 * m);
+        ws.f.setZero(3 * m);
+        ws.rdd.setZero(3 * m);
         if (m > 0) {
-            // Free node accelerations a0 and the node mobility Lambda (response to unit forces).
-            Vector udot;
-            Vector_<SpatialVec> A_GB;
-            matter().calcAcceleration(s, mobilityForces, bodyForces, udot, A_GB);
-            const Eigen::VectorXd a0 = nodeAccelerations(s, mobile, A_GB);
-            Eigen::MatrixXd Lambda(3 * m, 3 * m);
-            Vector_<SpatialVec> unitForces(bodyForces.size());
-            for (int b = 0; b < m; ++b)
-                for (int d = 0; d < 3; ++d) {
-                    unitForces = bodyForces;
-                    Vec3 unit(0);
-                    unit[d] = 1.0;
-                    mobile[b].body->applyForceToBodyPoint(s, mobile[b].station, unit, unitForces);
-                    matter().calcAcceleration(s, mobilityForces, unitForces, udot, A_GB);
-                    Lambda.col(3 * b + d) = nodeAccelerations(s, mobile, A_GB) - a0;
+            // Free node accelerations a0 under every force applied so far.
+            matter().calcAcceleration(s, mobilityForces, bodyForces, ws.udot, ws.A_GB);
+            nodeAccelerations(s, ws.A_GB, ws.a0);
+            // Node mobility Lambda: node accelerations per unit node force.
+            ws.Lambda.resize(3 * m, 3 * m);
+            if (!anyConstraintEnabled(s)) {
+                // No constraint: Lambda = J M^-1 J^T with J the nodes' station Jacobian (3m x nu), one
+                // O(n) multiplyByMInv per column. multiplyByMInv leaves prescribed mobilities' udot at 0,
+                // as prescribed (and locked) motion does not respond to forces.
+                matter().calcStationJacobian(s, mobileBodies_, mobileStations_, ws.stationJacobian);
+                const int nu = ws.stationJacobian.ncol();
+                ws.generalizedForce.resize(nu);
+                for (int col = 0; col < 3 * m; ++col) {
+                    for (int i = 0; i < nu; ++i) ws.generalizedForce[i] = ws.stationJacobian(col, i);
+                    matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
+                    for (int row = 0; row <= col; ++row) {
+                        double acc = 0;
+                        for (int i = 0; i < nu; ++i) acc += ws.stationJacobian(row, i) * ws.udotUnit[i];
+                        ws.Lambda(row, col) = ws.Lambda(col, row) = acc;  // symmetric
+                    }
                 }
+            } else {
+                // Constraints: calcAcceleration honours them; Lambda by differences, one call per column.
+                for (int col = 0; col < 3 * m; ++col) {
+                    ws.bodyForcesUnit = bodyForces;
+                    Vec3 unit(0);
+                    unit[col % 3] = 1.0;
+                    mobileNodes_[col / 3].body->applyForceToBodyPoint(s, mobileNodes_[col / 3].station, unit,
+                                                                      ws.bodyForcesUnit);
+                    matter().calcAcceleration(s, mobilityForces, ws.bodyForcesUnit, ws.udot, ws.A_GB);
+                    nodeAccelerations(s, ws.A_GB, ws.aUnit);
+                    ws.Lambda.col(col) = ws.aUnit - ws.a0;
+                }
+            }
             // Node forces on the rope: (I + S Lambda) f = S a0 - h; the bodies receive -f.
-            const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(3 * m, 3 * m);
-            f = (I + S * Lambda).partialPivLu().solve(S * a0 - h);
-            rdd = a0 - Lambda * f;
+            ws.lhs.noalias() = ws.S * ws.Lambda;
+            ws.lhs.diagonal().array() += 1.0;
+            ws.rhs.noalias() = ws.S * ws.a0;
+            ws.rhs -= ws.h;
+            ws.lu.compute(ws.lhs);
+            ws.f = ws.lu.solve(ws.rhs);
+            ws.rdd = ws.a0;
+            ws.rdd.noalias() -= ws.Lambda * ws.f;
             for (int a = 0; a < m; ++a)
-                mobile[a].body->applyForceToBodyPoint(s, mobile[a].station, -toSimTK(f.segment<3>(3 * a)), bodyForces);
+                mobileNodes_[a].body->applyForceToBodyPoint(s, mobileNodes_[a].station,
+                                                            -toSimTK(ws.f.segment<3>(3 * a)), bodyForces);
         }
 
         // Modal accelerations of every rope.
@@ -269,25 +349,34 @@ public:
         const Vector& z = getZ(s);
         for (size_t i = 0; i < ropes.size(); ++i) {
             const RopeRecord& r = ropes[i];
-            const RopeCache& c = pc.ropes[i];
-            Eigen::Matrix3Xd acc = Eigen::Matrix3Xd::Zero(3, r.numNodes());
+            RopeCache& c = pc.ropes[i];
+            c.nodeAccelerations3.setZero(3, r.numNodes());
             for (int a = 0; a < m; ++a)
-                if (mobile[a].rope == static_cast<int>(i)) acc.col(mobile[a].node) = rdd.segment<3>(3 * a);
-            Eigen::VectorXd qmdd;
+                if (mobileNodes_[a].rope == static_cast<int>(i))
+                    c.nodeAccelerations3.col(mobileNodes_[a].node) = ws.rdd.segment<3>(3 * a);
             if (r.planar) {
-                const Eigen::Matrix2Xd acc2 = planarNodes(r, acc);
-                r.planarModel->modalAccelerations(c.planar, Eigen::Map<const Eigen::VectorXd>(acc2.data(), acc2.size()),
-                                                  qmdd);
+                c.nodeAccelerations2.noalias() = r.planeBasis.transpose() * c.nodeAccelerations3;
+                r.planarModel->modalAccelerations(
+                    c.planar, Eigen::Map<const Eigen::VectorXd>(c.nodeAccelerations2.data(), c.nodeAccelerations2.size()),
+                    c.modalAccelerations);
             } else {
-                r.spatialModel->modalAccelerations(c.spatial, Eigen::Map<const Eigen::VectorXd>(acc.data(), acc.size()),
-                                                   qmdd);
+                r.spatialModel->modalAccelerations(
+                    c.spatial, Eigen::Map<const Eigen::VectorXd>(c.nodeAccelerations3.data(), c.nodeAccelerations3.size()),
+                    c.modalAccelerations);
             }
             for (int j = 0; j < r.numModal; ++j) {
                 zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];
-                zdot[r.zOffset + r.numModal + j] = qmdd[j];
+                zdot[r.zOffset + r.numModal + j] = c.modalAccelerations[j];
             }
         }
         return 0;
+    }
+
+    bool anyConstraintEnabled(const State& s) const {
+        const SimbodyMatterSubsystem& mat = matter();
+        for (SimTK::ConstraintIndex c(0); c < mat.getNumConstraints(); ++c)
+            if (!mat.isConstraintDisabled(s, c)) return true;
+        return false;
     }
 
     Real calcPotentialEnergy(const State& s) const override {
@@ -318,13 +407,22 @@ public:
     }
 
     // ---- helpers -------------------------------------------------------------------------
+    /// The rope cache, valid for the current Z (see realizeSubsystemPositionImpl); velocity-level parts
+    /// are refreshed too when the state is realized to Stage::Velocity.
     const PositionCache& positionCache(const State& s) const {
-        return Value<PositionCache>::downcast(getCacheEntry(s, positionCache_));
+        getCacheEntry(s, positionCache_);  // throws unless realized to Stage::Position
+        PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+        refreshFromZ(s, pc, s.getSystemStage() >= Stage::Velocity);
+        return pc;
     }
 
-    Eigen::VectorXd modal(const Vector& z, const RopeRecord& r, bool rates) const {
-        Eigen::VectorXd q(r.numModal);
+    void modal(const Vector& z, const RopeRecord& r, bool rates, Eigen::VectorXd& q) const {
+        q.resize(r.numModal);
         for (int j = 0; j < r.numModal; ++j) q[j] = z[r.zOffset + (rates ? r.numModal : 0) + j];
+    }
+    Eigen::VectorXd modal(const Vector& z, const RopeRecord& r, bool rates) const {
+        Eigen::VectorXd q;
+        modal(z, r, rates, q);
         return q;
     }
 
@@ -357,17 +455,16 @@ public:
         return r.e1 * c.planar.nodeForce[2 * a] + r.e2 * c.planar.nodeForce[2 * a + 1];
     }
 
-    template <class MobileNodes>
-    Eigen::VectorXd nodeAccelerations(const State& s, const MobileNodes& mobile, const Vector_<SpatialVec>& A_GB) const {
-        Eigen::VectorXd a(3 * mobile.size());
-        for (size_t k = 0; k < mobile.size(); ++k) {
-            const MobilizedBody& b = *mobile[k].body;
+    /// Accelerations in Ground of the mobile nodes from the bodies' spatial accelerations.
+    void nodeAccelerations(const State& s, const Vector_<SpatialVec>& A_GB, Eigen::VectorXd& a) const {
+        a.resize(3 * static_cast<Eigen::Index>(mobileNodes_.size()));
+        for (size_t k = 0; k < mobileNodes_.size(); ++k) {
+            const MobilizedBody& b = *mobileNodes_[k].body;
             const SpatialVec& A = A_GB[b.getMobilizedBodyIndex()];
-            const Vec3 p = b.getBodyRotation(s) * mobile[k].station;
+            const Vec3 p = b.getBodyRotation(s) * mobileNodes_[k].station;
             const Vec3& w = b.getBodyAngularVelocity(s);
-            a.segment<3>(3 * k) = toEigen(A[1] + A[0] % p + w % (w % p));
+            a.segment<3>(3 * static_cast<Eigen::Index>(k)) = toEigen(A[1] + A[0] % p + w % (w % p));
         }
-        return a;
     }
 
     template <int Dim>
@@ -413,6 +510,10 @@ public:
 
 private:
     Vec3 gravity_;
+    // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order.
+    std::vector<MobileNode> mobileNodes_;
+    Array_<SimTK::MobilizedBodyIndex> mobileBodies_;
+    Array_<Vec3> mobileStations_;
     mutable CacheEntryIndex positionCache_;
     mutable const MultibodySystem* system_ = nullptr;
     mutable const SimbodyMatterSubsystem* matter_ = nullptr;
@@ -492,6 +593,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             r.normal = frame.col(0);
             r.e1 = frame.col(1);
             r.e2 = frame.col(2);
+            r.planeBasis << r.e1, r.e2;
             if (std::abs(r.normal.dot(gravity)) > 1e-12 * gravity.norm())
                 invalid(who + "gravity " + str(g.gravity()) + " is not in the rope plane (normal " +
                         str(spec.planeNormal) + ")");

@@ -97,8 +97,10 @@ void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eig
         endStrains(nodes, qm, s, data);
         return;
     }
-    Eigen::VectorXd C(N - 1);
-    Eigen::MatrixXd J(N - 1, N - 1);
+    Eigen::VectorXd& C = data.newtonResidual;
+    Eigen::MatrixXd& J = data.newtonJacobian;
+    C.resize(N - 1);
+    J.resize(N - 1, N - 1);
     double previous = std::numeric_limits<double>::infinity();
     for (int iter = 0; iter <= 50; ++iter) {
         endStrains(nodes, qm, s, data);
@@ -122,7 +124,10 @@ void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eig
         }
         previous = err;
         if (iter == 50) break;
-        const Eigen::VectorXd step = J.partialPivLu().solve(-C);
+        data.newtonLu.compute(J);
+        Eigen::VectorXd& step = data.newtonStep;
+        step = data.newtonLu.solve(C);
+        step *= -1.0;
         double alpha = 1.0;
         for (int halve = 0; halve < 30; ++halve, alpha *= 0.5) {
             bool ok = true;
@@ -147,19 +152,26 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
                                      const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
                                      RopeData<Dim>& data) const {
     const int N = numSpans(), nn = Dim * (N + 1), nm = numModal_, nw = nn + nm, nz = nw + N + 1;
+    const int nc = N - 1;  // dependent material coordinates s_1..s_{N-1} (z indices nw+1..nw+nc)
     const Eigen::VectorXd& s = data.materialCoordinates;
-    // Independent velocities w = [rdot; qdot_m].
-    Eigen::VectorXd w(nw);
-    for (int k = 0; k <= N; ++k) w.template segment<Dim>(Dim * k) = nodeVelocities.col(k);
-    w.tail(nm) = qmdot;
+    // solveMaterialCoordinates left the span coordinates and the end-strain gradients (velocity
+    // independent) of this configuration in data; they are reused when they belong to these positions,
+    // and solved afresh otherwise.
+    bool current = static_cast<int>(data.spanQ.size()) == N && s.size() == N + 1;
+    for (int j = 0; current && j < N; ++j)
+        current = data.spanQ[j].template segment<Dim>(0) == nodes.col(j) &&
+                  data.spanQ[j].template segment<Dim>(Dim) == nodes.col(j + 1) &&
+                  data.spanQ[j].segment(2 * Dim, spans_[j].numModalCoordinates()) ==
+                      qm.segment(modalOffset_[j], spans_[j].numModalCoordinates());
+    if (!current) solveMaterialCoordinates(nodes, qm, data);
 
-    // Constraint Jacobian C_z = [C_w, C_s] from the end-strain gradients (velocity independent).
+    // Independent velocities w = [rdot; qdot_m].
+    data.w.resize(nw);
+    for (int k = 0; k <= N; ++k) data.w.template segment<Dim>(Dim * k) = nodeVelocities.col(k);
+    data.w.tail(nm) = qmdot;
+
     data.spans.resize(N);
     data.materialRates.setZero(N + 1);
-    data.G.setZero(nz, nw);
-    data.G.topLeftCorner(nw, nw).setIdentity();
-    data.c.setZero(nz);
-    const int nc = N - 1;
     auto fillSpanVelocities = [&] {
         for (int j = 0; j < N; ++j) {
             const auto& sp = spans_[j];
@@ -173,9 +185,10 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         }
     };
     data.spanQdot.resize(N);
-    fillSpanVelocities();
-    endStrains(nodes, qm, s, data);
+    // Velocity transformation zdot = G w, zddot = G wdot + c: G is the identity on w, zero for the
+    // fixed s_0 and s_N, and Gs = -C_s^-1 C_w for the dependent s; c is nonzero only there.
     if (nc > 0) {
+        // Constraint Jacobian C_z = [C_w, C_s] from the end-strain gradients.
         data.Cw.setZero(nc, nw);
         data.Cs.setZero(nc, nc);
         for (int k = 1; k < N; ++k) {
@@ -195,17 +208,20 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
                 }
             }
         }
-        const Eigen::PartialPivLU<Eigen::MatrixXd> CsLu(data.Cs);
-        const Eigen::MatrixXd Gs = -CsLu.solve(data.Cw);  // sdot_dep = Gs w
-        data.G.block(nw + 1, 0, nc, nw) = Gs;
-        data.materialRates.segment(1, nc) = Gs * w;
+        data.constraintLu.compute(data.Cs);
+        data.Gs = data.constraintLu.solve(data.Cw);
+        data.Gs *= -1.0;  // sdot_dep = Gs w
+        data.materialRates.segment(1, nc).noalias() = data.Gs * data.w;
         // Biases with the complete velocities (sdot included).
         fillSpanVelocities();
         endStrains(nodes, qm, s, data);
         data.bias.resize(nc);
         for (int k = 1; k < N; ++k)
             data.bias[k - 1] = data.secondEnd[k - 1].accelerationBias - data.firstEnd[k].accelerationBias;
-        data.c.segment(nw + 1, nc) = -CsLu.solve(data.bias);
+        data.cd = data.constraintLu.solve(data.bias);
+        data.cd *= -1.0;
+    } else {
+        fillSpanVelocities();
     }
 
     // Span evaluations scattered into the rope's M and Q.
@@ -225,8 +241,23 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         data.strainEnergy += d.strainEnergy();
         data.gravityEnergy += d.gravityEnergy;
     }
-    data.Mbar.noalias() = data.G.transpose() * data.Mz * data.G;
-    data.Qbar.noalias() = data.G.transpose() * (data.Qz - data.Mz * data.c);
+    // Mbar = G^T Mz G = M_ww + M_wd Gs + Gs^T M_dw + Gs^T M_dd Gs,
+    // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gs^T (Q_d - M_dd c_d).
+    data.Mbar = data.Mz.topLeftCorner(nw, nw);
+    data.Qbar = data.Qz.head(nw);
+    if (nc > 0) {
+        const auto Mwd = data.Mz.block(0, nw + 1, nw, nc);
+        const auto Mdd = data.Mz.block(nw + 1, nw + 1, nc, nc);
+        data.MwdGs.noalias() = Mwd * data.Gs;  // nw x nw
+        data.Mbar += data.MwdGs;
+        data.Mbar += data.MwdGs.transpose();
+        data.MddGs.noalias() = Mdd * data.Gs;  // nc x nw
+        data.Mbar.noalias() += data.Gs.transpose() * data.MddGs;
+        data.Qbar.noalias() -= Mwd * data.cd;
+        data.Qd = data.Qz.segment(nw + 1, nc);
+        data.Qd.noalias() -= Mdd * data.cd;
+        data.Qbar.noalias() += data.Gs.transpose() * data.Qd;
+    }
 
     // Reduce to the nodes: S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, h = Qbar_n - Mbar_nm Mbar_mm^-1 Qbar_m.
     data.nodeMass = data.Mbar.topLeftCorner(nn, nn);
@@ -247,7 +278,8 @@ void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::
         qmddot.resize(0);
         return;
     }
-    qmddot = data.modalFree - data.modalCoupling * nodeAccelerations;
+    qmddot = data.modalFree;
+    qmddot.noalias() -= data.modalCoupling * nodeAccelerations;
 }
 
 template <int Dim>

@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <vector>
 
@@ -33,8 +34,16 @@ struct RopeData {
     std::vector<SpanData<Dim>> spans;
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
-    Eigen::MatrixXd Mz, G, Mbar, Cs, Cw;
-    Eigen::VectorXd Qz, c, Qbar, bias;
+    Eigen::VectorXd w;                    ///< independent velocities [rdot; qdot_m]
+    Eigen::MatrixXd Mz, Mbar, Cs, Cw;
+    Eigen::MatrixXd Gs;                   ///< sdot of the sheaves = Gs w
+    Eigen::MatrixXd MwdGs, MddGs;         ///< products in G^T Mz G
+    Eigen::VectorXd Qz, Qbar, Qd, bias;
+    Eigen::VectorXd cd;                   ///< sddot of the sheaves at wdot = 0
+    Eigen::PartialPivLU<Eigen::MatrixXd> constraintLu;  ///< of C_s
+    Eigen::VectorXd newtonResidual, newtonStep;         ///< tension-equality Newton
+    Eigen::MatrixXd newtonJacobian;
+    Eigen::PartialPivLU<Eigen::MatrixXd> newtonLu;
     Eigen::LDLT<Eigen::MatrixXd> modalMass;
     Eigen::MatrixXd modalCoupling;  ///< Mbar_mm^-1 Mbar_mn
     Eigen::VectorXd modalFree;      ///< Mbar_mm^-1 Qbar_m
@@ -84,8 +93,11 @@ public:
     void spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const Eigen::VectorXd& s,
                          Eigen::VectorXd& q) const;
 
-    /// Velocity and dynamics level, after solveMaterialCoordinates at the same positions: material
-    /// rates, span evaluations, and the rope reduced to its nodes (nodeMass, nodeForce), energies.
+    /// Velocity and dynamics level: material rates, span evaluations, and the rope reduced to its
+    /// nodes (nodeMass, nodeForce), energies. Reuses the position-level work of the last
+    /// solveMaterialCoordinates on data when it was done at these positions (nodes and qm compared
+    /// exactly), and calls solveMaterialCoordinates first otherwise.
+    /// @throws std::runtime_error as solveMaterialCoordinates, when it has to solve.
     void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& qm,
                          const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
 
