@@ -117,6 +117,8 @@ time of the integration, rhs evaluations, steps -- or why the point failed.
   --reference-check-factor F  the check reference runs at F x the reference accuracy (default 2:
                             "half the accuracy"), F > 1
   --recompute-reference     ignore cached references in the output folder
+  --resume                  keep the points already recorded in DIR/results.csv (same integrator, n_a,
+                            kind and setting) and measure only the others; tables and plots cover all
   --reference-only          compute (or load) the references, write reference_check.txt, stop
   --jobs N                  points run concurrently (default 1; timings want one job per idle core)
   --out DIR                 output folder (default out/work-precision)
@@ -194,6 +196,8 @@ Options parseCommandLine(int argc, char** argv) {
             const std::string v = value();
             o.referenceCheckFactor = positive(opt, v);
             if (!(o.referenceCheckFactor > 1 && o.referenceCheckFactor <= 100)) fail(opt, v, "must be in (1, 100]");
+        } else if (opt == "--resume") {
+            o.resume = true;
         } else if (opt == "--recompute-reference") {
             o.recomputeReference = true;
         } else if (opt == "--reference-only") {

@@ -446,6 +446,69 @@ struct SlowBook {
     }
 };
 
+std::vector<std::string> splitCsvLine(const std::string& line) {
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                fields.back() += '"';
+                ++i;
+            } else if (c == '"') {
+                quoted = false;
+            } else {
+                fields.back() += c;
+            }
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == ',') {
+            fields.emplace_back();
+        } else {
+            fields.back() += c;
+        }
+    }
+    return fields;
+}
+
+/// --resume: marks the points recorded in DIR/results.csv as done, with their recorded results
+/// (the median wall stands for each of its runs). Returns how many points were taken over.
+int loadRecordedPoints(const Options& o, std::vector<Point>& points) {
+    std::ifstream f(fs::path(o.outDir) / "results.csv");
+    if (!f) return 0;
+    std::string line;
+    std::getline(f, line);  // header
+    int taken = 0;
+    auto toD = [](const std::string& s) { return s.empty() ? 0.0 : std::stod(s); };
+    auto toL = [](const std::string& s) { return s.empty() ? 0L : std::stol(s); };
+    while (std::getline(f, line)) {
+        const std::vector<std::string> c = splitCsvLine(line);
+        if (c.size() != 15) throw std::runtime_error("results.csv: malformed line: " + line);
+        for (Point& p : points) {
+            const double setting = std::stod(c[3]);
+            if (p.done || p.spec.integrator != c[0] || p.spec.axialModes != std::stoi(c[1]) || kindName(p.spec.kind) != c[2] ||
+                std::abs(p.spec.setting - setting) > 1e-9 * p.spec.setting)
+                continue;
+            RunResult& r = p.result;
+            r.status = c[4];
+            r.reason = c[5];
+            r.posErr = toD(c[6]);
+            r.forceErr = toD(c[7]);
+            r.wall = toD(c[8]);
+            p.walls.assign(static_cast<size_t>(toL(c[9])), r.wall);
+            p.wallNote = c[10];
+            r.rhs = toL(c[11]);
+            r.steps = toL(c[12]);
+            r.tReached = toD(c[13]);
+            r.errorControl = c[14] == "yes";
+            p.done = true;
+            ++taken;
+            break;
+        }
+    }
+    return taken;
+}
+
 void measurePoint(const Options& o, Point& p, const Trajectory& ref) {
     RunResult first = runOnce(o, p.spec, &ref, o.cap, false);
     p.walls.push_back(first.wall);
@@ -567,25 +630,29 @@ void writeTable(const Options& o, const std::vector<Point>& points,
               << (ran ? num(r.tReached, 6) : "") << " | " << note << " |\n";
         }
     }
-    f << "\n## Fastest integrator per error target (lowest median wall among the points reaching it)\n\n"
-      << "| n_a | target | fastest for position error | fastest for force error |\n|---|---|---|---|\n";
-    for (int na : o.axialModes) {
-        for (double target : {1e-3, 1e-6, 1e-9}) {
-            auto best = [&](bool position) {
-                const Point* b = nullptr;
-                for (const Point& p : points) {
-                    if (p.spec.axialModes != na || !hasNumbers(p)) continue;
-                    const double e = position ? p.result.posErr : p.result.forceErr;
-                    if (e <= target && (!b || p.result.wall < b->result.wall)) b = &p;
-                }
-                if (!b) return std::string("none reached");
-                return b->spec.integrator + " (" + settingText(b->spec) + ", " + num(b->result.wall, 3) + " s, error " +
-                       sci(position ? b->result.posErr : b->result.forceErr) + ")";
-            };
-            f << "| " << na << " | " << sci(target, 0) << " m / " << sci(target, 0) << " N | " << best(true) << " | "
-              << best(false) << " |\n";
+    // Fastest point per error target: position targets are the issue's 1e-3, 1e-6, 1e-9 m; the force
+    // errors live on another scale (the axial modes' integration noise is newtons), so their targets are
+    // 10, 1, 0.1 and 0.01 N.
+    auto best = [&](int na, double target, bool position) {
+        const Point* b = nullptr;
+        for (const Point& p : points) {
+            if (p.spec.axialModes != na || !hasNumbers(p)) continue;
+            const double e = position ? p.result.posErr : p.result.forceErr;
+            if (e <= target && (!b || p.result.wall < b->result.wall)) b = &p;
         }
-    }
+        if (!b) return std::string("none reached");
+        return b->spec.integrator + " (" + settingText(b->spec) + ", " + num(b->result.wall, 3) + " s, error " +
+               sci(position ? b->result.posErr : b->result.forceErr) + ")";
+    };
+    f << "\n## Fastest integrator per error target (lowest median wall among the points reaching it)\n\n"
+      << "Payload position error:\n\n| n_a | 1e-3 m | 1e-6 m | 1e-9 m |\n|---|---|---|---|\n";
+    for (int na : o.axialModes)
+        f << "| " << na << " | " << best(na, 1e-3, true) << " | " << best(na, 1e-6, true) << " | " << best(na, 1e-9, true)
+          << " |\n";
+    f << "\nPayload-end axial force error:\n\n| n_a | 10 N | 1 N | 0.1 N | 0.01 N |\n|---|---|---|---|---|\n";
+    for (int na : o.axialModes)
+        f << "| " << na << " | " << best(na, 10, false) << " | " << best(na, 1, false) << " | " << best(na, 0.1, false)
+          << " | " << best(na, 0.01, false) << " |\n";
 }
 
 bool makePlots(const Options& o, const std::vector<Point>& points) {
@@ -726,6 +793,13 @@ int main(int argc, char** argv) {
     for (const Reference& r : refs) refOf[r.axialModes] = &r.main;
 
     SlowBook slowBook;
+    if (o.resume) {
+        const int taken = loadRecordedPoints(o, points);
+        for (const Point& p : points)
+            if (p.done && p.result.status == "too slow") slowBook.add(p.spec);
+        say(o, "resume: " + std::to_string(taken) + " points taken from " + (fs::path(o.outDir) / "results.csv").string() +
+                   "\n");
+    }
     std::atomic<size_t> nextChain{0};
     std::atomic<int> finished{0};
     std::mutex resultsMutex;
@@ -735,6 +809,11 @@ int main(int argc, char** argv) {
             std::string skipReason;
             for (size_t idx : chains[c]) {
                 Point& p = points[idx];
+                if (p.done) {  // recorded (--resume)
+                    if (p.result.status == "too slow") skipReason = "too slow at " + settingText(p.spec);
+                    ++finished;
+                    continue;
+                }
                 RunSpec hit;
                 if (skipReason.empty() && o.capSkipsHigherModes && slowBook.find(p.spec, hit))
                     skipReason = "too slow at n_a = " + std::to_string(hit.axialModes) + ", " + settingText(hit);
