@@ -313,6 +313,54 @@ TEST(ReevingSubsystem, QueriesAndDecorations) {
     EXPECT_GT(rv.calcRopeKineticEnergy(s), 0.0);
 }
 
+// getNodeForce is the coupled solve's reaction, so it balances the bodies exactly: statically the
+// payload hangs on F_N = M g (while the end strain of the sine series is O(1/n_a) off) and the three
+// node forces carry the rope's whole weight; in motion F_N = M (a - g) for the free payload.
+TEST(ReevingSubsystem, NodeForceBalancesTheBodiesExactly) {
+    const PendulumParameters p;
+    const double Mg = p.M * p.g;
+    for (int na : {0, 3}) {
+        PendulumScene scene(p, spans(na));
+        const ReevingSubsystem& rv = scene.reeving();
+        State s = scene.makeInitialState(0.0, 0.0);
+        scene.system().realize(s, Stage::Dynamics);
+        const Vec3 end = rv.getNodeForce(s, 0, 2);
+        const Vec3 total = rv.getNodeForce(s, 0, 0) + rv.getNodeForce(s, 0, 1) + end;
+        const auto range = rv.getSpanMaterialRange(s, 0, 1);
+        std::printf("[ node force ] n_a=%d static: F_N = (%.3e, %.9f) N vs M g = %.9f N; axial force at the end "
+                    "%.6f N\n",
+                    na, end[0], end[1], Mg, rv.getAxialForce(s, 0, 1, range.second));
+        // findStaticEquilibrium stops at a relative residual of 1e-9 of the largest force (~1e-5 N).
+        EXPECT_NEAR(end[0], 0.0, 1e-9 * Mg);
+        EXPECT_NEAR(end[1], Mg, 1e-8 * Mg);
+        EXPECT_NEAR(total[0], 0.0, 1e-8 * Mg);
+        EXPECT_NEAR(total[1], -p.rhoA * (p.a + p.L) * p.g, 1e-8 * Mg);
+        EXPECT_NEAR(total[2], 0.0, 1e-12 * Mg);
+
+        // In motion, with axial and transverse modes excited: Newton's law of the free payload.
+        s = scene.makeInitialState(1.0, 0.2);
+        SimTK::RungeKuttaMersonIntegrator integ(scene.system());
+        integ.setAccuracy(1e-6);
+        SimTK::TimeStepper ts(scene.system(), integ);
+        ts.initialize(s);
+        ts.stepTo(0.3);
+        State moving = integ.getState();
+        scene.system().realize(moving, Stage::Acceleration);
+        const Vec3 a = scene.payload().getBodyOriginAcceleration(moving);
+        const Vec3 newton = p.M * (a - Vec3(0, -p.g, 0));
+        const Vec3 nodeForce = rv.getNodeForce(moving, 0, 2);
+        std::printf("[ node force ] n_a=%d t=0.3 s: F_N = (%.6f, %.6f) N, M (a - g) = (%.6f, %.6f) N\n", na,
+                    nodeForce[0], nodeForce[1], newton[0], newton[1]);
+        EXPECT_GT(std::abs(nodeForce[0]), 1.0);  // the swing is under way
+        EXPECT_LE((nodeForce - newton).norm(), 1e-9 * Mg);
+    }
+    PendulumScene scene(p, spans(1));
+    const State s = scene.makeInitialState(0.0, 0.0);  // realized to Stage::Velocity
+    expectInvalid([&] { scene.reeving().getNodeForce(s, 0, 3); }, "node index = 3");
+    expectInvalid([&] { scene.reeving().getNodeForce(s, 1, 0); }, "rope index = 1");
+    EXPECT_THROW(scene.reeving().getNodeForce(s, 0, 2), std::logic_error);
+}
+
 // Simbody invalidates only Stage::Dynamics when Z alone changes (Verlet refines z at fixed q). The
 // modal coordinates live in Z but enter the position level (sheave constraint, strains): every result
 // after such a change must equal that of a state realized from scratch.

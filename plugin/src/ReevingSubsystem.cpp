@@ -691,6 +691,20 @@ double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMa
     return r.spatialModel->span(span).strain(q, sMaterial);
 }
 
+Vec3 ReevingSubsystem::getNodeForce(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    if (s.getSystemStage() < Stage::Dynamics)
+        throw std::logic_error("ReevingSubsystem::getNodeForce: realize the state to Stage::Dynamics first");
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    // The rope's node equation is S rdd - h = f (f: force on the rope); the body receives -f.
+    Eigen::Vector3d force = g.nodeForce3(r, c, node);
+    for (int b = 0; b < r.numNodes(); ++b) force.noalias() -= g.nodeMass3(r, c, node, b) * c.nodeAccelerations3.col(b);
+    return toSimTK(force);
+}
+
 double ReevingSubsystem::getMaterialCoordinate(const State& s, int rope, int node) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     if (node < 0 || node >= r.numNodes())

@@ -104,6 +104,17 @@ public:
     /// Physical tension T = EA eps |dr/ds| at material point s of a span [N] (see SpanModel::tension).
     /// @throws std::invalid_argument if rope, span or s is out of range.
     double getTension(const SimTK::State& state, int rope, int span, double s) const;
+    /// Force the rope exerts on the body at node k, in Ground [N] (Stage::Dynamics): the reaction
+    /// of the coupled solve, F_k = h_k - sum_b S_kb a_b, with S, h the rope reduced to its nodes
+    /// (the modal and sheave coordinates eliminated) and a_b the node accelerations (zero on Ground).
+    /// k = 0 is the start anchor, 1..N-1 the sheaves (there F_k is the bearing load, the resultant of
+    /// both spans), N the end anchor. Unlike getAxialForce at a span end, which carries the sine
+    /// series' O(1/n_a) truncation bias of the strain, F_k is the force the bodies actually receive:
+    /// at static equilibrium it balances the attached body exactly (payload: F_N = -M g), and it
+    /// includes the rope's inertia and weight lumped consistently at the node.
+    /// @throws std::invalid_argument if rope or node is out of range.
+    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
+    SimTK::Vec3 getNodeForce(const SimTK::State& state, int rope, int node) const;
     /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m].
     double getMaterialCoordinate(const SimTK::State& state, int rope, int node) const;
     /// Material coordinate range [s1, s2] of a span [m].
