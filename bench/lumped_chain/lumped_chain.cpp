@@ -48,6 +48,7 @@ struct Params {
 
 struct Sample {
     double t, x, y, P;
+    double Pn;  // the payload-end axial force from the force the rope puts on the payload (see Model)
 };
 
 // Observables shared by both models.
@@ -58,6 +59,11 @@ public:
     virtual SimTK::State makeInitialState() = 0;
     virtual SimTK::Vec3 payloadPosition(const SimTK::State& s) const = 0;
     virtual double endAxialForce(const SimTK::State& s) const = 0;  // P = EA eps at the payload end
+    /// The payload-end axial force from the force the rope exerts on the payload: P = T / lambda, T the
+    /// magnitude of that force (Green law T = EA (lambda^3 - lambda) / 2). Chain: the last spring's
+    /// force, i.e. endAxialForce. ALE: ReevingSubsystem::getNodeForce at the end node.
+    virtual double endAxialForceFromNodeForce(const SimTK::State& s) const { return endAxialForce(s); }
+    virtual SimTK::Stage observationStage() const { return SimTK::Stage::Velocity; }  // needed by the observables
     virtual double energy(const SimTK::State& s) const = 0;         // total mechanical energy [J]
 };
 
@@ -270,6 +276,11 @@ public:
         const auto range = reeving_.getSpanMaterialRange(s, 0, 0);
         return reeving_.getAxialForce(s, 0, 0, range.second);
     }
+    double endAxialForceFromNodeForce(const SimTK::State& s) const override {
+        const double T = reeving_.getNodeForce(s, 0, 1).norm();
+        return T / stretchForTension(T, p_.EA);
+    }
+    SimTK::Stage observationStage() const override { return SimTK::Stage::Dynamics; }
     double energy(const SimTK::State& s) const override { return reeving_.calcMechanicalEnergy(s); }
 
 private:
@@ -327,16 +338,18 @@ RunOutcome simulate(Model& model, const std::string& integName, double accuracy,
     auto observe = [&](const SimTK::State& st) {
         SimTK::State tmp;
         const SimTK::State* s = &st;
-        if (st.getSystemStage() < SimTK::Stage::Velocity) {
+        if (st.getSystemStage() < model.observationStage()) {
             tmp = st;
-            model.system().realize(tmp, SimTK::Stage::Velocity);
+            model.system().realize(tmp, model.observationStage());
             s = &tmp;
         }
         const SimTK::Vec3 x = model.payloadPosition(*s);
         const double E = model.energy(*s);
         if (s->getTime() == 0) out.E0 = E;
         out.maxDrift = std::max(out.maxDrift, std::abs(E - out.E0));
-        if (record) out.samples.push_back({s->getTime(), x[0], x[1], model.endAxialForce(*s)});
+        if (record)
+            out.samples.push_back(
+                {s->getTime(), x[0], x[1], model.endAxialForce(*s), model.endAxialForceFromNodeForce(*s)});
     };
     observe(integ->getState());
     const int nSamples = static_cast<int>(std::lround(tEnd / dt));
@@ -410,7 +423,8 @@ int cmdRun(const std::map<std::string, std::string>& a) {
         std::ofstream f(outPath);
         f.precision(17);
         f << head.str() << "\n";
-        for (const Sample& s : first.samples) f << s.t << "," << s.x << "," << s.y << "," << s.P << "\n";
+        for (const Sample& s : first.samples)
+            f << s.t << "," << s.x << "," << s.y << "," << s.P << "," << s.Pn << "\n";
     }
     return 0;
 }
@@ -452,20 +466,22 @@ RunFile readRun(const std::string& path) {
     }
     while (std::getline(f, line)) {
         Sample s{};
-        if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &s.t, &s.x, &s.y, &s.P) == 4) r.samples.push_back(s);
+        const int n = std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &s.t, &s.x, &s.y, &s.P, &s.Pn);
+        if (n == 4) s.Pn = s.P;  // files written before the node-force column
+        if (n >= 4) r.samples.push_back(s);
     }
     return r;
 }
 
 struct Errors {
-    double pos = NAN, force = NAN;
+    double pos = NAN, force = NAN, forceNode = NAN;  // forceNode: Pn against the reference's P
     bool complete = false;
 };
 Errors errorsAgainst(const RunFile& r, const RunFile& ref) {
     Errors e;
     const size_t n = std::min(r.samples.size(), ref.samples.size());
     e.complete = r.samples.size() >= ref.samples.size();
-    double ep = 0, ef = 0;
+    double ep = 0, ef = 0, en = 0;
     for (size_t k = 0; k < n; ++k) {
         const Sample& a = r.samples[k];
         const Sample& b = ref.samples[k];
@@ -476,9 +492,11 @@ Errors errorsAgainst(const RunFile& r, const RunFile& ref) {
         }
         ep = std::max(ep, std::hypot(a.x - b.x, a.y - b.y));
         ef = std::max(ef, std::abs(a.P - b.P));
+        en = std::max(en, std::abs(a.Pn - b.P));
     }
     e.pos = ep;
     e.force = ef;
+    e.forceNode = en;
     return e;
 }
 
@@ -524,18 +542,24 @@ int cmdAnalyze(int argc, char** argv) {
         rows.push_back(row);
     }
     std::ofstream all(outDir + "/lumped_chain_runs.csv");
-    all << "model,discretization,integrator,accuracy,status,wall_s,steps,pos_err_m,force_err_N,energy_drift_J\n";
+    all << "model,discretization,integrator,accuracy,status,wall_s,steps,pos_err_m,force_err_N,energy_drift_J,"
+           "node_force_err_N\n";
     for (const auto& r : rows)
         all << r.model << "," << r.label << "," << r.integ << "," << r.acc << "," << r.status << "," << r.wall
-            << "," << r.steps << "," << r.e.pos << "," << r.e.force << "," << r.drift << "\n";
+            << "," << r.steps << "," << r.e.pos << "," << r.e.force << "," << r.drift << "," << r.e.forceNode << "\n";
 
     // Pareto fronts (complete runs only): for each model and observable, the points not dominated in
     // (wall, error).
     std::ofstream pf(outDir + "/lumped_chain_pareto.csv");
     pf << "model,observable,discretization,integrator,accuracy,wall_s,error\n";
     std::map<std::string, std::vector<std::pair<double, double>>> fronts;  // key model|obs -> (wall, err)
+    // Observables: 0 position, 1 end force P = EA eps (the models' strain at the end), 2 end force from
+    // the force on the payload (ALE: getNodeForce; for the chain the same as 1).
+    const char* obsKey[] = {"pos", "force", "nodeforce"};
+    const char* obsName[] = {"position", "force", "node-force"};
     for (const std::string model : {"chain", "ale"}) {
-        for (int obs = 0; obs < 2; ++obs) {
+        for (int obs = 0; obs < 3; ++obs) {
+            if (model == "chain" && obs == 2) continue;
             std::vector<const Row*> cand;
             for (const auto& r : rows)
                 if (r.model == model && r.status == "ok") cand.push_back(&r);
@@ -543,16 +567,16 @@ int cmdAnalyze(int argc, char** argv) {
             double best = INFINITY;
             std::vector<std::pair<double, double>> front;
             for (const Row* r : cand) {
-                const double err = obs == 0 ? r->e.pos : r->e.force;
+                const double err = obs == 0 ? r->e.pos : obs == 1 ? r->e.force : r->e.forceNode;
                 if (err < 0.999 * best) {  // a real improvement, not round-off
                     best = err;
                     front.push_back({r->wall, err});
-                    pf << model << "," << (obs == 0 ? "position" : "force") << "," << r->label << ","
-                       << r->integ << "," << r->acc << "," << r->wall << "," << err << "\n";
+                    pf << model << "," << obsName[obs] << "," << r->label << "," << r->integ << "," << r->acc << ","
+                       << r->wall << "," << err << "\n";
                 }
             }
-            fronts[model + (obs == 0 ? "|pos" : "|force")] = front;
-            std::ofstream dat(outDir + "/front_" + model + (obs == 0 ? "_pos" : "_force") + ".dat");
+            fronts[model + "|" + obsKey[obs]] = front;
+            std::ofstream dat(outDir + "/front_" + model + "_" + obsKey[obs] + ".dat");
             for (auto& pt : front) dat << pt.first << "," << pt.second << "\n";
         }
     }
@@ -572,7 +596,8 @@ int cmdAnalyze(int argc, char** argv) {
         return NAN;
     };
     std::ofstream ratios(outDir + "/lumped_chain_ratios.csv");
-    ratios << "observable,level,chain_wall_s,ale_wall_s,ratio_chain_over_ale\n";
+    ratios << "observable,level,chain_wall_s,ale_wall_s,ratio_chain_over_ale,ale_nodeforce_wall_s,"
+              "ratio_chain_over_ale_nodeforce\n";
     // The four levels first, then intermediate ones both models reach.
     const std::vector<std::pair<std::string, double>> levels{{"pos", 1e-4}, {"pos", 1e-6}, {"force", 1.0},
                                                              {"force", 0.01}, {"pos", 1e-5}, {"force", 10.0},
@@ -584,9 +609,13 @@ int cmdAnalyze(int argc, char** argv) {
     for (const auto& lv : levels) {
         const double wc = wallAt(fronts["chain|" + lv.first], lv.second);
         const double wa = wallAt(fronts["ale|" + lv.first], lv.second);
-        ratios << lv.first << "," << lv.second << "," << wc << "," << wa << "," << wc / wa << "\n";
+        const double wn = lv.first == "force" ? wallAt(fronts["ale|nodeforce"], lv.second) : std::nan("");
+        ratios << lv.first << "," << lv.second << "," << wc << "," << wa << "," << wc / wa << "," << wn << ","
+               << wc / wn << "\n";
         std::cout << lv.first << " error " << lv.second << ": chain " << wc << " s, ale " << wa << " s, ratio "
-                  << wc / wa << "\n";
+                  << wc / wa;
+        if (lv.first == "force") std::cout << "; ale from the node force " << wn << " s, ratio " << wc / wn;
+        std::cout << "\n";
     }
     return 0;
 }
@@ -602,8 +631,8 @@ int cmdCompare(int argc, char** argv) {
         for (auto& s : b.samples) m = std::max(m, std::abs(s.P));
         return m;
     }();
-    std::printf("max|dpos| = %.3e m   max|dP| = %.3e N   (max|P| = %.1f N)  complete=%d\n", e.pos, e.force, Pmax,
-                e.complete ? 1 : 0);
+    std::printf("max|dpos| = %.3e m   max|dP| = %.3e N   max|dPnode - P_B| = %.3e N   (max|P| = %.1f N)  complete=%d\n",
+                e.pos, e.force, e.forceNode, Pmax, e.complete ? 1 : 0);
     return 0;
 }
 
@@ -621,7 +650,8 @@ int cmdRichardson(int argc, char** argv) {
     for (size_t k = 0; k < n; ++k) {
         const Sample& x = a.samples[k];
         const Sample& y = b.samples[k];
-        f << x.t << "," << x.x + c * (x.x - y.x) << "," << x.y + c * (x.y - y.y) << "," << x.P + c * (x.P - y.P) << "\n";
+        f << x.t << "," << x.x + c * (x.x - y.x) << "," << x.y + c * (x.y - y.y) << "," << x.P + c * (x.P - y.P)
+          << "," << x.Pn + c * (x.Pn - y.Pn) << "\n";
     }
     return 0;
 }
@@ -636,7 +666,8 @@ int cmdComposeRef(int argc, char** argv) {
     f << "# model=reference position=" << argv[2] << " force=" << argv[3] << "\n";
     const size_t n = std::min(a.samples.size(), b.samples.size());
     for (size_t k = 0; k < n; ++k)
-        f << a.samples[k].t << "," << a.samples[k].x << "," << a.samples[k].y << "," << b.samples[k].P << "\n";
+        f << a.samples[k].t << "," << a.samples[k].x << "," << a.samples[k].y << "," << b.samples[k].P << ","
+          << b.samples[k].P << "\n";
     return 0;
 }
 
@@ -658,8 +689,10 @@ int cmdStatic(const std::map<std::string, std::string>& a) {
     for (int na : {0, 1, 2, 3, 5, 8, 12, 16}) {
         AleModel m(p, na, std::stoi(get(a, "nt", "1")));
         SimTK::State s = m.makeInitialState();
-        std::printf("ale na=%2d: P(L) = %.6f N (err %+.4f)  payload y = %.12f\n", na, m.endAxialForce(s),
-                    m.endAxialForce(s) - Pend, m.payloadPosition(s)[1]);
+        m.system().realize(s, SimTK::Stage::Dynamics);
+        std::printf("ale na=%2d: P(L) = %.6f N (err %+.4f)  from the node force %.6f N (err %+.2e)  payload y = %.12f\n",
+                    na, m.endAxialForce(s), m.endAxialForce(s) - Pend, m.endAxialForceFromNodeForce(s),
+                    m.endAxialForceFromNodeForce(s) - Pend, m.payloadPosition(s)[1]);
     }
     return 0;
 }

@@ -15,9 +15,11 @@ plot f u ((strcol(1) eq "chain" && strcol(5) eq "ok") ? $6 : 1/0):8 w p pt 6 lc 
      dir."/front_chain_pos.dat" u 1:2 w lp pt 7 lw 2 lc rgb "#b2182b" t "chain (N = 5...50) Pareto front", \
      dir."/front_ale_pos.dat" u 1:2 w lp pt 7 lw 2 lc rgb "#2166ac" t "ALE (n_a = 0...8, n_t = 1...4) Pareto front"
 set ylabel "max payload-end axial force error [N]"
-set title "axial force at the payload end"
+set title "axial force at the payload end (ALE: EA eps at s = L, and from the node force on the payload)"
 plot f u ((strcol(1) eq "chain" && strcol(5) eq "ok") ? $6 : 1/0):9 w p pt 6 lc rgb "#f4a582" t "chain: all runs", \
      f u ((strcol(1) eq "ale" && strcol(5) eq "ok") ? $6 : 1/0):9 w p pt 6 lc rgb "#92c5de" t "ALE: all runs", \
      dir."/front_chain_force.dat" u 1:2 w lp pt 7 lw 2 lc rgb "#b2182b" t "chain Pareto front", \
-     dir."/front_ale_force.dat" u 1:2 w lp pt 7 lw 2 lc rgb "#2166ac" t "ALE Pareto front"
+     f u ((strcol(1) eq "ale" && strcol(5) eq "ok") ? $6 : 1/0):11 w p pt 4 lc rgb "#a6dba0" t "ALE from the node force: all runs", \
+     dir."/front_ale_force.dat" u 1:2 w lp pt 7 lw 2 lc rgb "#2166ac" t "ALE, EA eps at s = L: Pareto front", \
+     dir."/front_ale_nodeforce.dat" u 1:2 w lp pt 5 lw 2 lc rgb "#1b7837" t "ALE, from getNodeForce: Pareto front"
 unset multiplot
