@@ -265,6 +265,21 @@ void compareReferences(Reference& ref) {
     }
 }
 
+/// The reference resolves an error only if the error is at least kFloorFactor times the change of
+/// the reference itself when its accuracy is halved (the check run). Smaller errors are reported as
+/// "below the reference floor", never as numbers, and an error target below the floor is "not
+/// verifiable" rather than reached.
+constexpr double kFloorFactor = 10;
+struct Floors {
+    double position = 0, force = 0;  // [m], [N]
+};
+Floors floorsOf(const Reference& r) { return {kFloorFactor * r.maxPosDiff, kFloorFactor * r.maxForceDiff}; }
+
+/// An error as table text: the number, or "< floor" when the reference cannot resolve it.
+std::string errorText(double error, double floor) {
+    return error < floor ? "< " + sci(floor, 1) + " (floor)" : sci(error);
+}
+
 void saveReference(const Options& o, const Reference& ref) {
     const fs::path path = referencePath(o, ref.axialModes);
     const fs::path tmp = path.string() + ".tmp";
@@ -581,17 +596,35 @@ void writeReferenceCheck(const Options& o, const std::vector<Reference>& refs, c
           << " rhs evaluations, " << num(r.wallCheck, 4) << " s wall\n"
           << "  max |x_ref - x_check| = " << sci(r.maxPosDiff) << " m\n"
           << "  max |P_ref - P_check| = " << sci(r.maxForceDiff) << " N\n";
-        if (std::isfinite(minPos))
-            f << "  smallest errors reported in the sweep: position " << sci(minPos) << " m (ratio "
-              << sci(r.maxPosDiff / minPos, 1) << "), force " << sci(minForce) << " N (ratio "
-              << sci(r.maxForceDiff / minForce, 1) << ")\n";
+        const Floors fl = floorsOf(r);
+        f << "  reference floor (" << kFloorFactor << " x the check difference): position " << sci(fl.position, 1)
+          << " m, force " << sci(fl.force, 1) << " N; smaller errors are reported as below the floor\n";
+        if (std::isfinite(minPos)) {
+            double minPosResolved = INFINITY, minForceResolved = INFINITY;
+            int belowPos = 0, belowForce = 0;
+            for (const Point& p : points)
+                if (p.spec.axialModes == r.axialModes && hasNumbers(p)) {
+                    if (p.result.posErr >= fl.position) minPosResolved = std::min(minPosResolved, p.result.posErr);
+                    else ++belowPos;
+                    if (p.result.forceErr >= fl.force) minForceResolved = std::min(minForceResolved, p.result.forceErr);
+                    else ++belowForce;
+                }
+            f << "  smallest errors reported as numbers: position " << sci(minPosResolved) << " m (check difference / error = "
+              << sci(r.maxPosDiff / minPosResolved, 1) << "), force " << sci(minForceResolved)
+              << " N (check difference / error = " << sci(r.maxForceDiff / minForceResolved, 1) << ")\n"
+              << "  points below the floor: " << belowPos << " (position), " << belowForce
+              << " (force); raw smallest measured differences: position " << sci(minPos) << " m, force " << sci(minForce)
+              << " N (results.csv keeps the raw values)\n";
+        }
         for (const std::string& note : r.notes) f << "  note: " << note << "\n";
         f << "\n";
     }
 }
 
-void writeTable(const Options& o, const std::vector<Point>& points,
+void writeTable(const Options& o, const std::vector<Point>& points, const std::vector<Reference>& refs,
                 const std::map<std::string, std::pair<std::string, bool>>& methods) {
+    std::map<int, Floors> floors;
+    for (const Reference& r : refs) floors[r.axialModes] = floorsOf(r);
     std::ofstream f(fs::path(o.outDir) / "table.md");
     f << "# Work-precision study: the paper's pendulum\n\n"
       << "t_end " << o.tEnd << " s, reports every " << o.reportInterval << " s, n_t = " << o.transverseModes
@@ -601,7 +634,8 @@ void writeTable(const Options& o, const std::vector<Point>& points,
       << " s per run" << (o.projectCap > 0 ? " (also stopped when the wall projected to t_end exceeds " + num(o.projectCap, 3) + " x cap)" : "")
       << "; after a too-slow point the tighter settings of that integrator are skipped"
       << (o.capSkipsHigherModes ? " at that n_a and at every larger n_a" : " at that n_a") << ". rhs = Integrator::getNumRealizations() "
-      << "(realizations through Stage::Acceleration).\n\n";
+      << "(realizations through Stage::Acceleration). Errors smaller than " << kFloorFactor
+      << " x the reference's own change at half its accuracy are shown as \"< floor\" (see reference_check.txt).\n\n";
     f << "## Integrators\n\n| name | Simbody method | error control (methodHasErrorControl) | swept over |\n|---|---|---|---|\n";
     for (const std::string& n : o.integrators) {
         const auto it = methods.find(n);
@@ -612,7 +646,9 @@ void writeTable(const Options& o, const std::vector<Point>& points,
           << (fixed ? " and fixed steps" : "") << " |\n";
     }
     for (int na : o.axialModes) {
+        const Floors fl = floors[na];
         f << "\n## n_a = " << na << "\n\n"
+          << "Reference floor: position " << sci(fl.position, 1) << " m, force " << sci(fl.force, 1) << " N.\n\n"
           << "| integrator | setting | status | position error [m] | force error [N] | wall [s] | runs | rhs "
              "evaluations | steps | t reached [s] | note |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
         for (const Point& p : points) {
@@ -624,7 +660,8 @@ void writeTable(const Options& o, const std::vector<Point>& points,
             for (char& c : note)
                 if (c == '|') c = '/';
             f << "| " << p.spec.integrator << " | " << settingText(p.spec) << " | " << r.status << " | "
-              << (hasNumbers(p) ? sci(r.posErr) : "") << " | " << (hasNumbers(p) ? sci(r.forceErr) : "") << " | "
+              << (hasNumbers(p) ? errorText(r.posErr, fl.position) : "") << " | "
+              << (hasNumbers(p) ? errorText(r.forceErr, fl.force) : "") << " | "
               << (ran ? num(r.wall, 3) : "") << " | " << (ran ? std::to_string(p.walls.size()) : "") << " | "
               << (ran ? std::to_string(r.rhs) : "") << " | " << (ran ? std::to_string(r.steps) : "") << " | "
               << (ran ? num(r.tReached, 6) : "") << " | " << note << " |\n";
@@ -634,6 +671,8 @@ void writeTable(const Options& o, const std::vector<Point>& points,
     // errors live on another scale (the axial modes' integration noise is newtons), so their targets are
     // 10, 1, 0.1 and 0.01 N.
     auto best = [&](int na, double target, bool position) {
+        const double floor = position ? floors[na].position : floors[na].force;
+        if (target < floor) return "not verifiable (reference floor " + sci(floor, 1) + ")";
         const Point* b = nullptr;
         for (const Point& p : points) {
             if (p.spec.axialModes != na || !hasNumbers(p)) continue;
@@ -642,7 +681,7 @@ void writeTable(const Options& o, const std::vector<Point>& points,
         }
         if (!b) return std::string("none reached");
         return b->spec.integrator + " (" + settingText(b->spec) + ", " + num(b->result.wall, 3) + " s, error " +
-               sci(position ? b->result.posErr : b->result.forceErr) + ")";
+               errorText(position ? b->result.posErr : b->result.forceErr, floor) + ")";
     };
     f << "\n## Fastest integrator per error target (lowest median wall among the points reaching it)\n\n"
       << "Payload position error:\n\n| n_a | 1e-3 m | 1e-6 m | 1e-9 m |\n|---|---|---|---|\n";
@@ -655,15 +694,15 @@ void writeTable(const Options& o, const std::vector<Point>& points,
           << " | " << best(na, 0.01, false) << " |\n";
 }
 
-bool makePlots(const Options& o, const std::vector<Point>& points) {
+bool makePlots(const Options& o, const std::vector<Point>& points, const std::vector<Reference>& refs) {
     if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
         std::cerr << "bench-work-precision: gnuplot not found, figures skipped (apt-get install gnuplot-nox)\n";
         return false;
     }
     const fs::path dir(o.outDir);
     std::ofstream gp(dir / "plots.gp");
-    gp << "set terminal pngcairo size 1500,600 font 'DejaVu Sans,11'\nset grid\nset logscale xy\n"
-       << "set format x '10^{%L}'\nset format y '10^{%L}'\nset key bottom left font ',9' opaque box\n";
+    gp << "set terminal pngcairo size 1700,620 font 'DejaVu Sans,11'\nset grid\nset logscale xy\n"
+       << "set format x '10^{%L}'\nset format y '10^{%L}'\nset key outside right top font ',9' box\n";
     bool any = false;
     for (int na : o.axialModes) {
         // One data block per series (integrator x kind), ok points only, loosest setting first.
@@ -700,12 +739,18 @@ bool makePlots(const Options& o, const std::vector<Point>& points) {
         any = true;
         gp << "set output 'work_precision_na" << na << ".png'\nset multiplot layout 1,2 title 'Work-precision, pendulum, n_a = "
            << na << ", " << o.tEnd << " s'\n";
+        Floors fl;
+        for (const Reference& r : refs)
+            if (r.axialModes == na) fl = floorsOf(r);
         for (int panel = 0; panel < 2; ++panel) {
+            // Below the dashed line the reference cannot resolve the error (see kFloorFactor).
+            const double floor = panel == 0 ? fl.position : fl.force;
             gp << "set xlabel 'wall time of the integration [s]'\nset ylabel '"
                << (panel == 0 ? "max payload position error [m]" : "max payload-end axial force error [N]") << "'\nplot ";
             for (size_t i = 0; i < series.size(); ++i)
                 gp << (i ? ", " : "") << "'" << data << "' index " << i << " using 1:" << (panel == 0 ? 2 : 3)
                    << " with linespoints lw 2 pt " << (i % 13) + 1 << " title '" << series[i].title << "'";
+            if (floor > 0) gp << ", " << num(floor, 6) << " with lines dt 2 lw 2 lc rgb 'black' title 'reference floor'";
             gp << "\n";
         }
         gp << "unset multiplot\n";
@@ -860,8 +905,8 @@ int main(int argc, char** argv) {
 
     writeResultsCsv(o, points);
     writeReferenceCheck(o, refs, points);
-    writeTable(o, points, methods);
-    if (o.plots) makePlots(o, points);
+    writeTable(o, points, refs, methods);
+    if (o.plots) makePlots(o, points, refs);
     int ok = 0;
     for (const Point& p : points) ok += hasNumbers(p) ? 1 : 0;
     std::printf("bench-work-precision: %d points (%d ok), wall %.1f s, outputs in %s\n", total, ok, secondsSince(start),
