@@ -531,7 +531,9 @@ int cmdAnalyze(int argc, char** argv) {
         RunFile r = readRun(path);
         Row row;
         row.model = r.meta["model"];
-        row.label = row.model == "ale" ? "na=" + r.meta["na"] + " nt=" + r.meta["nt"] : "N=" + r.meta["N"];
+        row.label = row.model == "ale" ? "na=" + r.meta["na"] + " nt=" + r.meta["nt"] +
+                                             (r.meta["velocity"] == "complete" ? " complete" : "")
+                                       : "N=" + r.meta["N"];
         row.integ = r.meta["integrator"];
         row.status = r.meta["status"];
         row.acc = std::stod(r.meta["accuracy"]);
