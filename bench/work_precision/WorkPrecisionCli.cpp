@@ -110,6 +110,9 @@ time of the integration, rhs evaluations, steps -- or why the point failed.
   --project-cap F           also stop a run as too slow once it has used 10 % of the cap and its
                             wall time projected to t_end (wall x t_end / t) exceeds F x cap,
                             F >= 1 (default: off; only the cap itself)
+  --no-cap-skip             measure the tighter settings of an integrator after a too-slow one too
+                            (the cost need not grow with the accuracy: CPodes at 1e-3 can be slower
+                            than at 1e-6); --project-cap keeps hopeless runs short
   --cap-skips-higher-modes  also skip the same and tighter settings of that integrator at larger n_a
   --reference-integrator NAME  (default rk-feldberg)
   --reference-accuracy TOL  reference accuracy (default 1e-12; if that run fails, 10x looser is
@@ -182,6 +185,8 @@ Options parseCommandLine(int argc, char** argv) {
             const std::string v = value();
             o.projectCap = positive(opt, v);
             if (o.projectCap < 1) fail(opt, v, "must be >= 1");
+        } else if (opt == "--no-cap-skip") {
+            o.capSkips = false;
         } else if (opt == "--cap-skips-higher-modes") {
             o.capSkipsHigherModes = true;
         } else if (opt == "--reference-integrator") {

@@ -33,6 +33,7 @@ struct Options {
     bool recomputeReference = false;
     bool referenceOnly = false;
     bool capSkipsHigherModes = false;
+    bool capSkips = true;          // false (--no-cap-skip): measure tighter settings after a too-slow one
     bool resume = false;           // keep the points already in DIR/results.csv, measure the rest
     int jobs = 1;
     std::string outDir = "out/work-precision";
