@@ -37,7 +37,7 @@ struct PointMassPendulum {
         return n;
     }
     void evaluate(const Eigen::VectorXd& y) const {
-        rope.solveMaterialCoordinates(nodes(y), y.segment(4, nm()), data);
+        rope.solveDependentCoordinates(nodes(y), y.segment(4, nm()), data);
         rope.computeDynamics(nodes(y), nodeVelocities(y), y.segment(4, nm()), y.segment(4 + nm(), nm()), data);
     }
     Eigen::VectorXd rhs(const Eigen::VectorXd& y) const {

@@ -119,7 +119,7 @@ long allocationsPerRopeEvaluation(int numSpans, int na, int nt) {
     Eigen::VectorXd nodeAcc = Eigen::VectorXd::Zero(Dim * (numSpans + 1)), qmdd;
     RopeData<Dim> data;
     auto evaluate = [&] {
-        rope.solveMaterialCoordinates(nodes, qm, data);
+        rope.solveDependentCoordinates(nodes, qm, data);
         rope.computeDynamics(nodes, velocities, qm, qmd, data);
         rope.modalAccelerations(data, nodeAcc, qmdd);
     };

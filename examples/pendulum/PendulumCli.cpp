@@ -36,6 +36,10 @@ double positive(const std::string& option, const std::string& text) {
 
 }  // namespace
 
+std::string axialDynamicsName(SimbodyReeving::AxialDynamics a) {
+    return a == SimbodyReeving::AxialDynamics::Dynamic ? "dynamic" : "quasi-static";
+}
+
 std::string usage() {
     return R"(Usage: reeving-pendulum [options]
 The two-branch pendulum of Mohammadi & Escalona (Table 1): rope anchored at the first sheave, a
@@ -44,6 +48,8 @@ from static equilibrium with a horizontal payload velocity.
 
   --axial-modes LIST       comma list of n_a values, each 0..16 (default 0,1,2,3)
   --transverse-modes N     n_t, 0..16 (default 1)
+  --axial-dynamics KIND    dynamic (default: the paper's model, axial modes as states) or
+                           quasi-static (axial modes condensed: no axial waves, much faster)
   --t-end T                end time [s] (default 20)
   --vx0 V                  initial horizontal payload velocity [m/s] (default 1)
   --vy0 V                  initial vertical payload velocity [m/s] (default 0)
@@ -91,6 +97,14 @@ Options parseCommandLine(int argc, char** argv) {
             o.transverseModes = toInteger(opt, v);
             if (o.transverseModes < 0 || o.transverseModes > SimbodyReeving::kMaxModesPerDirection)
                 fail(opt, v, "must be in 0..16");
+        } else if (opt == "--axial-dynamics") {
+            const std::string v = value();
+            if (v == "dynamic")
+                o.axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;
+            else if (v == "quasi-static")
+                o.axialDynamics = SimbodyReeving::AxialDynamics::QuasiStatic;
+            else
+                fail(opt, v, "expected dynamic or quasi-static");
         } else if (opt == "--t-end") {
             o.tEnd = positive(opt, value());
         } else if (opt == "--vx0") {

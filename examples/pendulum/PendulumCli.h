@@ -17,6 +17,7 @@ struct UsageError : std::runtime_error {
 struct Options {
     std::vector<int> axialModes{0, 1, 2, 3};
     int transverseModes = 1;
+    SimbodyReeving::AxialDynamics axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;
     double tEnd = 20.0;            // [s]
     double vx0 = 1.0, vy0 = 0.0;   // [m/s], added after static equilibrium
     std::string integrator = "rk-merson";
@@ -31,6 +32,9 @@ struct Options {
 /// Parses argv. @throws UsageError for an unknown option, a missing or malformed value, an unknown
 /// integrator or an out-of-range value.
 Options parseCommandLine(int argc, char** argv);
+
+/// "dynamic" or "quasi-static".
+std::string axialDynamicsName(SimbodyReeving::AxialDynamics a);
 
 /// The --help text.
 std::string usage();

@@ -62,6 +62,7 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     SpanOptions spans;
     spans.axialModes = na;
     spans.transverseModes = o.transverseModes;
+    spans.axialDynamics = o.axialDynamics;
     PendulumScene scene(o.parameters, spans);
     CaseResult r;
     r.axialModes = na;
@@ -141,6 +142,7 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
        << "  \"fixed_step\": " << jsonNumber(o.step) << ",\n"
        << "  \"axial_modes\": " << r.axialModes << ",\n"
        << "  \"transverse_modes\": " << o.transverseModes << ",\n"
+       << "  \"axial_dynamics\": \"" << axialDynamicsName(o.axialDynamics) << "\",\n"
        << "  \"t_end\": " << jsonNumber(o.tEnd) << ",\n"
        << "  \"vx0\": " << jsonNumber(o.vx0) << ",\n"
        << "  \"vy0\": " << jsonNumber(o.vy0) << ",\n"

@@ -187,7 +187,8 @@ public:
             int k = 0;
             for (int j = 0; j < r.numSpans(); ++j) {
                 const SpanOptions& o = r.spanOptions[j];
-                for (int i = 1; i <= o.axialModes; ++i, ++k) {
+                const int dynamicAxialModes = o.axialDynamics == AxialDynamics::Dynamic ? o.axialModes : 0;
+                for (int i = 1; i <= dynamicAxialModes; ++i, ++k) {
                     const double weight = i * pi / (l * 1e-3);
                     w[r.zOffset + k] = weight;
                     w[r.zOffset + r.numModal + k] = weight / (i * pi / l * wave);
@@ -251,9 +252,9 @@ public:
         modal(getZ(s), r, false, c.modalCoordinates);
         if (r.planar) {
             c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
-            r.planarModel->solveMaterialCoordinates(c.nodes2, c.modalCoordinates, c.planar);
+            r.planarModel->solveDependentCoordinates(c.nodes2, c.modalCoordinates, c.planar);
         } else {
-            spatialModel(r, c.nodes3).solveMaterialCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
+            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
         }
     }
 
@@ -473,7 +474,7 @@ public:
         double u = 0;
         Eigen::VectorXd q;
         for (int j = 0; j < model.numSpans(); ++j) {
-            model.spanCoordinates(j, nodes, qm, data.materialCoordinates, q);
+            model.spanCoordinates(j, nodes, qm, data, q);
             SpanData<Dim> d;
             model.span(j).evaluate(q, Eigen::VectorXd::Zero(q.size()), d);
             u += d.potentialEnergy();
@@ -489,7 +490,7 @@ public:
         const Eigen::VectorXd qm = modal(getZ(s), r, false);
         if (r.planar) {
             const Eigen::Matrix2Xd n2 = planarNodes(r, c.nodes3);
-            r.planarModel->spanCoordinates(span, n2, qm, c.planar.materialCoordinates, q);
+            r.planarModel->spanCoordinates(span, n2, qm, c.planar, q);
             const auto& sp = r.planarModel->span(span);
             const double offset = r.normal.dot(c.nodes3.col(0));
             for (int k = 0; k < numPoints; ++k) {
@@ -498,7 +499,7 @@ public:
                 out.push_back(toSimTK(r.e1 * p[0] + r.e2 * p[1] + r.normal * offset));
             }
         } else {
-            r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial.materialCoordinates, q);
+            r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
             const auto& sp = r.spatialModel->span(span);
             for (int k = 0; k < numPoints; ++k) {
                 const double sk = q[sp.s1Index()] + (q[sp.s2Index()] - q[sp.s1Index()]) * k / (numPoints - 1);
@@ -606,6 +607,8 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             for (int j = 0; j < r.numSpans(); ++j) {
                 const SpanModel<3> probe(spec.properties, r.spanOptions[j], gravity);  // validates options
                 r.numModal += probe.numModalCoordinates();
+                if (r.spanOptions[j].axialDynamics == AxialDynamics::QuasiStatic)
+                    r.numModal -= probe.axialModes();  // condensed: not states
             }
         }
     } catch (const std::invalid_argument& e) {
@@ -684,10 +687,10 @@ double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMa
     Eigen::VectorXd q;
     const Eigen::VectorXd qm = g.modal(g.getZ(s), r, false);
     if (r.planar) {
-        r.planarModel->spanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar.materialCoordinates, q);
+        r.planarModel->spanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar, q);
         return r.planarModel->span(span).strain(q, sMaterial);
     }
-    r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial.materialCoordinates, q);
+    r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
     return r.spatialModel->span(span).strain(q, sMaterial);
 }
 

@@ -26,11 +26,29 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             throw std::invalid_argument("RopeModel: all spans of a rope must have the same RopeProperties");
     }
     const int N = numSpans();
+    condensedOffset_.assign(N, -1);
     for (int j = 0; j < N; ++j) {
+        const SpanModel<Dim>& sp = spans_[j];
         modalOffset_.push_back(numModal_);
-        numModal_ += spans_[j].numModalCoordinates();
+        if (sp.options().axialDynamics == AxialDynamics::QuasiStatic && sp.axialModes() > 0) {
+            condensedOffset_[j] = numCondensed_;
+            numCondensed_ += sp.axialModes();
+            numModal_ += sp.numModalCoordinates() - sp.axialModes();
+        } else {
+            numModal_ += sp.numModalCoordinates();
+        }
     }
-    const int nn = Dim * (N + 1);
+    if (numCondensed_ > 0) {
+        numMultipliers_ = N - 1;
+        for (int j = 0; j < N; ++j) kernels_.emplace_back(spans_[j]);  // throws for PaperLiteral spans
+    }
+    // z = [r_0..r_N | q_free | q_condensed | s_1..s_{N-1} | nu_1..nu_{N-1} | s_0 | s_N]
+    const int nn = Dim * (N + 1), nw = nn + numModal_, nd = numDependent();
+    auto materialIndex = [&](int node) {
+        if (node == 0) return nw + nd;
+        if (node == N) return nw + nd + 1;
+        return nw + numCondensed_ + node - 1;
+    };
     for (int j = 0; j < N; ++j) {
         const auto& sp = spans_[j];
         std::vector<int> map(sp.numCoordinates());
@@ -38,45 +56,146 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             map[d] = Dim * j + d;
             map[Dim + d] = Dim * (j + 1) + d;
         }
-        for (int i = 0; i < sp.numModalCoordinates(); ++i) map[2 * Dim + i] = nn + modalOffset_[j] + i;
-        map[sp.s1Index()] = nn + numModal_ + j;
-        map[sp.s2Index()] = nn + numModal_ + j + 1;
+        const int na = sp.axialModes();
+        for (int i = 0; i < sp.numModalCoordinates(); ++i) {
+            if (isCondensed(j))
+                map[2 * Dim + i] = i < na ? nw + condensedOffset_[j] + i : nn + modalOffset_[j] + i - na;
+            else
+                map[2 * Dim + i] = nn + modalOffset_[j] + i;
+        }
+        map[sp.s1Index()] = materialIndex(j);
+        map[sp.s2Index()] = materialIndex(j + 1);
         spanToRope_.push_back(std::move(map));
     }
 }
 
 template <int Dim>
 void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
-                                     const Eigen::VectorXd& s, Eigen::VectorXd& q) const {
+                                     const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     const auto& sp = spans_[j];
     q.resize(sp.numCoordinates());
     q.template segment<Dim>(0) = nodes.col(j);
     q.template segment<Dim>(Dim) = nodes.col(j + 1);
-    q.segment(2 * Dim, sp.numModalCoordinates()) = qm.segment(modalOffset_[j], sp.numModalCoordinates());
-    q[sp.s1Index()] = s[j];
-    q[sp.s2Index()] = s[j + 1];
+    const int nmSpan = sp.numModalCoordinates();
+    if (isCondensed(j)) {
+        const int na = sp.axialModes();
+        q.segment(2 * Dim, na) = data.condensedAmplitudes.segment(condensedOffset_[j], na);
+        q.segment(2 * Dim + na, nmSpan - na) = qm.segment(modalOffset_[j], nmSpan - na);
+    } else {
+        q.segment(2 * Dim, nmSpan) = qm.segment(modalOffset_[j], nmSpan);
+    }
+    q[sp.s1Index()] = data.materialCoordinates[j];
+    q[sp.s2Index()] = data.materialCoordinates[j + 1];
 }
 
 template <int Dim>
-void RopeModel<Dim>::endStrains(const NodeMatrix& nodes, const Eigen::VectorXd& qm, const Eigen::VectorXd& s,
-                                RopeData<Dim>& data) const {
+void RopeModel<Dim>::fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+                                         RopeData<Dim>& data) const {
     const int N = numSpans();
     data.spanQ.resize(N);
     data.spanQdot.resize(N);
-    data.firstEnd.resize(N);
-    data.secondEnd.resize(N);
     for (int j = 0; j < N; ++j) {
-        spanCoordinates(j, nodes, qm, s, data.spanQ[j]);
+        spanCoordinates(j, nodes, qm, data, data.spanQ[j]);
         if (data.spanQdot[j].size() != data.spanQ[j].size()) data.spanQdot[j].setZero(data.spanQ[j].size());
-        spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::First, data.firstEnd[j]);
-        spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::Second, data.secondEnd[j]);
     }
 }
 
 template <int Dim>
-void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
-                                              RopeData<Dim>& data) const {
-    const int N = numSpans();
+void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
+                                         bool withRates) const {
+    const int N = numSpans(), nw = Dim * (N + 1) + numModal_, nd = numDependent();
+    const int nqc = numCondensed_, nc = N - 1;
+    fillSpanCoordinates(nodes, qm, data);
+    Eigen::VectorXd& C = data.newtonResidual;
+    C.setZero(nd);
+    data.Cw.setZero(nd, nw);
+    data.Cd.setZero(nd, nd);
+    data.bias.setZero(nd);
+    auto scatter = [&](int row, int j, const auto& gradient, double coef) {
+        const auto& map = spanToRope_[j];
+        for (int i = 0; i < static_cast<int>(map.size()); ++i) {
+            const int zi = map[i];
+            if (zi < nw)
+                data.Cw(row, zi) += coef * gradient[i];
+            else if (zi < nw + nd)
+                data.Cd(row, zi - nw) += coef * gradient[i];
+        }
+    };
+
+    if (kernels_.empty()) {
+        // The paper's rows: eps_{k-1}(s_k) - eps_k(s_k) from the spans' analytic end strains.
+        data.firstEnd.resize(N);
+        data.secondEnd.resize(N);
+        for (int j = 0; j < N; ++j) {
+            spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::First, data.firstEnd[j]);
+            spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::Second, data.secondEnd[j]);
+        }
+        for (int k = 1; k < N; ++k) {
+            C[k - 1] = data.secondEnd[k - 1].strain - data.firstEnd[k].strain;
+            scatter(k - 1, k - 1, data.secondEnd[k - 1].gradient, 1.0);
+            scatter(k - 1, k, data.firstEnd[k].gradient, -1.0);
+            if (withRates)
+                data.bias[k - 1] = data.secondEnd[k - 1].accelerationBias - data.firstEnd[k].accelerationBias;
+        }
+        return;
+    }
+
+    // Condensation rows (see the class comment): [stationarity in q_condensed | tension equality |
+    // stationarity in s], the stationarity rows scaled by 1/EA.
+    data.condensation.resize(N);
+    static const Eigen::VectorXd noRates;
+    for (int j = 0; j < N; ++j)
+        kernels_[j].evaluate(data.spanQ[j], withRates ? data.spanQdot[j] : noRates, data.condensation[j]);
+    const double invEA = 1.0 / properties().axialStiffness;
+    auto addTerm = [&](int row, int j, int quantity, double coef) {
+        const auto& K = data.condensation[j];
+        C[row] += coef * K.value[quantity];
+        scatter(row, j, K.gradient.row(quantity), coef);
+        if (withRates) data.bias[row] += coef * K.accelerationBias[quantity];
+    };
+    // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too.
+    auto addProduct = [&](int row, int m, int j, int quantity, double coef) {
+        const auto& K = data.condensation[j];
+        const double nu = data.multipliers[m - 1];
+        C[row] += coef * nu * K.value[quantity];
+        scatter(row, j, K.gradient.row(quantity), coef * nu);
+        data.Cd(row, nqc + nc + m - 1) += coef * K.value[quantity];
+        if (withRates)
+            data.bias[row] += coef * (nu * K.accelerationBias[quantity] +
+                                      2.0 * data.multiplierRates[m - 1] * K.rate[quantity]);
+    };
+    for (int j = 0; j < N; ++j) {
+        if (!isCondensed(j)) continue;
+        const AxialCondensation<Dim>& kj = kernels_[j];
+        for (int i = 0; i < spans_[j].axialModes(); ++i) {
+            const int row = condensedOffset_[j] + i;
+            addTerm(row, j, kj.phi(i), invEA);
+            if (j >= 1) addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -1.0);
+            if (j + 1 <= N - 1) addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), 1.0);
+        }
+    }
+    for (int k = 1; k < N; ++k) {
+        const int row = nqc + k - 1;
+        addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), 1.0);
+        addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -1.0);
+    }
+    for (int k = 1; k < N; ++k) {
+        const int row = nqc + nc + k - 1;
+        // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
+        addTerm(row, k - 1, kernels_[k - 1].lengthDerivative(), invEA);
+        addTerm(row, k, kernels_[k].lengthDerivative(), -invEA);
+        // sum_m nu_m dC_m/ds_k with C_m = eps2_{m-1}(l_{m-1}) - eps1_m(l_m), l_j = s_{j+1} - s_j.
+        addProduct(row, k, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::Second), 1.0);
+        addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), 1.0);
+        if (k + 1 <= N - 1) addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -1.0);
+        if (k - 1 >= 1) addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -1.0);
+    }
+}
+
+template <int Dim>
+void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+                                               RopeData<Dim>& data) const {
+    const int N = numSpans(), nqc = numCondensed_, nd = numDependent();
     Eigen::VectorXd& s = data.materialCoordinates;
     bool admissible = s.size() == N + 1 && s[0] == 0.0 && s[N] == length_;
     for (int k = 0; admissible && k < N; ++k) admissible = s[k + 1] > s[k];
@@ -91,32 +210,20 @@ void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eig
             s[j + 1] = (j + 1 == N) ? length_ : length_ * acc / total;
         }
     }
+    if (data.condensedAmplitudes.size() != nqc || !data.condensedAmplitudes.allFinite())
+        data.condensedAmplitudes.setZero(nqc);
+    if (data.multipliers.size() != numMultipliers_ || !data.multipliers.allFinite())
+        data.multipliers.setZero(numMultipliers_);
+    data.multiplierRates.setZero(numMultipliers_);
     data.newtonIterations = 0;
     for (auto& v : data.spanQdot) v.setZero();
-    if (N == 1) {
-        endStrains(nodes, qm, s, data);
-        return;
-    }
-    Eigen::VectorXd& C = data.newtonResidual;
-    Eigen::MatrixXd& J = data.newtonJacobian;
-    C.resize(N - 1);
-    J.resize(N - 1, N - 1);
+    const Eigen::VectorXd& C = data.newtonResidual;
     double previous = std::numeric_limits<double>::infinity();
     for (int iter = 0; iter <= 50; ++iter) {
-        endStrains(nodes, qm, s, data);
-        J.setZero();
-        for (int k = 1; k < N; ++k) {
-            const auto& a = data.secondEnd[k - 1];  // span k-1 at its node 2 (= sheave k)
-            const auto& b = data.firstEnd[k];       // span k at its node 1
-            C[k - 1] = a.strain - b.strain;
-            const int as1 = spans_[k - 1].s1Index(), as2 = spans_[k - 1].s2Index();
-            const int bs1 = spans_[k].s1Index(), bs2 = spans_[k].s2Index();
-            if (k - 1 >= 1) J(k - 1, k - 2) += a.gradient[as1];
-            J(k - 1, k - 1) += a.gradient[as2] - b.gradient[bs1];
-            if (k + 1 <= N - 1) J(k - 1, k) -= b.gradient[bs2];
-        }
+        evaluateConstraints(nodes, qm, data, false);
+        if (nd == 0) return;
         // Converged at 1e-15 in strain, or stagnating at round-off below 1e-12 (eps = 1/2(|t|^2/l^2 - 1)
-        // carries about 1e-16 absolute error).
+        // carries about 1e-16 absolute error, the stationarity sums a few times that).
         const double err = C.cwiseAbs().maxCoeff();
         if (err <= 1e-15 || (err <= 1e-12 && err > 0.5 * previous)) {
             data.newtonIterations = iter;
@@ -124,46 +231,62 @@ void RopeModel<Dim>::solveMaterialCoordinates(const NodeMatrix& nodes, const Eig
         }
         previous = err;
         if (iter == 50) break;
-        data.newtonLu.compute(J);
+        data.newtonLu.compute(data.Cd);
         Eigen::VectorXd& step = data.newtonStep;
         step = data.newtonLu.solve(C);
         step *= -1.0;
+        // Halve the step until the material coordinates stay ordered (every span keeps l > 0).
         double alpha = 1.0;
         for (int halve = 0; halve < 30; ++halve, alpha *= 0.5) {
             bool ok = true;
-            for (int k = 1; k < N && ok; ++k) {
-                const double sk = s[k] + alpha * step[k - 1];
-                const double prev = k - 1 >= 1 ? s[k - 1] + alpha * step[k - 2] : s[0];
+            for (int k = 1; k <= N && ok; ++k) {
+                const double sk = k < N ? s[k] + alpha * step[nqc + k - 1] : s[N];
+                const double prev = k - 1 >= 1 ? s[k - 1] + alpha * step[nqc + k - 2] : s[0];
                 ok = sk > prev;
             }
-            if (ok && s[N - 1] + alpha * step[N - 2] < s[N]) break;
+            if (ok) break;
         }
-        for (int k = 1; k < N; ++k) s[k] += alpha * step[k - 1];
+        for (int k = 1; k < N; ++k) s[k] += alpha * step[nqc + k - 1];
+        data.condensedAmplitudes += alpha * step.head(nqc);
+        data.multipliers += alpha * step.tail(numMultipliers_);
     }
     std::ostringstream msg;
-    msg << "RopeModel: the sheave tension-equality constraint did not converge in 50 Newton iterations "
-           "(max |eps_a - eps_b| = "
-        << C.cwiseAbs().maxCoeff() << "); the rope may be slack or the configuration infeasible";
+    msg << "RopeModel: the dependent coordinates (sheave tension equality"
+        << (nqc > 0 ? ", quasi-static axial modes" : "") << ") did not converge in 50 Newton iterations "
+        << "(max residual " << C.cwiseAbs().maxCoeff()
+        << " in strain units); the rope may be slack or the configuration infeasible";
     throw std::runtime_error(msg.str());
+}
+
+template <int Dim>
+bool RopeModel<Dim>::positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+                                    const RopeData<Dim>& data) const {
+    const int N = numSpans();
+    if (static_cast<int>(data.spanQ.size()) != N || data.materialCoordinates.size() != N + 1 ||
+        data.condensedAmplitudes.size() != numCondensed_ || data.multipliers.size() != numMultipliers_)
+        return false;
+    for (int j = 0; j < N; ++j) {
+        const auto& q = data.spanQ[j];
+        const int nmSpan = spans_[j].numModalCoordinates();
+        const int na = isCondensed(j) ? spans_[j].axialModes() : 0;
+        if (q.size() != spans_[j].numCoordinates() || q.template segment<Dim>(0) != nodes.col(j) ||
+            q.template segment<Dim>(Dim) != nodes.col(j + 1) ||
+            q.segment(2 * Dim + na, nmSpan - na) != qm.segment(modalOffset_[j], nmSpan - na))
+            return false;
+    }
+    return true;
 }
 
 template <int Dim>
 void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities,
                                      const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
                                      RopeData<Dim>& data) const {
-    const int N = numSpans(), nn = Dim * (N + 1), nm = numModal_, nw = nn + nm, nz = nw + N + 1;
-    const int nc = N - 1;  // dependent material coordinates s_1..s_{N-1} (z indices nw+1..nw+nc)
-    const Eigen::VectorXd& s = data.materialCoordinates;
-    // solveMaterialCoordinates left the span coordinates and the end-strain gradients (velocity
-    // independent) of this configuration in data; they are reused when they belong to these positions,
-    // and solved afresh otherwise.
-    bool current = static_cast<int>(data.spanQ.size()) == N && s.size() == N + 1;
-    for (int j = 0; current && j < N; ++j)
-        current = data.spanQ[j].template segment<Dim>(0) == nodes.col(j) &&
-                  data.spanQ[j].template segment<Dim>(Dim) == nodes.col(j + 1) &&
-                  data.spanQ[j].segment(2 * Dim, spans_[j].numModalCoordinates()) ==
-                      qm.segment(modalOffset_[j], spans_[j].numModalCoordinates());
-    if (!current) solveMaterialCoordinates(nodes, qm, data);
+    const int N = numSpans(), nn = Dim * (N + 1), nm = numModal_, nw = nn + nm;
+    const int nqc = numCondensed_, nc = N - 1, nd = numDependent(), nz = nw + nd + 2;
+    // solveDependentCoordinates left the span coordinates and the constraint Jacobians (velocity
+    // independent) of this configuration in data; they are reused when they belong to these
+    // positions, and solved afresh otherwise.
+    if (!positionsMatch(nodes, qm, data)) solveDependentCoordinates(nodes, qm, data);
 
     // Independent velocities w = [rdot; qdot_m].
     data.w.resize(nw);
@@ -172,6 +295,8 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
 
     data.spans.resize(N);
     data.materialRates.setZero(N + 1);
+    data.condensedRates.setZero(nqc);
+    data.multiplierRates.setZero(numMultipliers_);
     auto fillSpanVelocities = [&] {
         for (int j = 0; j < N; ++j) {
             const auto& sp = spans_[j];
@@ -179,52 +304,40 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             qd.resize(sp.numCoordinates());
             qd.template segment<Dim>(0) = nodeVelocities.col(j);
             qd.template segment<Dim>(Dim) = nodeVelocities.col(j + 1);
-            qd.segment(2 * Dim, sp.numModalCoordinates()) = qmdot.segment(modalOffset_[j], sp.numModalCoordinates());
+            const int nmSpan = sp.numModalCoordinates();
+            if (isCondensed(j)) {
+                const int na = sp.axialModes();
+                qd.segment(2 * Dim, na) = data.condensedRates.segment(condensedOffset_[j], na);
+                qd.segment(2 * Dim + na, nmSpan - na) = qmdot.segment(modalOffset_[j], nmSpan - na);
+            } else {
+                qd.segment(2 * Dim, nmSpan) = qmdot.segment(modalOffset_[j], nmSpan);
+            }
             qd[sp.s1Index()] = data.materialRates[j];
             qd[sp.s2Index()] = data.materialRates[j + 1];
         }
     };
     data.spanQdot.resize(N);
     // Velocity transformation zdot = G w, zddot = G wdot + c: G is the identity on w, zero for the
-    // fixed s_0 and s_N, and Gs = -C_s^-1 C_w for the dependent s; c is nonzero only there.
-    if (nc > 0) {
-        // Constraint Jacobian C_z = [C_w, C_s] from the end-strain gradients.
-        data.Cw.setZero(nc, nw);
-        data.Cs.setZero(nc, nc);
-        for (int k = 1; k < N; ++k) {
-            for (int side = 0; side < 2; ++side) {
-                const int j = side == 0 ? k - 1 : k;
-                const double sign = side == 0 ? 1.0 : -1.0;
-                const auto& g = side == 0 ? data.secondEnd[j].gradient : data.firstEnd[j].gradient;
-                const auto& map = spanToRope_[j];
-                for (int i = 0; i < g.size(); ++i) {
-                    const int zi = map[i];
-                    if (zi < nw) {
-                        data.Cw(k - 1, zi) += sign * g[i];
-                    } else {
-                        const int sk = zi - nw;  // node index of this material coordinate
-                        if (sk >= 1 && sk <= N - 1) data.Cs(k - 1, sk - 1) += sign * g[i];
-                    }
-                }
-            }
-        }
-        data.constraintLu.compute(data.Cs);
-        data.Gs = data.constraintLu.solve(data.Cw);
-        data.Gs *= -1.0;  // sdot_dep = Gs w
-        data.materialRates.segment(1, nc).noalias() = data.Gs * data.w;
-        // Biases with the complete velocities (sdot included).
+    // fixed s_0 and s_N, and Gd = -C_d^-1 C_w for the dependents d; c is nonzero only there.
+    if (nd > 0) {
+        data.constraintLu.compute(data.Cd);
+        data.Gd = data.constraintLu.solve(data.Cw);
+        data.Gd *= -1.0;  // ddot = Gd w
+        data.cd.noalias() = data.Gd * data.w;  // (scratch: ddot)
+        data.condensedRates = data.cd.head(nqc);
+        data.materialRates.segment(1, nc) = data.cd.segment(nqc, nc);
+        data.multiplierRates = data.cd.tail(numMultipliers_);
+        // Biases (second time derivatives of the constraints at wdot = 0) with the complete
+        // velocities, dependent rates included. The Jacobians are recomputed at the same positions.
         fillSpanVelocities();
-        endStrains(nodes, qm, s, data);
-        data.bias.resize(nc);
-        for (int k = 1; k < N; ++k)
-            data.bias[k - 1] = data.secondEnd[k - 1].accelerationBias - data.firstEnd[k].accelerationBias;
+        evaluateConstraints(nodes, qm, data, true);
         data.cd = data.constraintLu.solve(data.bias);
         data.cd *= -1.0;
     } else {
         fillSpanVelocities();
     }
 
-    // Span evaluations scattered into the rope's M and Q.
+    // Span evaluations scattered into the rope's M and Q (the multipliers carry no mass).
     data.Mz.setZero(nz, nz);
     data.Qz.setZero(nz);
     data.kineticEnergy = data.strainEnergy = data.gravityEnergy = 0;
@@ -241,22 +354,22 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         data.strainEnergy += d.strainEnergy();
         data.gravityEnergy += d.gravityEnergy;
     }
-    // Mbar = G^T Mz G = M_ww + M_wd Gs + Gs^T M_dw + Gs^T M_dd Gs,
-    // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gs^T (Q_d - M_dd c_d).
+    // Mbar = G^T Mz G = M_ww + M_wd Gd + Gd^T M_dw + Gd^T M_dd Gd,
+    // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gd^T (Q_d - M_dd c_d).
     data.Mbar = data.Mz.topLeftCorner(nw, nw);
     data.Qbar = data.Qz.head(nw);
-    if (nc > 0) {
-        const auto Mwd = data.Mz.block(0, nw + 1, nw, nc);
-        const auto Mdd = data.Mz.block(nw + 1, nw + 1, nc, nc);
-        data.MwdGs.noalias() = Mwd * data.Gs;  // nw x nw
-        data.Mbar += data.MwdGs;
-        data.Mbar += data.MwdGs.transpose();
-        data.MddGs.noalias() = Mdd * data.Gs;  // nc x nw
-        data.Mbar.noalias() += data.Gs.transpose() * data.MddGs;
+    if (nd > 0) {
+        const auto Mwd = data.Mz.block(0, nw, nw, nd);
+        const auto Mdd = data.Mz.block(nw, nw, nd, nd);
+        data.MwdGd.noalias() = Mwd * data.Gd;  // nw x nw
+        data.Mbar += data.MwdGd;
+        data.Mbar += data.MwdGd.transpose();
+        data.MddGd.noalias() = Mdd * data.Gd;  // nd x nw
+        data.Mbar.noalias() += data.Gd.transpose() * data.MddGd;
         data.Qbar.noalias() -= Mwd * data.cd;
-        data.Qd = data.Qz.segment(nw + 1, nc);
+        data.Qd = data.Qz.segment(nw, nd);
         data.Qd.noalias() -= Mdd * data.cd;
-        data.Qbar.noalias() += data.Gs.transpose() * data.Qd;
+        data.Qbar.noalias() += data.Gd.transpose() * data.Qd;
     }
 
     // Reduce to the nodes: S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, h = Qbar_n - Mbar_nm Mbar_mm^-1 Qbar_m.
@@ -284,6 +397,9 @@ void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::
 
 template <int Dim>
 double RopeModel<Dim>::constraintError(const RopeData<Dim>& data, int k) const {
+    if (!kernels_.empty())
+        return properties().axialStiffness * (data.condensation[k - 1].value[kernels_[k - 1].endStrain(SpanEnd::Second)] -
+                                              data.condensation[k].value[kernels_[k].endStrain(SpanEnd::First)]);
     return properties().axialStiffness * (data.secondEnd[k - 1].strain - data.firstEnd[k].strain);
 }
 

@@ -66,6 +66,11 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     if (options_.quadraturePoints < 0 || options_.quadraturePoints > 200)
         throwInvalid("SpanModel", "SpanOptions::quadraturePoints", options_.quadraturePoints,
                      "is outside 0..200 (0 = automatic)");
+    if (options_.axialDynamics == AxialDynamics::QuasiStatic &&
+        options_.elasticModel == ElasticEnergyModel::PaperLiteral)
+        throw std::invalid_argument(
+            "SpanModel: SpanOptions::axialDynamics = QuasiStatic requires elasticModel = Consistent "
+            "(got PaperLiteral)");
     if (!gravity_.allFinite()) {
         std::ostringstream v;
         v << "(" << gravity_.transpose() << ")";

@@ -4,6 +4,7 @@
 /// sheave tension-equality constraint (paper eq 32) by coordinate partitioning, and the rope's
 /// dynamics reduced to its node accelerations (for an exact coupling with rigid bodies).
 
+#include "SimbodyReeving/AxialCondensation.h"
 #include "SimbodyReeving/SpanModel.h"
 
 #include <Eigen/Cholesky>
@@ -19,9 +20,17 @@ template <int Dim>
 struct RopeData {
     // ---- position level
     Eigen::VectorXd materialCoordinates;  ///< s_0..s_N at the nodes [m] (s_0 = 0, s_N = L)
-    int newtonIterations = 0;             ///< of the last tension-equality solve
+    /// Axial amplitudes of the AxialDynamics::QuasiStatic spans [m], span by span (also the warm
+    /// start of the next solve).
+    Eigen::VectorXd condensedAmplitudes;
+    /// Multipliers nu_k of the sheave constraints in the condensation's stationarity conditions
+    /// (only with condensed spans): dU/ds_k / EA + sum_m nu_m dC_m/ds_k = 0.
+    Eigen::VectorXd multipliers;
+    int newtonIterations = 0;             ///< of the last dependent-coordinate solve
     // ---- dynamics (filled by RopeModel::computeDynamics)
     Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s]
+    Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
+    Eigen::VectorXd multiplierRates;
     /// Effective mass of the rope at its nodes, S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, and the
     /// matching force h: the force the nodes' supports must apply to the rope is f = S rddot - h.
     Eigen::MatrixXd nodeMass;
@@ -33,15 +42,16 @@ struct RopeData {
     // internals
     std::vector<SpanData<Dim>> spans;
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
+    std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
     Eigen::VectorXd w;                    ///< independent velocities [rdot; qdot_m]
-    Eigen::MatrixXd Mz, Mbar, Cs, Cw;
-    Eigen::MatrixXd Gs;                   ///< sdot of the sheaves = Gs w
-    Eigen::MatrixXd MwdGs, MddGs;         ///< products in G^T Mz G
+    Eigen::MatrixXd Mz, Mbar, Cd, Cw;     ///< rope mass; constraint Jacobian on dependents / independents
+    Eigen::MatrixXd Gd;                   ///< rates of the dependent coordinates = Gd w
+    Eigen::MatrixXd MwdGd, MddGd;         ///< products in G^T Mz G
     Eigen::VectorXd Qz, Qbar, Qd, bias;
-    Eigen::VectorXd cd;                   ///< sddot of the sheaves at wdot = 0
-    Eigen::PartialPivLU<Eigen::MatrixXd> constraintLu;  ///< of C_s
-    Eigen::VectorXd newtonResidual, newtonStep;         ///< tension-equality Newton
+    Eigen::VectorXd cd;                   ///< dependent accelerations at wdot = 0
+    Eigen::PartialPivLU<Eigen::MatrixXd> constraintLu;  ///< of C_d
+    Eigen::VectorXd newtonResidual, newtonStep;         ///< dependent-coordinate Newton
     Eigen::MatrixXd newtonJacobian;
     Eigen::PartialPivLU<Eigen::MatrixXd> newtonLu;
     Eigen::LDLT<Eigen::MatrixXd> modalMass;
@@ -53,14 +63,27 @@ struct RopeData {
 /// sheaves (frictionless, point contact: both spans meet at the node and share its material
 /// coordinate), node N is the end anchor. Node positions are given from outside each evaluation
 /// (they are tied to bodies); the modal coordinates q_m of all spans are the rope's own
-/// independent coordinates; the material coordinates s_1..s_{N-1} at the sheaves are dependent,
-/// solved from the tension equality EA eps_{k-1}(s_k) = EA eps_k(s_k) (paper eq 32), with
-/// s_0 = 0 and s_N = L (unstretched rope length) fixed.
+/// independent coordinates ("modal state"), except the axial amplitudes of spans with
+/// AxialDynamics::QuasiStatic, which are dependent, solved from dU/dq_a = 0 (AxialCondensation);
+/// the material coordinates s_1..s_{N-1} at the sheaves are dependent, solved from the tension
+/// equality EA eps_{k-1}(s_k) = EA eps_k(s_k) (paper eq 32), with s_0 = 0 and s_N = L (unstretched
+/// rope length) fixed.
 ///
-/// Rope coordinates z = [r_0..r_N, q_m, s_0..s_N]; independent velocities w = [rdot_0..rdot_N, qdot_m];
-/// zdot = G w, zddot = G wdot + c. The reduced equations Mbar wdot = Qbar with Mbar = G^T M G,
-/// Qbar = G^T (Q - M c) keep T + U invariant (the constraint is holonomic and its reaction does no
-/// work along admissible motions).
+/// Rope coordinates z = [r_0..r_N, q_free, q_condensed, s_1..s_{N-1}, nu_1..nu_{N-1}, s_0, s_N];
+/// independent velocities w = [rdot_0..rdot_N, qdot_free]; dependents d = [q_condensed, s_1..s_{N-1},
+/// nu] with constraints C(z) = 0; zdot = G w, zddot = G wdot + c. The reduced equations
+/// Mbar wdot = Qbar with Mbar = G^T M G, Qbar = G^T (Q - M c) keep T + U invariant (the constraints
+/// are holonomic and their reactions do no work along admissible motions).
+///
+/// **Quasi-static condensation.** The condensed amplitudes make U stationary on the manifold of the
+/// sheave constraints C_k = eps_{k-1}(s_k) - eps_k(s_k) = 0 (at fixed nodes and modal states), i.e.
+/// with multipliers nu_k (no inertia: zero rows in M):
+///     dU/da / EA + sum_k nu_k dC_k/da = 0,   dU/ds_k / EA + sum_m nu_m dC_m/ds_k = 0,   C = 0.
+/// This is exactly the condition d(U restricted to the sheave constraints)/da = 0 that the Dynamic
+/// model's static equilibrium satisfies, so both models share their static equilibria. (dU/ds_k
+/// is not zero at equal end strains: material moved over a sheave changes the spans' gravity
+/// energy through their mean positions.) Without condensed spans there are no multipliers and the
+/// rows are the paper's tension equalities alone.
 template <int Dim>
 class RopeModel {
 public:
@@ -76,28 +99,38 @@ public:
 
     int numSpans() const { return static_cast<int>(spans_.size()); }
     int numNodes() const { return numSpans() + 1; }
+    /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
+    /// QuasiStatic spans): the length of the qm vectors below.
     int numModalCoordinates() const { return numModal_; }
+    /// First entry of span j's modal state coordinates in qm.
     int modalOffset(int span) const { return modalOffset_[span]; }
+    /// Number of condensed axial amplitudes (QuasiStatic spans), the length of
+    /// RopeData::condensedAmplitudes.
+    int numCondensedCoordinates() const { return numCondensed_; }
+    /// True if span j's axial amplitudes are condensed (AxialDynamics::QuasiStatic and n_a > 0).
+    bool isCondensed(int span) const { return condensedOffset_[span] >= 0; }
     double unstretchedLength() const { return length_; }
     const SpanModel<Dim>& span(int j) const { return spans_[j]; }
     const RopeProperties& properties() const { return spans_.front().properties(); }
 
-    /// Solves the tension-equality constraints for s_1..s_{N-1} by Newton's method (starting from
-    /// data.materialCoordinates if it holds an admissible guess, else from a split proportional to
-    /// the chord lengths) to |eps_a - eps_b| <= 1e-15, or until it stagnates at round-off below 1e-12.
+    /// Solves the constraints for the dependent coordinates, s_1..s_{N-1} and the condensed axial
+    /// amplitudes, by Newton's method (starting from data if it holds an admissible guess, else
+    /// from s split in proportion to the chord lengths and zero amplitudes) to a residual <= 1e-15
+    /// (strain units), or until it stagnates at round-off below 1e-12.
     /// @throws std::runtime_error if Newton does not converge in 50 iterations or a span length
     ///         would become non-positive (the rope cannot carry the configuration).
-    void solveMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+    void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
 
-    /// The coordinates q of span j (SpanModel layout) from node positions, modal coordinates and s.
-    void spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const Eigen::VectorXd& s,
+    /// The coordinates q of span j (SpanModel layout) from node positions, modal state coordinates
+    /// and the dependent coordinates held by data (material coordinates, condensed amplitudes).
+    void spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
                          Eigen::VectorXd& q) const;
 
     /// Velocity and dynamics level: material rates, span evaluations, and the rope reduced to its
     /// nodes (nodeMass, nodeForce), energies. Reuses the position-level work of the last
-    /// solveMaterialCoordinates on data when it was done at these positions (nodes and qm compared
-    /// exactly), and calls solveMaterialCoordinates first otherwise.
-    /// @throws std::runtime_error as solveMaterialCoordinates, when it has to solve.
+    /// solveDependentCoordinates on data when it was done at these positions (nodes and qm compared
+    /// exactly), and calls solveDependentCoordinates first otherwise.
+    /// @throws std::runtime_error as solveDependentCoordinates, when it has to solve.
     void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& qm,
                          const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
 
@@ -109,13 +142,20 @@ public:
     double constraintError(const RopeData<Dim>& data, int k) const;
 
 private:
-    void endStrains(const NodeMatrix& nodes, const Eigen::VectorXd& qm, const Eigen::VectorXd& s,
-                    RopeData<Dim>& data) const;
+    void fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+    /// Evaluates the constraint functions at data.spanQ (and data.spanQdot when withRates): values
+    /// into data.newtonResidual, Jacobians into data.Cw / data.Cd, biases into data.bias.
+    void evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
+                             bool withRates) const;
+    bool positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data) const;
+    int numDependent() const { return numCondensed_ + numSpans() - 1 + numMultipliers_; }
 
     std::vector<SpanModel<Dim>> spans_;
+    std::vector<AxialCondensation<Dim>> kernels_;  // one per span when some span is condensed
     std::vector<std::vector<int>> spanToRope_;  // span-local coordinate -> index in z
-    std::vector<int> modalOffset_;
-    int numModal_ = 0;
+    std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
+    std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
+    int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0;
     double length_ = 0;
 };
 

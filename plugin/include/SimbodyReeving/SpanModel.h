@@ -44,6 +44,25 @@ enum class ElasticEnergyModel {
     PaperLiteral,
 };
 
+/// How a span's axial modal amplitudes q_a (the paper's axial part of q_m, eq 3 and 10) evolve.
+enum class AxialDynamics {
+    /// Default; the paper's model: the axial amplitudes are generalized coordinates with their own
+    /// inertia, so the span carries axial waves. Their frequencies, i pi / l sqrt(EA / rhoA) for a
+    /// span of length l (5 400 rad/s per mode number for the Table 1 rope on a 3 m span), limit
+    /// the step of every explicit integrator.
+    Dynamic,
+    /// The axial amplitudes are not states: at every configuration they take the values that make
+    /// the span's potential energy (axial strain + gravity) stationary, dU/dq_a = 0, for the current
+    /// nodes, transverse modes and material coordinates. The condition is treated as a holonomic
+    /// constraint (coordinate partitioning, like the sheave tension equality): q_a, its rate and its
+    /// acceleration follow from the implicit function theorem, and the kinetic energy keeps the
+    /// rope mass carried along by the quasi-static axial displacement field. So T + U stays an
+    /// exact invariant, and static equilibria equal the Dynamic model's. What is lost: the axial
+    /// waves of the span (their amplitude is of order (omega_slow / omega_axial)^2 of the quasi-static
+    /// strain; see bench/RESULTS.md for the measured size). Requires ElasticEnergyModel::Consistent.
+    QuasiStatic,
+};
+
 /// Which integrals of a span a quadrature rule serves.
 enum class Integrand {
     Kinetic,  ///< M, Q_v and T
@@ -58,6 +77,8 @@ struct SpanOptions {
     /// planar span, two in a spatial one).
     int transverseModes = 1;
     VelocityModel velocityModel = VelocityModel::Simplified;
+    /// Axial amplitudes as states (Dynamic) or condensed (QuasiStatic); no effect when n_a = 0.
+    AxialDynamics axialDynamics = AxialDynamics::Dynamic;
     ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
     /// Gauss-Legendre points for the kinetic and strain integrals; 0 selects the automatic rule
     /// SpanModel::automaticQuadraturePoints (exact to round-off); otherwise 1..200.
@@ -150,8 +171,10 @@ public:
     /// @param referenceFrame (Dim = 3 only) orthonormal right-handed [i0 j0 k0], typically
     ///        makeReferenceFrame(initial chord, plane normal); ignored for Dim = 2.
     /// @throws std::invalid_argument for rhoA or EA not finite and > 0, EI not finite and >= 0,
-    ///         mode counts outside 0..16, quadraturePoints outside 0..200, non-finite gravity, or a
-    ///         reference frame that is not orthonormal and right-handed.
+    ///         mode counts outside 0..16, quadraturePoints outside 0..200, non-finite gravity, a
+    ///         reference frame that is not orthonormal and right-handed, or AxialDynamics::QuasiStatic
+    ///         with ElasticEnergyModel::PaperLiteral (its string energy makes the axial stiffness
+    ///         depend on the transverse slope twice; the condensation is defined for Consistent only).
     SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
               const Mat& referenceFrame = Mat::Identity());
 
