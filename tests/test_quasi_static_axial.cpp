@@ -57,3 +57,33 @@ TEST(QuasiStaticAxial, StaticEquilibriumEqualsDynamic) {
         EXPECT_LT(dy, 1e-9) << "n_a = " << na;
     }
 }
+
+// Acceptance 2: the conservative pendulum, n_a = 3 condensed, RK-Merson 1e-10, 20 s: energy drift
+// <= 1e-6 of the initial kinetic energy; the sheave constraint holds.
+TEST(QuasiStaticAxial, ConservativePendulumConservesEnergy) {
+    const PendulumScene scene(PendulumParameters{}, spans(3, AxialDynamics::QuasiStatic));
+    State s = scene.makeInitialState(1.0, 0.0);
+    const ReevingSubsystem& rv = scene.reeving();
+    const double ke0 = scene.system().calcKineticEnergy(s) + rv.calcRopeKineticEnergy(s);
+    const double e0 = rv.calcMechanicalEnergy(s);
+    auto integ = makeIntegrator("rk-merson", scene.system());
+    integ->setAccuracy(1e-10);
+    SimTK::TimeStepper ts(scene.system(), *integ);
+    ts.initialize(s);
+    double drift = 0, constraint = 0, minX = 1e9, maxX = -1e9;
+    for (int n = 1; n <= 200; ++n) {
+        ts.stepTo(0.1 * n);
+        const State& st = integ->getState();
+        scene.system().realize(st, Stage::Velocity);
+        drift = std::max(drift, std::abs(rv.calcMechanicalEnergy(st) - e0));
+        constraint = std::max(constraint, rv.getMaxConstraintError(st));
+        minX = std::min(minX, scene.payloadPosition(st)[0]);
+        maxX = std::max(maxX, scene.payloadPosition(st)[0]);
+    }
+    std::printf("[ quasi-static n_a = 3 ] KE0 %.3f J, max |E - E0| %.3e J (%.3e of KE0), max |F_a - F_b| %.3e N, "
+                "%d steps, swing %.3f m\n",
+                ke0, drift, drift / ke0, constraint, integ->getNumStepsTaken(), maxX - minX);
+    EXPECT_LE(drift, 1e-6 * ke0);
+    EXPECT_LE(constraint, 1e-9 * 1e4);
+    EXPECT_GT(maxX - minX, 2.0);
+}

@@ -39,10 +39,11 @@ constexpr double kAccuracy = 1e-10;
 constexpr double kEnergyTolerance = 1e-6;            // relative to the initial kinetic energy
 constexpr double kConstraintTolerance = 1e-9 * 1e4;  // 1e-9 of the largest rope tension (~1e4 N) [N]
 
-SpanOptions oneModeEach() {
+SpanOptions oneModeEach(SimbodyReeving::AxialDynamics axial) {
     SpanOptions o;
     o.axialModes = 1;
     o.transverseModes = 1;
+    o.axialDynamics = axial;
     return o;
 }
 
@@ -107,11 +108,9 @@ void runConservative(const char* name, const World& w, const State& initial, con
     EXPECT_GT(maxX - minX, 0.5) << name << ": the push should swing the load by metres";
 }
 
-}  // namespace
-
 // Scene 1: rope from a Ground anchor down under a sheave on a free hook block and back up to a
 // second Ground anchor 1 m away; a 1000 kg payload hangs from the block by a pin.
-TEST(ReevingCoupling, MovingSheaveConservesEnergy) {
+void movingSheave(SimbodyReeving::AxialDynamics axial, const char* name) {
     World w;
     MobilizedBody::Free block(w.matter.updGround(), Transform(),
                                     SimTK::Body::Rigid(MassProperties(50, Vec3(0), Inertia(2))), Transform());
@@ -126,7 +125,7 @@ TEST(ReevingCoupling, MovingSheaveConservesEnergy) {
     rope.end = {w.matter.Ground(), Vec3(1, 0, 0)};
     rope.properties = kTable1;
     rope.unstretchedLength = 2 * 20 + 1;
-    rope.spanDefaults = oneModeEach();
+    rope.spanDefaults = oneModeEach(axial);
     rope.planeNormal = Vec3(0, 0, 1);
     w.reeving.addRope(rope);
     w.system.realizeTopology();
@@ -143,13 +142,13 @@ TEST(ReevingCoupling, MovingSheaveConservesEnergy) {
     ASSERT_LE(residual, 1e-10);
     // Horizontal push; the pinned payload follows its parent (pin rate stays 0).
     block.setUToFitLinearVelocity(s, Vec3(0.5, 0, 0));
-    runConservative("moving sheave", w, s, block);
+    runConservative(name, w, s, block);
 }
 
 // Scene 2: the pendulum of the paper (rope from the Ground origin over a Ground sheave at (3, 0, 0),
 // 20 m down), but the rope ends on a 10 kg hook and the 1000 kg payload is a separate free body
 // held to the hook by a Simbody ball constraint 0.3 m above its centre of mass.
-TEST(ReevingCoupling, PayloadHeldBySimbodyConstraintConservesEnergy) {
+void payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics axial, const char* name) {
     World w;
     MobilizedBody::Free hook(w.matter.updGround(), Transform(),
                                    SimTK::Body::Rigid(MassProperties(10, Vec3(0), Inertia(0.1))), Transform());
@@ -163,7 +162,7 @@ TEST(ReevingCoupling, PayloadHeldBySimbodyConstraintConservesEnergy) {
     rope.end = {hook, Vec3(0)};
     rope.properties = kTable1;
     rope.unstretchedLength = 3 + 20;
-    rope.spanDefaults = oneModeEach();
+    rope.spanDefaults = oneModeEach(axial);
     rope.planeNormal = Vec3(0, 0, 1);
     w.reeving.addRope(rope);
     w.system.realizeTopology();
@@ -186,5 +185,20 @@ TEST(ReevingCoupling, PayloadHeldBySimbodyConstraintConservesEnergy) {
     payload.setUToFitLinearVelocity(s, Vec3(1, 0, 0));
     w.system.realize(s, Stage::Velocity);
     w.system.project(s);
-    runConservative("ball constraint", w, s, payload);
+    runConservative(name, w, s, payload);
+}
+
+}  // namespace
+
+TEST(ReevingCoupling, MovingSheaveConservesEnergy) {
+    movingSheave(SimbodyReeving::AxialDynamics::Dynamic, "moving sheave");
+}
+TEST(ReevingCoupling, MovingSheaveConservesEnergyQuasiStaticAxial) {
+    movingSheave(SimbodyReeving::AxialDynamics::QuasiStatic, "moving sheave, quasi-static axial");
+}
+TEST(ReevingCoupling, PayloadHeldBySimbodyConstraintConservesEnergy) {
+    payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics::Dynamic, "ball constraint");
+}
+TEST(ReevingCoupling, PayloadHeldBySimbodyConstraintConservesEnergyQuasiStaticAxial) {
+    payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics::QuasiStatic, "ball constraint, quasi-static axial");
 }

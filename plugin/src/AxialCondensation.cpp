@@ -142,8 +142,7 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
     const int nQ = numQuantities();
     const bool withRates = qdot.size() == q.size();
     const Vec e = q.template segment<Dim>(Dim) - q.template segment<Dim>(0);
-    const Vec ed = withRates ? Vec(qdot.template segment<Dim>(Dim) - qdot.template segment<Dim>(0)) : Vec::Zero();
-    computeChordFrame<Dim>(e, ed, referenceFrame_, d.frame);
+    computeChordFrame<Dim>(e, Vec::Zero(), referenceFrame_, d.frame);
     const ChordFrame<Dim>& F = d.frame;
     const double chord = e.norm(), l = q[iS2] - q[iS1];
     const double gMean = 0.5 * gravity_.dot(q.template segment<Dim>(0) + q.template segment<Dim>(Dim));
@@ -201,15 +200,32 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
         d.accelerationBias.setZero(nQ);
         return;
     }
+    evaluateRates(q, qdot, d);
+}
+
+template <int Dim>
+void AxialCondensation<Dim>::evaluateRates(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                           const Eigen::Ref<const Eigen::VectorXd>& qdot, Data& d) const {
+    using Vec = Eigen::Matrix<double, Dim, 1>;
+    const int iM = 2 * Dim, iS1 = numCoordinates_ - 2, iS2 = numCoordinates_ - 1;
+    const int nQ = numQuantities();
+    const Vec e = q.template segment<Dim>(Dim) - q.template segment<Dim>(0);
+    const Vec ed = qdot.template segment<Dim>(Dim) - qdot.template segment<Dim>(0);
+    computeChordFrame<Dim>(e, ed, referenceFrame_, d.frame);
+    const ChordFrame<Dim>& F = d.frame;
+    const double l = q[iS2] - q[iS1];
+    const double gMean = 0.5 * gravity_.dot(q.template segment<Dim>(0) + q.template segment<Dim>(Dim));
     // Rates and second time derivatives along qdot (qddot = 0): the chord moves as e + edot tau, so
     // |e|^2 is a quadratic in tau; the frame's projections follow from ChordFrame's Adot and Addot.
-    chordT = sqrt(Taylor2(e.squaredNorm(), 2.0 * e.dot(ed), 2.0 * ed.squaredNorm()));
-    lT = Taylor2(l, qdot[iS2] - qdot[iS1], 0.0);
-    gMeanT = Taylor2(gMean, 0.5 * gravity_.dot(qdot.template segment<Dim>(0) + qdot.template segment<Dim>(Dim)), 0.0);
+    Taylor2 gA[Dim], modal[2 * kMaxModesPerDirection], out[AxialCondensationData<Dim>::kMaxQuantities];
+    const Taylor2 chordT = sqrt(Taylor2(e.squaredNorm(), 2.0 * e.dot(ed), 2.0 * ed.squaredNorm()));
+    const Taylor2 lT(l, qdot[iS2] - qdot[iS1], 0.0);
+    const Taylor2 gMeanT(gMean, 0.5 * gravity_.dot(qdot.template segment<Dim>(0) + qdot.template segment<Dim>(Dim)),
+                         0.0);
     for (int c = 0; c < Dim; ++c)
         gA[c] = Taylor2(gravity_.dot(F.A.col(c)), gravity_.dot(F.Adot.col(c)), gravity_.dot(F.Addot.col(c)));
     for (int j = 0; j < numModal_; ++j) modal[j] = Taylor2(q[iM + j], qdot[iM + j], 0.0);
-    run();
+    quantities(chordT, lT, gA, gMeanT, modal, out);
     d.rate.resize(nQ);
     d.accelerationBias.resize(nQ);
     for (int k = 0; k < nQ; ++k) {

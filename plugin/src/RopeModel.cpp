@@ -107,10 +107,12 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     const int nqc = numCondensed_, nc = N - 1;
     fillSpanCoordinates(nodes, qm, data);
     Eigen::VectorXd& C = data.newtonResidual;
-    C.setZero(nd);
-    data.Cw.setZero(nd, nw);
-    data.Cd.setZero(nd, nd);
     data.bias.setZero(nd);
+    if (!withRates || kernels_.empty()) {
+        C.setZero(nd);
+        data.Cw.setZero(nd, nw);
+        data.Cd.setZero(nd, nd);
+    }
     auto scatter = [&](int row, int j, const auto& gradient, double coef) {
         const auto& map = spanToRope_[j];
         for (int i = 0; i < static_cast<int>(map.size()); ++i) {
@@ -143,26 +145,37 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     // Condensation rows (see the class comment): [stationarity in q_condensed | tension equality |
     // stationarity in s], the stationarity rows scaled by 1/EA.
     data.condensation.resize(N);
+    // Position level: values and Jacobians; velocity level (withRates): the biases only (the
+    // values and Jacobians at these positions are already in data).
     static const Eigen::VectorXd noRates;
-    for (int j = 0; j < N; ++j)
-        kernels_[j].evaluate(data.spanQ[j], withRates ? data.spanQdot[j] : noRates, data.condensation[j]);
+    for (int j = 0; j < N; ++j) {
+        if (withRates)
+            kernels_[j].evaluateRates(data.spanQ[j], data.spanQdot[j], data.condensation[j]);
+        else
+            kernels_[j].evaluate(data.spanQ[j], noRates, data.condensation[j]);
+    }
     const double invEA = 1.0 / properties().axialStiffness;
     auto addTerm = [&](int row, int j, int quantity, double coef) {
         const auto& K = data.condensation[j];
+        if (withRates) {
+            data.bias[row] += coef * K.accelerationBias[quantity];
+            return;
+        }
         C[row] += coef * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef);
-        if (withRates) data.bias[row] += coef * K.accelerationBias[quantity];
     };
     // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too.
     auto addProduct = [&](int row, int m, int j, int quantity, double coef) {
         const auto& K = data.condensation[j];
         const double nu = data.multipliers[m - 1];
+        if (withRates) {
+            data.bias[row] += coef * (nu * K.accelerationBias[quantity] +
+                                      2.0 * data.multiplierRates[m - 1] * K.rate[quantity]);
+            return;
+        }
         C[row] += coef * nu * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef * nu);
         data.Cd(row, nqc + nc + m - 1) += coef * K.value[quantity];
-        if (withRates)
-            data.bias[row] += coef * (nu * K.accelerationBias[quantity] +
-                                      2.0 * data.multiplierRates[m - 1] * K.rate[quantity]);
     };
     for (int j = 0; j < N; ++j) {
         if (!isCondensed(j)) continue;
@@ -328,7 +341,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         data.materialRates.segment(1, nc) = data.cd.segment(nqc, nc);
         data.multiplierRates = data.cd.tail(numMultipliers_);
         // Biases (second time derivatives of the constraints at wdot = 0) with the complete
-        // velocities, dependent rates included. The Jacobians are recomputed at the same positions.
+        // velocities, dependent rates included.
         fillSpanVelocities();
         evaluateConstraints(nodes, qm, data, true);
         data.cd = data.constraintLu.solve(data.bias);

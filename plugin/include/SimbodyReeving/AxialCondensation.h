@@ -71,6 +71,9 @@ public:
     /// (pass an empty qdot to skip them). q must be a configuration SpanModel::evaluate accepts.
     void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
                   Data& data) const;
+    /// Rates and acceleration biases only (values and gradients in data are left as they are).
+    void evaluateRates(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                       Data& data) const;
 
 private:
     template <class Scalar>
