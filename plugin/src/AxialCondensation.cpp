@@ -147,53 +147,142 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
     const double chord = e.norm(), l = q[iS2] - q[iS1];
     const double gMean = 0.5 * gravity_.dot(q.template segment<Dim>(0) + q.template segment<Dim>(Dim));
 
-    Taylor2 gA[Dim], modal[2 * kMaxModesPerDirection], out[AxialCondensationData<Dim>::kMaxQuantities];
-    Taylor2 chordT(chord), lT(l), gMeanT(gMean);
-    auto reset = [&] {
-        chordT = Taylor2(chord);
-        lT = Taylor2(l);
-        gMeanT = Taylor2(gMean);
-        for (int c = 0; c < Dim; ++c) gA[c] = Taylor2(gravity_.dot(F.A.col(c)));
-        for (int j = 0; j < numModal_; ++j) modal[j] = Taylor2(q[iM + j]);
-    };
-    auto run = [&] { quantities(chordT, lT, gA, gMeanT, modal, out); };
-
-    d.value.resize(nQ);
-    d.gradient.setZero(nQ, numCoordinates_);
-    reset();
-    run();
-    for (int k = 0; k < nQ; ++k) d.value[k] = out[k].v;
-    // Gradient: one directional pass per independent input.
-    for (int m = 0; m < Dim; ++m) {  // chord component e_m (r2 - r1)
-        reset();
-        chordT.d = e[m] / chord;
-        for (int c = 0; c < Dim; ++c) gA[c].d = gravity_.dot(F.dA[m].col(c));
-        run();
-        for (int k = 0; k < nQ; ++k) {
-            d.gradient(k, m) -= out[k].d;
-            d.gradient(k, Dim + m) += out[k].d;
+    // Values and gradients with respect to the reduced inputs x = [|e|, l, g.A_e col 0..Dim-1,
+    // g.r_mean, q_m] in one pass (closed-form derivatives of the expressions in quantities()),
+    // then chained to the span coordinates.
+    const int P = 3 + Dim + numModal_;
+    const int xChord = 0, xLength = 1, xFrame = 2, xMean = 2 + Dim, xModal = 3 + Dim;
+    using Reduced = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, AxialCondensationData<Dim>::kMaxQuantities,
+                                  3 + Dim + Dim * kMaxModesPerDirection>;
+    Reduced G;
+    G.setZero(nQ, P);
+    d.value.setZero(nQ);
+    double gA[Dim];
+    for (int c = 0; c < Dim; ++c) gA[c] = gravity_.dot(F.A.col(c));
+    const double* a = q.data() + iM;        // axial amplitudes
+    const double* b = q.data() + iM + na_;  // transverse amplitudes, direction by direction
+    const double l2 = l * l, l3 = l2 * l;
+    // Strain integrals: P_i = int eps lambda S_i' and A = int (-3/2 eps^2 - eps).
+    for (int k = 0; k < weights_.size(); ++k) {
+        const auto S = slopes_.row(k);
+        const double w = weights_[k];
+        double lambda = chord;
+        for (int i = 0; i < na_; ++i) lambda += S[i] * a[i];
+        double tau[Dim] = {};
+        double t2 = lambda * lambda;
+        for (int dir = 0; dir + 1 < Dim; ++dir) {
+            for (int i = 0; i < nt_; ++i) tau[dir] += S[i] * b[dir * nt_ + i];
+            t2 += tau[dir] * tau[dir];
+        }
+        const double eps = 0.5 * (t2 / l2 - 1.0);
+        const double epsLambda = eps * lambda;
+        const double dEL = lambda * lambda / l2 + eps;        // d(eps lambda)/d lambda
+        const double dELdl = -lambda * (2.0 * eps + 1.0) / l;  // d(eps lambda)/dl
+        for (int i = 0; i < na_; ++i) {
+            const double c = w * S[i];
+            d.value[phi(i)] += c * epsLambda;
+            G(phi(i), xChord) += c * dEL;
+            G(phi(i), xLength) += c * dELdl;
+            for (int j = 0; j < na_; ++j) G(phi(i), xModal + j) += c * dEL * S[j];
+            for (int dir = 0; dir + 1 < Dim; ++dir) {
+                const double f = c * lambda * tau[dir] / l2;
+                for (int j = 0; j < nt_; ++j) G(phi(i), xModal + na_ + dir * nt_ + j) += f * S[j];
+            }
+        }
+        // A = sum w (-3/2 eps^2 - eps): dA = w (-3 eps - 1) d eps.
+        const int u = lengthDerivative();
+        d.value[u] += EA_ * w * (-1.5 * eps * eps - eps);
+        const double c = EA_ * w * (-3.0 * eps - 1.0);
+        G(u, xChord) += c * lambda / l2;
+        G(u, xLength) += c * (-(2.0 * eps + 1.0) / l);
+        for (int j = 0; j < na_; ++j) G(u, xModal + j) += c * lambda * S[j] / l2;
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int j = 0; j < nt_; ++j) G(u, xModal + na_ + dir * nt_ + j) += c * tau[dir] * S[j] / l2;
+    }
+    // Phi_i = EA P_i / l - rhoA m_i l (g . i_e).
+    for (int i = 0; i < na_; ++i) {
+        const double Pi = d.value[phi(i)];
+        for (int x = 0; x < P; ++x) G(phi(i), x) *= EA_ / l;
+        G(phi(i), xLength) += -EA_ * Pi / l2 - rhoA_ * sinMean_[i] * gA[0];
+        G(phi(i), xFrame) += -rhoA_ * sinMean_[i] * l;
+        d.value[phi(i)] = EA_ * Pi / l - rhoA_ * sinMean_[i] * l * gA[0];
+    }
+    // dU/dl: bending -3 U_b / l = -3/2 EI B / l^4 with B = sum f_i b_i^2; gravity -rhoA (g.r_mean + sum g.A_d ubar_d).
+    {
+        const int u = lengthDerivative();
+        double B = 0;
+        if (EI_ > 0)
+            for (int dir = 0; dir + 1 < Dim; ++dir)
+                for (int i = 0; i < nt_; ++i) {
+                    const double bi = b[dir * nt_ + i];
+                    B += bendFactor_[i] * bi * bi;
+                    G(u, xModal + na_ + dir * nt_ + i) += -3.0 * EI_ * bendFactor_[i] * bi / (l2 * l2);
+                }
+        d.value[u] += -1.5 * EI_ * B / (l2 * l2);
+        G(u, xLength) += 6.0 * EI_ * B / (l3 * l2);
+        double ubar[Dim] = {};
+        for (int i = 0; i < na_; ++i) ubar[0] += sinMean_[i] * a[i];
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int i = 0; i < nt_; ++i) ubar[dir + 1] += sinMean_[i] * b[dir * nt_ + i];
+        double gOnModes = 0;
+        for (int c = 0; c < Dim; ++c) {
+            gOnModes += gA[c] * ubar[c];
+            G(u, xFrame + c) += -rhoA_ * ubar[c];
+        }
+        d.value[u] += -rhoA_ * (gMean + gOnModes);
+        G(u, xMean) += -rhoA_;
+        for (int i = 0; i < na_; ++i) G(u, xModal + i) += -rhoA_ * gA[0] * sinMean_[i];
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int i = 0; i < nt_; ++i) G(u, xModal + na_ + dir * nt_ + i) += -rhoA_ * gA[dir + 1] * sinMean_[i];
+    }
+    // End strains and their slopes.
+    for (int end = 0; end < 2; ++end) {
+        const SpanEnd E = end == 0 ? SpanEnd::First : SpanEnd::Second;
+        const auto& S = endSlope_[end];
+        double lambda = chord;
+        for (int i = 0; i < na_; ++i) lambda += S[i] * a[i];
+        double tau[Dim] = {};
+        double t2 = lambda * lambda;
+        for (int dir = 0; dir + 1 < Dim; ++dir) {
+            for (int i = 0; i < nt_; ++i) tau[dir] += S[i] * b[dir * nt_ + i];
+            t2 += tau[dir] * tau[dir];
+        }
+        const double eps = 0.5 * (t2 / l2 - 1.0);
+        const int ie = endStrain(E), il = endStrainLengthSlope(E);
+        d.value[ie] = eps;
+        G(ie, xChord) = lambda / l2;
+        G(ie, xLength) = -(2.0 * eps + 1.0) / l;
+        for (int j = 0; j < na_; ++j) G(ie, xModal + j) = lambda * S[j] / l2;
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int j = 0; j < nt_; ++j) G(ie, xModal + na_ + dir * nt_ + j) = tau[dir] * S[j] / l2;
+        // d eps_E / dl = -(2 eps_E + 1) / l
+        d.value[il] = -(2.0 * eps + 1.0) / l;
+        for (int x = 0; x < P; ++x) G(il, x) = -2.0 * G(ie, x) / l;
+        G(il, xLength) += (2.0 * eps + 1.0) / l2;
+        // d eps_E / da_i = lambda_E S_i'(E) / l^2
+        for (int i = 0; i < na_; ++i) {
+            const int ia = endStrainAxialSlope(E, i);
+            d.value[ia] = lambda * S[i] / l2;
+            G(ia, xChord) = S[i] / l2;
+            G(ia, xLength) = -2.0 * lambda * S[i] / l3;
+            for (int j = 0; j < na_; ++j) G(ia, xModal + j) = S[i] * S[j] / l2;
         }
     }
-    reset();
-    gMeanT.d = 1.0;
-    run();
-    for (int k = 0; k < nQ; ++k)
-        for (int m = 0; m < Dim; ++m) {
-            d.gradient(k, m) += 0.5 * gravity_[m] * out[k].d;
-            d.gradient(k, Dim + m) += 0.5 * gravity_[m] * out[k].d;
-        }
-    for (int j = 0; j < numModal_; ++j) {
-        reset();
-        modal[j].d = 1.0;
-        run();
-        for (int k = 0; k < nQ; ++k) d.gradient(k, iM + j) = out[k].d;
-    }
-    reset();
-    lT.d = 1.0;
-    run();
+    // Chain to the span coordinates: |e| and g.A_e through e = r2 - r1, g.r_mean through both
+    // nodes, l = s2 - s1.
+    const Vec unit = e / chord;
+    d.gradient.resize(nQ, numCoordinates_);
     for (int k = 0; k < nQ; ++k) {
-        d.gradient(k, iS1) = -out[k].d;
-        d.gradient(k, iS2) = out[k].d;
+        for (int m = 0; m < Dim; ++m) {
+            double de = G(k, xChord) * unit[m];
+            for (int c = 0; c < Dim; ++c) de += G(k, xFrame + c) * gravity_.dot(F.dA[m].col(c));
+            const double dm = 0.5 * gravity_[m] * G(k, xMean);
+            d.gradient(k, m) = dm - de;
+            d.gradient(k, Dim + m) = dm + de;
+        }
+        for (int j = 0; j < numModal_; ++j) d.gradient(k, iM + j) = G(k, xModal + j);
+        d.gradient(k, iS1) = -G(k, xLength);
+        d.gradient(k, iS2) = G(k, xLength);
     }
     if (!withRates) {
         d.rate.setZero(nQ);
