@@ -44,7 +44,8 @@ struct CaseResult {
 };
 
 Row observe(const PendulumScene& scene, const State& s) {
-    scene.system().realize(s, Stage::Velocity);
+    // Stage::Dynamics: the axial forces of QuasiStatic spans include the mode-acceleration correction.
+    scene.system().realize(s, Stage::Dynamics);
     const SimTK::Vec3 p = scene.payloadPosition(s);
     const ReevingSubsystem& rv = scene.reeving();
     return {s.getTime(),

@@ -357,13 +357,13 @@ public:
                     c.nodeAccelerations3.col(mobileNodes_[a].node) = ws.rdd.segment<3>(3 * a);
             if (r.planar) {
                 c.nodeAccelerations2.noalias() = r.planeBasis.transpose() * c.nodeAccelerations3;
-                r.planarModel->modalAccelerations(
-                    c.planar, Eigen::Map<const Eigen::VectorXd>(c.nodeAccelerations2.data(), c.nodeAccelerations2.size()),
-                    c.modalAccelerations);
+                const Eigen::Map<const Eigen::VectorXd> a(c.nodeAccelerations2.data(), c.nodeAccelerations2.size());
+                r.planarModel->modalAccelerations(c.planar, a, c.modalAccelerations);
+                r.planarModel->recoverInertialStrain(c.planar, a, c.modalAccelerations);
             } else {
-                r.spatialModel->modalAccelerations(
-                    c.spatial, Eigen::Map<const Eigen::VectorXd>(c.nodeAccelerations3.data(), c.nodeAccelerations3.size()),
-                    c.modalAccelerations);
+                const Eigen::Map<const Eigen::VectorXd> a(c.nodeAccelerations3.data(), c.nodeAccelerations3.size());
+                r.spatialModel->modalAccelerations(c.spatial, a, c.modalAccelerations);
+                r.spatialModel->recoverInertialStrain(c.spatial, a, c.modalAccelerations);
             }
             for (int j = 0; j < r.numModal; ++j) {
                 zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];
@@ -686,11 +686,20 @@ double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMa
     const RopeCache& c = g.positionCache(s).ropes[rope];
     Eigen::VectorXd q;
     const Eigen::VectorXd qm = g.modal(g.getZ(s), r, false);
+    // QuasiStatic spans: once the accelerations are known (Stage::Dynamics), the strain includes the
+    // mode-acceleration correction (RopeModel::recoverInertialStrain).
+    const bool recovered = s.getSystemStage() >= Stage::Dynamics;
     if (r.planar) {
-        r.planarModel->spanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar, q);
+        if (recovered)
+            r.planarModel->recoveredSpanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar, q);
+        else
+            r.planarModel->spanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar, q);
         return r.planarModel->span(span).strain(q, sMaterial);
     }
-    r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
+    if (recovered)
+        r.spatialModel->recoveredSpanCoordinates(span, c.nodes3, qm, c.spatial, q);
+    else
+        r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
     return r.spatialModel->span(span).strain(q, sMaterial);
 }
 

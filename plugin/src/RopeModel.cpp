@@ -353,6 +353,8 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // Span evaluations scattered into the rope's M and Q (the multipliers carry no mass).
     data.Mz.setZero(nz, nz);
     data.Qz.setZero(nz);
+    data.inertialCorrection.resize(0);
+    if (nqc > 0) data.velocityForcesZ.setZero(nz);
     data.kineticEnergy = data.strainEnergy = data.gravityEnergy = 0;
     for (int j = 0; j < N; ++j) {
         SpanData<Dim>& d = data.spans[j];
@@ -361,6 +363,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         const int n = spans_[j].numCoordinates();
         for (int a = 0; a < n; ++a) {
             data.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a];
+            if (nqc > 0) data.velocityForcesZ[map[a]] += d.velocityForces[a];
             for (int b = 0; b < n; ++b) data.Mz(map[a], map[b]) += d.massMatrix(a, b);
         }
         data.kineticEnergy += d.kineticEnergy;
@@ -406,6 +409,41 @@ void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::
     }
     qmddot = data.modalFree;
     qmddot.noalias() -= data.modalCoupling * nodeAccelerations;
+}
+
+template <int Dim>
+void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
+                                           const Eigen::VectorXd& qmddot) const {
+    if (numCondensed_ == 0) return;
+    const int N = numSpans(), nn = Dim * (N + 1), nw = nn + numModal_, nd = numDependent();
+    const int nqc = numCondensed_, nc = N - 1;
+    Eigen::VectorXd& zdd = data.zddot;
+    zdd.setZero(nw + nd + 2);
+    zdd.head(nn) = nodeAccelerations;
+    zdd.segment(nn, numModal_) = qmddot;
+    zdd.segment(nw, nd).noalias() = data.Gd * zdd.head(nw);
+    zdd.segment(nw, nd) += data.cd;
+    const double invEA = 1.0 / properties().axialStiffness;
+    Eigen::VectorXd& load = data.inertialLoad;
+    load.setZero(nd);
+    for (int r = 0; r < nqc; ++r)
+        load[r] = invEA * (data.Mz.row(nw + r).dot(zdd) - data.velocityForcesZ[nw + r]);
+    for (int k = 0; k < nc; ++k)
+        load[nqc + nc + k] = invEA * (data.Mz.row(nw + nqc + k).dot(zdd) - data.velocityForcesZ[nw + nqc + k]);
+    data.inertialCorrection = data.constraintLu.solve(load);
+    data.inertialCorrection *= -1.0;
+}
+
+template <int Dim>
+void RopeModel<Dim>::recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+                                              const RopeData<Dim>& data, Eigen::VectorXd& q) const {
+    spanCoordinates(j, nodes, qm, data, q);
+    if (numCondensed_ == 0 || data.inertialCorrection.size() != numDependent()) return;
+    const auto& sp = spans_[j];
+    if (isCondensed(j))
+        q.segment(2 * Dim, sp.axialModes()) += data.inertialCorrection.segment(condensedOffset_[j], sp.axialModes());
+    if (j >= 1) q[sp.s1Index()] += data.inertialCorrection[numCondensed_ + j - 1];
+    if (j + 1 <= numSpans() - 1) q[sp.s2Index()] += data.inertialCorrection[numCondensed_ + j];
 }
 
 template <int Dim>

@@ -31,6 +31,11 @@ struct RopeData {
     Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s]
     Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
     Eigen::VectorXd multiplierRates;
+    /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
+    /// (see RopeModel::recoverInertialStrain); empty until computed for the current accelerations.
+    Eigen::VectorXd inertialCorrection;
+    Eigen::VectorXd velocityForcesZ;  ///< Q_v of all spans scattered into z (for the recovery)
+    Eigen::VectorXd zddot, inertialLoad;  ///< scratch of the recovery
     /// Effective mass of the rope at its nodes, S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, and the
     /// matching force h: the force the nodes' supports must apply to the rope is f = S rddot - h.
     Eigen::MatrixXd nodeMass;
@@ -137,6 +142,25 @@ public:
     /// Modal accelerations for given node accelerations: qddot_m = Mbar_mm^-1 (Qbar_m - Mbar_mn rddot).
     void modalAccelerations(const RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                             Eigen::VectorXd& qmddot) const;
+
+    /// Mode-acceleration recovery for ropes with condensed (QuasiStatic) spans. The condensation
+    /// makes U stationary, so the strain field it gives carries no share of the rope's own inertial
+    /// load (rhoA times the acceleration of each material point). Given the accelerations of the
+    /// coupled solve, this adds the quasi-static response to that load, to first order: with
+    /// z_ddot = G w_ddot + c and the inertial generalized force f = M z_ddot - Q_v,
+    ///     C_d delta_d = -[f_condensed / EA; 0; f_s / EA],
+    /// the same linear system as the condensation's Newton step (the stationarity rows gain f).
+    /// The result, data.inertialCorrection, feeds spanCoordinates(..., recovered = true): strain and
+    /// force queries then agree with the Dynamic model's slow response up to O((omega_slow /
+    /// omega_axial)^2) instead of O(acceleration / g) (measured in bench/RESULTS.md). The dynamics
+    /// themselves are not changed (they stay conservative). No-op without condensed spans.
+    void recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
+                               const Eigen::VectorXd& qmddot) const;
+
+    /// As spanCoordinates, with the mode-acceleration correction added to the condensed amplitudes
+    /// and material coordinates when data holds one.
+    void recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
+                                  Eigen::VectorXd& q) const;
 
     /// Axial force difference F_a - F_b at sheave node k (1..N-1) [N].
     double constraintError(const RopeData<Dim>& data, int k) const;
