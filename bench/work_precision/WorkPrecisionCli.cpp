@@ -100,6 +100,7 @@ time of the integration, rhs evaluations, steps -- or why the point failed.
                             --integrators are run)
   --axial-modes LIST        n_a values, each 0..16 (default 0,1,3)
   --transverse-modes N      n_t, 0..16 (default 1)
+  --axial-dynamics KIND     dynamic (default) or quasi-static (AxialDynamics of every span)
   --t-end T                 simulated time [s] (default 20)
   --report-interval DT      report (and error sampling) interval [s] (default 0.01)
   --repeats N               timed runs per point, median reported (default 3)
@@ -169,6 +170,14 @@ Options parseCommandLine(int argc, char** argv) {
             o.transverseModes = toInteger(opt, v);
             if (o.transverseModes < 0 || o.transverseModes > SimbodyReeving::kMaxModesPerDirection)
                 fail(opt, v, "must be in 0..16");
+        } else if (opt == "--axial-dynamics") {
+            const std::string v = value();
+            if (v == "dynamic")
+                o.axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;
+            else if (v == "quasi-static")
+                o.axialDynamics = SimbodyReeving::AxialDynamics::QuasiStatic;
+            else
+                fail(opt, v, "expected dynamic or quasi-static");
         } else if (opt == "--t-end") {
             o.tEnd = positive(opt, value());
         } else if (opt == "--report-interval") {

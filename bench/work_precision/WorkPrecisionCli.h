@@ -2,6 +2,8 @@
 // Command line of bench-work-precision (issue 5, "Work-precision study"): options, defaults,
 // validation. See usage() for the meaning of every option.
 
+#include <SimbodyReeving/SpanModel.h>
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,6 +22,7 @@ struct Options {
     std::vector<std::string> fixedStepIntegrators{"verlet", "explicit-euler"};
     std::vector<int> axialModes{0, 1, 3};
     int transverseModes = 1;
+    SimbodyReeving::AxialDynamics axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;
     double tEnd = 20.0;            // [s]
     double reportInterval = 0.01;  // [s]
     double vx0 = 1.0, vy0 = 0.0;   // [m/s]

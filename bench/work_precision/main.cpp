@@ -92,7 +92,7 @@ struct Point {
 int reportCount(const Options& o) { return static_cast<int>(std::floor(o.tEnd / o.reportInterval + 1e-9)); }
 
 Sample observe(const SimbodyReeving::PendulumScene& scene, const SimTK::State& s) {
-    scene.system().realize(s, SimTK::Stage::Position);
+    scene.system().realize(s, SimTK::Stage::Dynamics);  // QuasiStatic: force with the mode-acceleration correction
     const SimTK::Vec3 p = scene.payloadPosition(s);
     return {s.getTime(), p[0], p[1], p[2], scene.tensionAtPayload(s)};
 }
@@ -105,6 +105,7 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
     SimbodyReeving::SpanOptions spans;
     spans.axialModes = spec.axialModes;
     spans.transverseModes = o.transverseModes;
+    spans.axialDynamics = o.axialDynamics;
     const SimbodyReeving::PendulumParameters params{};
     SimbodyReeving::PendulumScene scene(params, spans);
     const SimTK::State s0 = scene.makeInitialState(o.vx0, o.vy0);
@@ -245,6 +246,7 @@ std::map<std::string, std::string> referenceKey(const Options& o, int na) {
             {"check_factor", num(o.referenceCheckFactor)},
             {"axial_modes", std::to_string(na)},
             {"transverse_modes", std::to_string(o.transverseModes)},
+            {"axial_dynamics", o.axialDynamics == SimbodyReeving::AxialDynamics::Dynamic ? "dynamic" : "quasi-static"},
             {"t_end", num(o.tEnd)},
             {"report_interval", num(o.reportInterval)},
             {"vx0", num(o.vx0)},
