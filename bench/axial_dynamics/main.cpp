@@ -11,6 +11,7 @@
 //
 // Reproduce: build/bench/bench-axial-dynamics --out out/axial-dynamics   (bench/RESULTS.md)
 #include <SimbodyReeving/Integrators.h>
+#include <SimbodyReeving/InterpolatingTimeStepper.h>
 #include <SimbodyReeving/PendulumScene.h>
 
 #include <algorithm>
@@ -45,7 +46,7 @@ Series simulate(int na, AxialDynamics axial, double accuracy, double tEnd, doubl
     SimTK::State s = scene.makeInitialState(1.0, 0.0);
     auto integ = makeIntegrator("rk-merson", scene.system());
     integ->setAccuracy(accuracy);
-    SimTK::TimeStepper ts(scene.system(), *integ);
+    InterpolatingTimeStepper ts(scene.system(), *integ);
     ts.initialize(s);
     Series out;
     const auto start = std::chrono::steady_clock::now();

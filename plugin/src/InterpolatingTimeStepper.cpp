@@ -34,6 +34,8 @@ Integrator::SuccessfulStepStatus InterpolatingTimeStepper::stepTo(double reportT
         SimTK::Array_<EventId> handled;
         switch (status) {
         case Integrator::ReachedStepLimit:
+            if (returnAtStepLimit_) return status;
+            continue;
         case Integrator::StartOfContinuousInterval:
             continue;
         case Integrator::ReachedReportTime:

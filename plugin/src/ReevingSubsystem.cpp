@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -383,10 +384,16 @@ public:
     Real calcPotentialEnergy(const State& s) const override {
         const PositionCache& pc = positionCache(s);
         Real u = 0;
+        // From Stage::Velocity on, the velocity-level rope data (refreshed by positionCache) hold the
+        // energies of these positions: no second span evaluation.
+        const bool velocityCurrent = s.getSystemStage() >= Stage::Velocity;
         for (size_t i = 0; i < ropes.size(); ++i) {
             const RopeRecord& r = ropes[i];
             const RopeCache& c = pc.ropes[i];
-            if (r.planar) {
+            if (velocityCurrent) {
+                u += r.planar ? c.planar.strainEnergy + c.planar.gravityEnergy
+                              : c.spatial.strainEnergy + c.spatial.gravityEnergy;
+            } else if (r.planar) {
                 u += potential(*r.planarModel, c.planar, planarNodes(r, c.nodes3), modal(getZ(s), r, false));
             } else {
                 u += potential(*r.spatialModel, c.spatial, c.nodes3, modal(getZ(s), r, false));
@@ -687,20 +694,23 @@ double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMa
     Eigen::VectorXd q;
     const Eigen::VectorXd qm = g.modal(g.getZ(s), r, false);
     // QuasiStatic spans: once the accelerations are known (Stage::Dynamics), the strain includes the
-    // mode-acceleration correction (RopeModel::recoverInertialStrain).
+    // mode-acceleration correction (RopeModel::recoverInertialStrain), which also moves the material
+    // coordinates at the sheaves slightly; the point is taken at the same relative position
+    // xi = (s - s1) / (s2 - s1) of the corrected span, so span ends stay span ends.
     const bool recovered = s.getSystemStage() >= Stage::Dynamics;
-    if (r.planar) {
-        if (recovered)
-            r.planarModel->recoveredSpanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar, q);
-        else
-            r.planarModel->spanCoordinates(span, g.planarNodes(r, c.nodes3), qm, c.planar, q);
-        return r.planarModel->span(span).strain(q, sMaterial);
-    }
-    if (recovered)
-        r.spatialModel->recoveredSpanCoordinates(span, c.nodes3, qm, c.spatial, q);
-    else
-        r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
-    return r.spatialModel->span(span).strain(q, sMaterial);
+    auto strainOf = [&](const auto& model, const auto& nodes, const auto& data) {
+        model.spanCoordinates(span, nodes, qm, data, q);
+        if (!recovered) return model.span(span).strain(q, sMaterial);
+        const auto& sp = model.span(span);
+        const double s1 = q[sp.s1Index()], s2 = q[sp.s2Index()];
+        const double xi = std::clamp((sMaterial - s1) / (s2 - s1), 0.0, 1.0);
+        model.span(span).strain(q, sMaterial);  // validates sMaterial against the span's range
+        model.recoveredSpanCoordinates(span, nodes, qm, data, q);
+        const double r1 = q[sp.s1Index()], r2 = q[sp.s2Index()];
+        return sp.strain(q, xi >= 1.0 ? r2 : r1 + xi * (r2 - r1));
+    };
+    if (r.planar) return strainOf(*r.planarModel, g.planarNodes(r, c.nodes3), c.planar);
+    return strainOf(*r.spatialModel, c.nodes3, c.spatial);
 }
 
 Vec3 ReevingSubsystem::getNodeForce(const State& s, int rope, int node) const {

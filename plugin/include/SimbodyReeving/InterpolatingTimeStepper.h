@@ -36,6 +36,11 @@ public:
     /// @throws SimTK::Exception from the integrator (e.g. Integrator::StepFailed).
     SimTK::Integrator::SuccessfulStepStatus stepTo(double reportTime);
 
+    /// true: stepTo also returns (status ReachedStepLimit, before reportTime) when the integrator
+    /// has taken Integrator::setInternalStepLimit steps, so a caller can watch the wall clock.
+    /// Default false.
+    void setReturnAtStepLimit(bool returnAtLimit) { returnAtStepLimit_ = returnAtLimit; }
+
     const SimTK::State& getState() const { return integrator_.getState(); }
     const SimTK::Integrator& getIntegrator() const { return integrator_; }
 
@@ -43,6 +48,7 @@ private:
     const SimTK::System& system_;
     SimTK::Integrator& integrator_;
     double lastEventTime_ = -SimTK::Infinity, lastReportTime_ = -SimTK::Infinity;
+    bool returnAtStepLimit_ = false;
 };
 
 }  // namespace SimbodyReeving
