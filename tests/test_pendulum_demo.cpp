@@ -57,7 +57,8 @@ std::string checkCsv(const fs::path& p, size_t minRows) {
 
 void checkSummary(const fs::path& p) {
     const std::string json = slurp(p);
-    for (const char* key : {"integrator", "accuracy", "axial_modes", "transverse_modes", "steps", "rhs_evaluations",
+    for (const char* key : {"integrator", "accuracy", "axial_modes", "transverse_modes", "axial_dynamics", "steps",
+                            "rhs_evaluations",
                             "wall_seconds", "initial_kinetic_energy_J", "max_energy_drift_J", "max_constraint_error_N",
                             "parameters"})
         EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
@@ -99,6 +100,21 @@ TEST(PendulumDemo, SingleModeCountWritesDirectlyIntoOutDir) {
     EXPECT_FALSE(fs::exists(out / "modes-2"));
 }
 
+TEST(PendulumDemo, BothAxialDynamics) {
+    for (const char* kind : {"dynamic", "quasi-static"}) {
+        const fs::path out = scratch(std::string("axial_") + kind);
+        EXPECT_EQ(run(std::string("--axial-dynamics ") + kind +
+                          " --axial-modes 3 --t-end 0.1 --report-interval 0.01 --no-plots --quiet --out '" +
+                          out.string() + "'",
+                      out.string() + ".log"),
+                  0)
+            << kind << ": " << slurp(out.string() + ".log");
+        checkCsv(out / "timeseries.csv", 11);
+        EXPECT_NE(slurp(out / "summary.json").find(std::string("\"axial_dynamics\": \"") + kind + "\""),
+                  std::string::npos);
+    }
+}
+
 TEST(PendulumDemo, AcceptsEveryIntegrator) {
     for (const char* name : {"rk-merson", "rk3", "rk-feldberg", "cpodes", "verlet", "semi-explicit-euler2",
                              "explicit-euler"}) {
@@ -135,6 +151,7 @@ TEST(PendulumDemo, BadInputExitsTwoAndWritesNothing) {
         {"--step 0", "--step '0'"},
         {"--report-interval nan", "--report-interval 'nan'"},
         {"--vx0", "--vx0"},
+        {"--axial-dynamics fast", "--axial-dynamics 'fast'"},
     };
     for (const auto& [args, needle] : cases) {
         const fs::path out = scratch("bad");

@@ -87,10 +87,12 @@ long allocationsPerEvaluation(int na, int nt, VelocityModel vm, ElasticEnergyMod
 /// Allocations over repeated evaluations of a rope of `numSpans` spans (numSpans - 1 sheaves),
 /// after one warm-up evaluation at the same mode counts.
 template <int Dim>
-long allocationsPerRopeEvaluation(int numSpans, int na, int nt) {
+long allocationsPerRopeEvaluation(int numSpans, int na, int nt,
+                                  AxialDynamics axial = AxialDynamics::Dynamic) {
     SpanOptions o;
     o.axialModes = na;
     o.transverseModes = nt;
+    o.axialDynamics = axial;
     using Vec = Eigen::Matrix<double, Dim, 1>;
     Vec g = Vec::Zero();
     g[1] = -9.81;
@@ -122,6 +124,7 @@ long allocationsPerRopeEvaluation(int numSpans, int na, int nt) {
         rope.solveDependentCoordinates(nodes, qm, data);
         rope.computeDynamics(nodes, velocities, qm, qmd, data);
         rope.modalAccelerations(data, nodeAcc, qmdd);
+        rope.recoverInertialStrain(data, nodeAcc, qmdd);
     };
     evaluate();  // warm-up: sizes the workspace
     const long before = gAllocations.load();
@@ -162,4 +165,9 @@ TEST(RopeNoAllocation, RopeEvaluationNeverAllocates) {
     EXPECT_EQ(allocationsPerRopeEvaluation<2>(2, 3, 1), 0);  // the paper's pendulum rope
     EXPECT_EQ(allocationsPerRopeEvaluation<2>(4, 2, 2), 0);  // three sheaves
     EXPECT_EQ(allocationsPerRopeEvaluation<3>(3, 3, 2), 0);
+    // Quasi-static axial modes: the condensation kernel, its Newton and the recovery.
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(1, 3, 1, AxialDynamics::QuasiStatic), 0);
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(2, 3, 1, AxialDynamics::QuasiStatic), 0);
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(4, 2, 2, AxialDynamics::QuasiStatic), 0);
+    EXPECT_EQ(allocationsPerRopeEvaluation<3>(3, 3, 2, AxialDynamics::QuasiStatic), 0);
 }

@@ -353,7 +353,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // Span evaluations scattered into the rope's M and Q (the multipliers carry no mass).
     data.Mz.setZero(nz, nz);
     data.Qz.setZero(nz);
-    data.inertialCorrection.resize(0);
+    data.inertialCorrectionValid = false;
     if (nqc > 0) data.velocityForcesZ.setZero(nz);
     data.kineticEnergy = data.strainEnergy = data.gravityEnergy = 0;
     for (int j = 0; j < N; ++j) {
@@ -432,13 +432,14 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
         load[nqc + nc + k] = invEA * (data.Mz.row(nw + nqc + k).dot(zdd) - data.velocityForcesZ[nw + nqc + k]);
     data.inertialCorrection = data.constraintLu.solve(load);
     data.inertialCorrection *= -1.0;
+    data.inertialCorrectionValid = true;
 }
 
 template <int Dim>
 void RopeModel<Dim>::recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                               const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     spanCoordinates(j, nodes, qm, data, q);
-    if (numCondensed_ == 0 || data.inertialCorrection.size() != numDependent()) return;
+    if (numCondensed_ == 0 || !data.inertialCorrectionValid) return;
     const auto& sp = spans_[j];
     if (isCondensed(j))
         q.segment(2 * Dim, sp.axialModes()) += data.inertialCorrection.segment(condensedOffset_[j], sp.axialModes());

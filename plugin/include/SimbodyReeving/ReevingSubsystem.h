@@ -99,6 +99,10 @@ public:
 
     // ---- queries (Stage::Position unless said otherwise) ------------------------------------
     /// Axial force P = EA eps at material point s of a span [N].
+    /// For spans with AxialDynamics::QuasiStatic, at Stage::Dynamics or later the strain includes the
+    /// mode-acceleration correction (the quasi-static response to the rope's inertial load, see
+    /// RopeModel::recoverInertialStrain; the point is taken at the same relative position of the
+    /// corrected span); below Stage::Dynamics it is the condensed (stationary) strain.
     /// @throws std::invalid_argument if rope, span or s is out of range.
     double getAxialForce(const SimTK::State& state, int rope, int span, double s) const;
     /// Physical tension T = EA eps |dr/ds| at material point s of a span [N] (see SpanModel::tension).

@@ -32,8 +32,9 @@ struct RopeData {
     Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
     Eigen::VectorXd multiplierRates;
     /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
-    /// (see RopeModel::recoverInertialStrain); empty until computed for the current accelerations.
+    /// (see RopeModel::recoverInertialStrain); valid once computed for the current accelerations.
     Eigen::VectorXd inertialCorrection;
+    bool inertialCorrectionValid = false;
     Eigen::VectorXd velocityForcesZ;  ///< Q_v of all spans scattered into z (for the recovery)
     Eigen::VectorXd zddot, inertialLoad;  ///< scratch of the recovery
     /// Effective mass of the rope at its nodes, S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, and the
