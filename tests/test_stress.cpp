@@ -53,6 +53,7 @@ struct StressCase {
     int nt = 1;
     double vx0 = 1.0;   // [m/s]
     double tEnd = 20.0; // [s]
+    AxialDynamics axialDynamics = AxialDynamics::Dynamic;
 };
 
 std::vector<StressCase> stressCases() {
@@ -77,6 +78,15 @@ std::vector<StressCase> stressCases() {
         StressCase& light = add("LightPayload", "payload /100 (M = 10 kg, J = 0.36 kg m^2)");
         light.params.M = 10.0;
         light.params.J = 0.36;
+    }
+    // The same scenes with quasi-static axial modes (issue 12): a stiffer rope should cost no more.
+    const size_t dynamicCases = c.size();
+    for (size_t i = 0; i < dynamicCases; ++i) {
+        StressCase q = c[i];
+        q.name += "QS";
+        q.description += ", quasi-static axial modes";
+        q.axialDynamics = AxialDynamics::QuasiStatic;
+        c.push_back(q);
     }
     return c;
 }
@@ -133,6 +143,7 @@ Measurement runCase(const StressRun& run) {
     SpanOptions spans;
     spans.axialModes = c.na;
     spans.transverseModes = c.nt;
+    spans.axialDynamics = c.axialDynamics;
     try {
         const PendulumScene scene(c.params, spans);
         const ReevingSubsystem& rv = scene.reeving();

@@ -89,9 +89,12 @@ std::vector<double> lowPass(const std::vector<double>& v, double dt, double fc) 
     return out;
 }
 
+// Statistics skip the first and last `gEdge` samples, where the low-pass kernel is truncated.
+size_t gEdge = 0;
+
 double maxAbsDiff(const std::vector<double>& a, const std::vector<double>& b) {
     double m = 0;
-    for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+    for (size_t i = gEdge; i + gEdge < a.size(); ++i) m = std::max(m, std::abs(a[i] - b[i]));
     return m;
 }
 double maxPositionDiff(const Series& a, const Series& b) {
@@ -101,7 +104,7 @@ double maxPositionDiff(const Series& a, const Series& b) {
 }
 double maxAbs(const std::vector<double>& a) {
     double m = 0;
-    for (double v : a) m = std::max(m, std::abs(v));
+    for (size_t i = gEdge; i + gEdge < a.size(); ++i) m = std::max(m, std::abs(a[i]));
     return m;
 }
 std::vector<double> minus(const std::vector<double>& a, const std::vector<double>& b) {
@@ -147,12 +150,13 @@ int main(int argc, char** argv) {
         }
     }
     fs::create_directories(outDir);
+    gEdge = static_cast<size_t>(std::ceil(4.0 * std::sqrt(std::log(2.0)) / (2.0 * M_PI * cutoff) / sample));
     std::ofstream md(fs::path(outDir) / "summary.md");
     md << "Default demo case (Table 1, 1 m/s push, " << tEnd << " s), RK-Merson " << accuracy
        << " (reference check at " << accuracy / 10 << "), sampled every " << sample << " s; slow part = Gaussian low-pass, -3 dB at "
-       << cutoff << " Hz.\n\n"
+       << cutoff << " Hz; maxima over the record less 4 sigma of the filter at each end.\n\n"
        << "| n_a | max payload position difference [m] | max end-force difference P [N] | slow part [N] | "
-          "axial-wave part of Dynamic's P (max) [N] | slow part of node force difference [N] | "
+          "axial-wave part of the difference [N] | slow part of node force difference [N] | "
           "reference check Dynamic (pos m / P N) | reference check QuasiStatic (pos m / P N) | wall Dynamic / QuasiStatic [s] | steps Dynamic / QuasiStatic |\n"
        << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (int na : modes) {
@@ -164,7 +168,8 @@ int main(int argc, char** argv) {
         const std::vector<double> dSlow = lowPass(d.P, sample, cutoff), qSlow = lowPass(q.P, sample, cutoff);
         const std::vector<double> dFSlow = lowPass(d.F, sample, cutoff), qFSlow = lowPass(q.F, sample, cutoff);
         const double pos = maxPositionDiff(d, q), dP = maxAbsDiff(d.P, q.P), dPslow = maxAbsDiff(dSlow, qSlow);
-        const double wave = maxAbs(minus(d.P, dSlow)), dFslow = maxAbsDiff(dFSlow, qFSlow);
+        // Axial-wave part: what the low-pass removes from the difference (the fast part of P_d - P_q).
+        const double wave = maxAbs(minus(minus(d.P, dSlow), minus(q.P, qSlow))), dFslow = maxAbsDiff(dFSlow, qFSlow);
         char row[1024];
         std::snprintf(row, sizeof row,
                       "| %d | %.2e | %.3f | %.4f | %.3f | %.4f | %.1e / %.1e | %.1e / %.1e | %.1f / %.2f | %ld / %ld |\n", na,
