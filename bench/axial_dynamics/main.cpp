@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
         c.close();
         const std::string png = "axial_dynamics_na" + std::to_string(na) + ".png";
         std::ofstream gp(fs::path(outDir) / ("plot_na" + std::to_string(na) + ".gp"));
-        gp << "set terminal pngcairo size 1000,900 font 'DejaVu Sans,10'\nset output '" << png
+        gp << "set terminal png size 1000,900 font 'DejaVu Sans,10'\nset output '" << png
            << "'\nset datafile separator ','\nset grid\nset multiplot layout 3,1 title 'n_a = " << na
            << ": QuasiStatic vs Dynamic axial modes (Table 1 pendulum, 1 m/s push)'\n"
            << "set ylabel 'P at payload end [N]'\nplot '" << csv.filename().string()

@@ -632,7 +632,8 @@ void writeTable(const Options& o, const std::vector<Point>& points, const std::v
     for (const Reference& r : refs) floors[r.axialModes] = floorsOf(r);
     std::ofstream f(fs::path(o.outDir) / "table.md");
     f << "# Work-precision study: the paper's pendulum\n\n"
-      << "t_end " << o.tEnd << " s, reports every " << o.reportInterval << " s, n_t = " << o.transverseModes
+      << "Axial modes " << (o.axialDynamics == SimbodyReeving::AxialDynamics::Dynamic ? "dynamic (states)" : "quasi-static (condensed)")
+      << ", t_end " << o.tEnd << " s, reports every " << o.reportInterval << " s, n_t = " << o.transverseModes
       << ", vx0 = " << o.vx0 << " m/s. Errors: max over the reports of |x - x_ref| (payload centre, Euclidean) "
       << "and |P - P_ref| (payload-end axial force). Wall: median of up to " << o.repeats
       << " runs of the integration alone (runs slower than " << o.repeatBelow << " s: one run); cap " << o.cap

@@ -48,8 +48,9 @@ from static equilibrium with a horizontal payload velocity.
 
   --axial-modes LIST       comma list of n_a values, each 0..16 (default 0,1,2,3)
   --transverse-modes N     n_t, 0..16 (default 1)
-  --axial-dynamics KIND    dynamic (default: the paper's model, axial modes as states) or
-                           quasi-static (axial modes condensed: no axial waves, much faster)
+  --axial-dynamics KIND    quasi-static (default: axial modes condensed, no axial waves; same
+                           swing and slow axial force as the paper's model, about 60x faster at
+                           n_a = 3) or dynamic (the paper's model: axial modes as states)
   --t-end T                end time [s] (default 20)
   --vx0 V                  initial horizontal payload velocity [m/s] (default 1)
   --vy0 V                  initial vertical payload velocity [m/s] (default 0)

@@ -17,7 +17,7 @@ struct UsageError : std::runtime_error {
 struct Options {
     std::vector<int> axialModes{0, 1, 2, 3};
     int transverseModes = 1;
-    SimbodyReeving::AxialDynamics axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;
+    SimbodyReeving::AxialDynamics axialDynamics = SimbodyReeving::AxialDynamics::QuasiStatic;
     double tEnd = 20.0;            // [s]
     double vx0 = 1.0, vy0 = 0.0;   // [m/s], added after static equilibrium
     std::string integrator = "rk-merson";
