@@ -59,3 +59,106 @@ TEST(InterpolatingTimeStepper, StepCountIndependentOfReportInterval) {
     std::printf("max |payload position difference| interpolated vs stopping: %.2e m\n", worst);
     EXPECT_LT(worst, 1e-5);  // both within the 1e-6 accuracy setting of the true path
 }
+
+namespace {
+
+/// Adds a horizontal velocity kick to the payload at a scheduled time (an event that changes u).
+class Kick : public SimTK::ScheduledEventHandler {
+public:
+    Kick(const PendulumScene& scene, double when) : scene_(scene), when_(when) {}
+    SimTK::Real getNextEventTime(const SimTK::State&, bool includeCurrent) const override {
+        return includeCurrent || !fired_ ? when_ : SimTK::Infinity;
+    }
+    void handleEvent(SimTK::State& s, SimTK::Real, bool&) const override {
+        fired_ = true;
+        scene_.system().realize(s, SimTK::Stage::Velocity);
+        const SimTK::MobilizedBody& body = scene_.payload();
+        body.setUToFitLinearVelocity(s, body.getBodyOriginVelocity(s) + SimTK::Vec3(0.5, 0, 0));
+    }
+
+    bool fired() const { return fired_; }
+
+private:
+    const PendulumScene& scene_;
+    double when_;
+    mutable bool fired_ = false;
+};
+
+/// Counts the scheduled reports the system delivers.
+class CountingReporter : public SimTK::PeriodicEventReporter {
+public:
+    explicit CountingReporter(double interval) : SimTK::PeriodicEventReporter(interval) {}
+    void handleEvent(const SimTK::State& s) const override { times.push_back(s.getTime()); }
+    mutable std::vector<double> times;
+};
+
+}  // namespace
+
+// A scheduled event inside a report interval, a periodic reporter, and both Simbody integrator
+// families: the interpolating stepper reproduces SimTK::TimeStepper's trajectory through the event.
+TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper) {
+    for (const char* name : {"rk-merson", "cpodes"}) {
+        SimTK::Vec3 finals[2];
+        std::vector<double> reportTimes[2];
+        for (int which = 0; which < 2; ++which) {
+            SpanOptions o;
+            o.axialModes = 1;
+            o.axialDynamics = AxialDynamics::QuasiStatic;
+            PendulumScene scene(PendulumParameters{}, o);
+            auto* kick = new Kick(scene, 0.737);  // the system takes ownership
+            auto* reporter = new CountingReporter(0.25);
+            scene.system().addEventHandler(kick);
+            scene.system().addEventReporter(reporter);
+            scene.system().realizeTopology();
+            auto integ = makeIntegrator(name, scene.system());
+            integ->setAccuracy(1e-8);
+            const SimTK::State s0 = scene.makeInitialState(1.0, 0.0);
+            SimTK::Vec3 before, after;
+            if (which == 0) {
+                InterpolatingTimeStepper ts(scene.system(), *integ);
+                ts.initialize(s0);
+                for (int k = 1; k <= 20; ++k) {
+                    ts.stepTo(0.1 * k);
+                    EXPECT_NEAR(ts.getState().getTime(), 0.1 * k, 1e-12);
+                    scene.system().realize(ts.getState(), SimTK::Stage::Velocity);
+                }
+                finals[which] = scene.payloadPosition(ts.getState());
+            } else {
+                SimTK::TimeStepper ts(scene.system(), *integ);
+                ts.initialize(s0);
+                for (int k = 1; k <= 20; ++k) ts.stepTo(0.1 * k);
+                scene.system().realize(ts.getState(), SimTK::Stage::Position);
+                finals[which] = scene.payloadPosition(ts.getState());
+            }
+            reportTimes[which] = reporter->times;
+            EXPECT_TRUE(kick->fired()) << name;
+        }
+        std::printf("%s: final payload position difference %.2e m; reports %zu / %zu\n", name,
+                    (finals[0] - finals[1]).norm(), reportTimes[0].size(), reportTimes[1].size());
+        EXPECT_LT((finals[0] - finals[1]).norm(), 1e-5) << name;
+        ASSERT_EQ(reportTimes[0].size(), reportTimes[1].size()) << name;
+        for (size_t k = 0; k < reportTimes[0].size(); ++k) {
+            EXPECT_NEAR(reportTimes[0][k], 0.25 * static_cast<double>(k), 1e-12) << name;
+            EXPECT_NEAR(reportTimes[1][k], 0.25 * static_cast<double>(k), 1e-12) << name;
+        }
+    }
+}
+
+TEST(InterpolatingTimeStepper, StepLimitReturnsEarlyAndRejectsNegative) {
+    SpanOptions o;
+    o.axialModes = 0;
+    const PendulumScene scene(PendulumParameters{}, o);
+    auto integ = makeIntegrator("rk-merson", scene.system());
+    integ->setAccuracy(1e-8);
+    InterpolatingTimeStepper ts(scene.system(), *integ);
+    EXPECT_THROW(ts.setStepLimit(-1), std::invalid_argument);
+    ts.setStepLimit(3);
+    ts.initialize(scene.makeInitialState(1.0, 0.0));
+    EXPECT_EQ(ts.stepTo(1.0), SimTK::Integrator::ReachedStepLimit);
+    EXPECT_EQ(integ->getNumStepsTaken(), 3);
+    EXPECT_LT(ts.getState().getTime(), 1.0);
+    while (ts.stepTo(1.0) == SimTK::Integrator::ReachedStepLimit) {
+    }
+    EXPECT_NEAR(ts.getState().getTime(), 1.0, 1e-12);
+    EXPECT_GT(ts.getNumRealizations(), integ->getNumStepsTaken());
+}

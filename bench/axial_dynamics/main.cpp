@@ -53,7 +53,7 @@ Series simulate(int na, AxialDynamics axial, double accuracy, double tEnd, doubl
     const int n = static_cast<int>(std::lround(tEnd / sample));
     for (int k = 0; k <= n; ++k) {
         if (k > 0) ts.stepTo(k * sample);
-        const SimTK::State& st = integ->getState();
+        const SimTK::State& st = ts.getState();
         scene.system().realize(st, SimTK::Stage::Dynamics);
         const SimTK::Vec3 p = scene.payloadPosition(st);
         out.t.push_back(st.getTime());

@@ -3,7 +3,8 @@
 // See --help, and the comments below for what each recorded number means.
 //
 // Counters (Simbody 3.7, simmath AbstractIntegratorRep / IntegratorRep):
-//  - rhs evaluations = Integrator::getNumRealizations(): the number of calls that realize a state
+//  - rhs evaluations = InterpolatingTimeStepper::getNumRealizations() (Integrator::getNumRealizations()
+//    plus the step-start realizations the stepper does itself): the number of calls that realize a state
 //    through Stage::Acceleration (realizeStateDerivatives: counted only when the state is below
 //    Acceleration), i.e. evaluations of the right-hand side qdot, udot, zdot -- including those of
 //    rejected steps and, for CPodes, of its finite-difference Jacobians. Projections and the
@@ -146,26 +147,24 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
         return true;
     };
     double wall = 0;
+    // Reports are interpolated (InterpolatingTimeStepper): the steps do not depend on the report
+    // interval, as a user asking for smooth output expects.
+    SimbodyReeving::InterpolatingTimeStepper ts(scene.system(), *integ);
     try {
         // The cap must also stop a run inside one report interval (e.g. variable-step Verlet
-        // creeping with tiny steps): the integrator returns every kStepChunk internal steps
-        // (ReachedStepLimit, passed on by the TimeStepper with ReportAllSignificantStates) and
-        // stepTo is called again. This does not change the steps taken.
+        // creeping with tiny steps): the stepper returns every kStepChunk internal steps
+        // (ReachedStepLimit) and stepTo is called again. This does not change the steps taken.
         constexpr int kStepChunk = 2000;
-        integ->setInternalStepLimit(kStepChunk);
-        // Reports are interpolated (InterpolatingTimeStepper): the steps do not depend on the report
-        // interval, as a user asking for smooth output expects.
-        SimbodyReeving::InterpolatingTimeStepper ts(scene.system(), *integ);
-        ts.setReturnAtStepLimit(true);
+        ts.setStepLimit(kStepChunk);
         auto t0 = Clock::now();
         ts.initialize(s0);
         wall += secondsSince(t0);
-        bool alive = account(observe(scene, integ->getState()), 0);
+        bool alive = account(observe(scene, ts.getState()), 0);
         bool capped = false;
         // The cap (and, with --project-cap, the projection of the wall time to t_end) is checked
         // whenever the integrator returns: at every report and every kStepChunk internal steps.
         auto checkCap = [&](double elapsed) {
-            const double t = integ->getTime();
+            const double t = ts.getState().getTime();
             if (cap <= 0 || t >= o.tEnd) return false;
             if (elapsed > cap) {
                 r.reason = "wall-clock cap " + num(cap, 6) + " s reached at t = " + num(t, 6) + " s";
@@ -188,12 +187,12 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
                     capped = true;
                     break;
                 }
-                if (integ->getTime() >= target) break;
+                if (ts.getState().getTime() >= target) break;
             }
             wall += secondsSince(t0);
             if (capped) {
                 r.status = "too slow";
-                r.tReached = integ->getTime();
+                r.tReached = ts.getState().getTime();
                 break;
             }
             if (integ->isSimulationOver() &&
@@ -201,11 +200,11 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
                 r.status = "failed";
                 r.reason = "integrator terminated: " +
                            std::string(SimTK::Integrator::getTerminationReasonString(integ->getTerminationReason()));
-                r.tReached = integ->getState().getTime();
+                r.tReached = ts.getState().getTime();
                 break;
             }
-            alive = account(observe(scene, integ->getState()), n);
-            if (progress) progress(integ->getState().getTime());
+            alive = account(observe(scene, ts.getState()), n);
+            if (progress) progress(ts.getState().getTime());
         }
     } catch (const std::exception& e) {
         r.status = "failed";
@@ -217,7 +216,7 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
         r.tReached = integ->getState().getTime();
     }
     r.wall = wall;
-    r.rhs = integ->getNumRealizations();
+    r.rhs = ts.getNumRealizations();
     r.steps = integ->getNumStepsTaken();
     return r;
 }
@@ -641,8 +640,8 @@ void writeTable(const Options& o, const std::vector<Point>& points, const std::v
       << (o.capSkips ? std::string("; after a too-slow point the tighter settings of that integrator are skipped") +
                            (o.capSkipsHigherModes ? " at that n_a and at every larger n_a" : " at that n_a")
                      : std::string("; every setting measured, also after a too-slow one"))
-      << ". rhs = Integrator::getNumRealizations() "
-      << "(realizations through Stage::Acceleration). Errors smaller than " << kFloorFactor
+      << ". rhs = InterpolatingTimeStepper::getNumRealizations() "
+      << "(realizations through Stage::Acceleration, reports not counted). Errors smaller than " << kFloorFactor
       << " x the reference's own change at half its accuracy are shown as \"< floor\" (see reference_check.txt).\n\n";
     f << "## Integrators\n\n| name | Simbody method | error control (methodHasErrorControl) | swept over |\n|---|---|---|---|\n";
     for (const std::string& n : o.integrators) {

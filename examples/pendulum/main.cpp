@@ -100,11 +100,11 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     InterpolatingTimeStepper ts(scene.system(), *integ);
     ts.initialize(s);
     const auto start = std::chrono::steady_clock::now();
-    r.rows.push_back(observe(scene, integ->getState()));
+    r.rows.push_back(observe(scene, ts.getState()));
     const int reports = static_cast<int>(std::floor(o.tEnd / o.reportInterval + 1e-9));
     for (int n = 1; n <= reports; ++n) {
         ts.stepTo(n * o.reportInterval);
-        const State& st = integ->getState();
+        const State& st = ts.getState();
         r.rows.push_back(observe(scene, st));
         if (viz) viz->report(st);
         progress = st.getTime() / o.tEnd;
@@ -112,7 +112,7 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     if (viz) stopVisualizer(*viz);
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
-    r.rhsEvaluations = integ->getNumRealizations();
+    r.rhsEvaluations = ts.getNumRealizations();
     for (const Row& row : r.rows) {
         r.maxEnergyDrift = std::max(r.maxEnergyDrift, std::abs(row.energy - e0));
         r.maxConstraintError = std::max(r.maxConstraintError, std::abs(row.constraintError));
