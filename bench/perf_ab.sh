@@ -4,6 +4,7 @@
 #
 # usage: bench/perf_ab.sh BINARY_A BINARY_B [REPEATS] [-- demo options]
 # default demo options: --axial-modes 3 --t-end 5 (one case, RK-Merson 1e-6, the Table 1 pendulum)
+# B_EXTRA="..." adds options to B's runs only (e.g. --axial-dynamics dynamic, which older builds lack).
 set -euo pipefail
 a=$1 b=$2 n=${3:-5}
 shift 2; [ $# -gt 0 ] && shift
@@ -14,8 +15,9 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for i in $(seq "$n"); do
     for who in A B; do
-        bin=$a; [ $who = B ] && bin=$b
-        "$bin" "${opts[@]}" --no-plots --quiet --out "$out/$who" >/dev/null
+        bin=$a extra=()
+        [ $who = B ] && bin=$b && read -r -a extra <<<"${B_EXTRA:-}"
+        "$bin" "${opts[@]}" "${extra[@]}" --no-plots --quiet --out "$out/$who" >/dev/null
         python3 - "$out/$who" "$who" "$i" >>"$out/runs.txt" <<'EOF'
 import json, pathlib, sys
 d = pathlib.Path(sys.argv[1])

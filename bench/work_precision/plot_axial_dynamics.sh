@@ -26,7 +26,7 @@ for name in {r["integrator"] for r in rows}:
 EOF2
 done
 {
-    echo "set terminal pngcairo size 1700,1100 font 'DejaVu Sans,11'"
+    echo "set terminal png size 1500,1000 font 'DejaVu Sans,10'"
     echo "set output '$png'"
     echo "set grid; set logscale xy; set format x '10^{%L}'; set format y '10^{%L}'"
     echo "set key outside right top font ',9' box"
