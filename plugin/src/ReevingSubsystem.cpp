@@ -677,13 +677,26 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
 double ReevingSubsystem::getAxialForce(const State& s, int rope, int span, double sMaterial) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const double eps = strainAt(s, rope, span, sMaterial);
-    return r.spec.properties.axialStiffness * eps;
+    return axialForce(r.spec.properties, eps);
 }
 
 double ReevingSubsystem::getTension(const State& s, int rope, int span, double sMaterial) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const double eps = strainAt(s, rope, span, sMaterial);
-    return r.spec.properties.axialStiffness * eps * std::sqrt(1.0 + 2.0 * eps);
+    return axialForce(r.spec.properties, eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+}
+
+double ReevingSubsystem::getSpanMaxStrain(const State& s, int rope, int span) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    getSpanMaterialRange(s, rope, span);  // validates span
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    return r.planar ? r.planarModel->span(span).maxStrain(c.planar.spanQ[span])
+                    : r.spatialModel->span(span).maxStrain(c.spatial.spanQ[span]);
+}
+
+bool ReevingSubsystem::isSpanSlack(const State& s, int rope, int span) const {
+    return getRopeSpec(rope).properties.tensionOnly && getSpanMaxStrain(s, rope, span) <= 0.0;
 }
 
 double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMaterial) const {

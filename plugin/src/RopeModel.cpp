@@ -22,7 +22,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     for (const auto& sp : spans_) {
         const RopeProperties& p = sp.properties();
         if (p.massPerLength != p0.massPerLength || p.axialStiffness != p0.axialStiffness ||
-            p.bendingStiffness != p0.bendingStiffness)
+            p.bendingStiffness != p0.bendingStiffness || p.tensionOnly != p0.tensionOnly)
             throw std::invalid_argument("RopeModel: all spans of a rope must have the same RopeProperties");
     }
     const int N = numSpans();

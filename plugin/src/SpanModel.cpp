@@ -66,6 +66,14 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     if (options_.quadraturePoints < 0 || options_.quadraturePoints > 200)
         throwInvalid("SpanModel", "SpanOptions::quadraturePoints", options_.quadraturePoints,
                      "is outside 0..200 (0 = automatic)");
+    if (options_.axialDynamics == AxialDynamics::QuasiStatic && options_.axialModes > 0 && properties_.tensionOnly)
+        throw std::invalid_argument(
+            "SpanModel: SpanOptions::axialDynamics = QuasiStatic with axial modes requires the linear axial law "
+            "(RopeProperties::tensionOnly = false): a slack span has no axial stiffness to condense against");
+    if (properties_.tensionOnly && options_.elasticModel == ElasticEnergyModel::PaperLiteral)
+        throw std::invalid_argument(
+            "SpanModel: RopeProperties::tensionOnly requires elasticModel = Consistent (PaperLiteral's string "
+            "energy is linear in the strain: clamped at zero it would not be differentiable)");
     if (options_.axialDynamics == AxialDynamics::QuasiStatic &&
         options_.elasticModel == ElasticEnergyModel::PaperLiteral)
         throw std::invalid_argument(
@@ -180,6 +188,7 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const bool literal = options_.elasticModel == ElasticEnergyModel::PaperLiteral;
     const double rhoA = properties_.massPerLength, EA = properties_.axialStiffness;
     const double EI = properties_.bendingStiffness;
+    const bool tensionOnly = properties_.tensionOnly;
 
     const Vec r1 = q.template segment<Dim>(0), r2 = q.template segment<Dim>(Dim);
     const Vec r1d = qdot.template segment<Dim>(0), r2d = qdot.template segment<Dim>(Dim);
@@ -290,7 +299,8 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         Mat Wp;  // d(A u')/de
         for (int m = 0; m < Dim; ++m) Wp.col(m) = F.dA[m] * up;
         const double t2 = t.squaredNorm();
-        const double eps = 0.5 * (t2 / (l * l) - 1.0);
+        // Tension-only law: a slack point (eps <= 0) stores no energy and feels no axial force.
+        const double eps = tensionOnly && t2 <= l * l ? 0.0 : 0.5 * (t2 / (l * l) - 1.0);
         d.axialEnergy += 0.5 * EA * l * w * eps * eps;
         // d eps/dr2 = (I + W')^T t / l^2, d eps/dq_m = S'^T A^T t / l^2, d eps/dl = -|t|^2 / l^3
         const Vec deps_de = (t + Wp.transpose() * t) / (l * l);
@@ -375,6 +385,22 @@ double SpanModel<Dim>::strain(const Eigen::Ref<const Eigen::VectorXd>& q, double
     const Vec up = modesToLocal<Dim>(row, q.segment(2 * Dim, numModal_), options_.axialModes, options_.transverseModes);
     const double l = q[s2Index()] - q[s1Index()];
     return 0.5 * ((e + F.A * up).squaredNorm() / (l * l) - 1.0);
+}
+
+template <int Dim>
+double SpanModel<Dim>::maxStrain(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+    checkState(q, "q");
+    const double l = q[s2Index()] - q[s1Index()];
+    double m = std::max(strain(q, q[s1Index()]), strain(q, q[s2Index()]));
+    const Vec e = q.template segment<Dim>(Dim) - q.template segment<Dim>(0);
+    ChordFrame<Dim> F;
+    computeChordFrame<Dim>(e, Vec::Zero(), referenceFrame_, F);
+    const auto qm = q.segment(2 * Dim, numModal_);
+    for (int k = 0; k < strainTable_.xi.size(); ++k) {
+        const Vec up = modesToLocal<Dim>(strainTable_.dsin.row(k), qm, options_.axialModes, options_.transverseModes);
+        m = std::max(m, 0.5 * ((e + F.A * up).squaredNorm() / (l * l) - 1.0));
+    }
+    return m;
 }
 
 template <int Dim>

@@ -98,7 +98,8 @@ public:
     void setModalRates(SimTK::State& state, int rope, const SimTK::Vector& qdot) const;
 
     // ---- queries (Stage::Position unless said otherwise) ------------------------------------
-    /// Axial force P = EA eps at material point s of a span [N].
+    /// Axial force P = EA eps at material point s of a span [N] (EA max(eps, 0) for a tension-only
+    /// rope, RopeProperties::tensionOnly).
     /// For spans with AxialDynamics::QuasiStatic, at Stage::Dynamics or later the strain includes the
     /// mode-acceleration correction (the quasi-static response to the rope's inertial load, see
     /// RopeModel::recoverInertialStrain; the point is taken at the same relative position of the
@@ -108,6 +109,15 @@ public:
     /// Physical tension T = EA eps |dr/ds| at material point s of a span [N] (see SpanModel::tension).
     /// @throws std::invalid_argument if rope, span or s is out of range.
     double getTension(const SimTK::State& state, int rope, int span, double s) const;
+    /// Largest Green strain of a span [-] (SpanModel::maxStrain: both ends and the strain
+    /// quadrature points), from the position-level span coordinates.
+    /// @throws std::invalid_argument if rope or span is out of range.
+    double getSpanMaxStrain(const SimTK::State& state, int rope, int span) const;
+    /// true if the rope is tension-only (RopeProperties::tensionOnly) and the span is slack
+    /// everywhere: getSpanMaxStrain <= 0, so the span carries no axial force. SlackMonitor records
+    /// when spans go slack and taut during a simulation.
+    /// @throws std::invalid_argument if rope or span is out of range.
+    bool isSpanSlack(const SimTK::State& state, int rope, int span) const;
     /// Force the rope exerts on the body at node k, in Ground [N] (Stage::Dynamics): the reaction
     /// of the coupled solve, F_k = h_k - sum_b S_kb a_b, with S, h the rope reduced to its nodes
     /// (the modal and sheave coordinates eliminated) and a_b the node accelerations (zero on Ground).

@@ -239,18 +239,23 @@ public:
     /// Green strain eps(s) = 1/2 (|dr/ds|^2 - 1) at material point s in [s1, s2] [-].
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double strain(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
-    /// Axial force P(s) = EA eps(s) [N] (eq 21).
+    /// Axial force P(s) = EA eps(s) [N] (eq 21); EA max(eps(s), 0) under RopeProperties::tensionOnly.
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double axialForce(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
-        return properties_.axialStiffness * strain(q, s);
+        return SimbodyReeving::axialForce(properties_, strain(q, s));
     }
+    /// Largest Green strain over the span [-]: the maximum over both ends and the strain quadrature
+    /// points (the points where the strain energy is evaluated). Under RopeProperties::tensionOnly
+    /// the span is slack (carries no axial force anywhere the energy sees) when this is <= 0.
+    /// @throws std::invalid_argument for bad q (as evaluate).
+    double maxStrain(const Eigen::Ref<const Eigen::VectorXd>& q) const;
     /// Physical tension T(s) = EA eps |dr/ds| [N]: the magnitude of the internal force vector
     /// EA eps dr/ds that balances the loads (a hanging rope has T = weight below). It exceeds the
     /// paper's axial force P = EA eps by the stretch factor |dr/ds| = sqrt(1 + 2 eps).
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double tension(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
         const double eps = strain(q, s);
-        return properties_.axialStiffness * eps * std::sqrt(1.0 + 2.0 * eps);
+        return SimbodyReeving::axialForce(properties_, eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
     }
 
     /// Strain at a span end, its gradient d eps/dq, its rate and its acceleration bias (exact,
