@@ -43,7 +43,7 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
     rope.start = {matter_->Ground(), Vec3(0)};
     rope.sheaves = {{matter_->Ground(), Vec3(p.a, 0, 0), p.r}};
     rope.end = {*payload_, Vec3(0, p.d, 0)};
-    rope.properties = {p.rhoA, p.EA, p.EI};
+    rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     rope.unstretchedLength = p.a + p.L;
     rope.spanDefaults = spans;
     rope.planeNormal = planarRope ? Vec3(0, 0, 1) : Vec3(0);
