@@ -103,7 +103,16 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     r.rows.push_back(observe(scene, ts.getState()));
     const int reports = static_cast<int>(std::floor(o.tEnd / o.reportInterval + 1e-9));
     for (int n = 1; n <= reports; ++n) {
-        ts.stepTo(n * o.reportInterval);
+        try {
+            ts.stepTo(n * o.reportInterval);
+        } catch (const std::exception& e) {
+            // Simbody's integrators drop the cause of a failed step; the rope keeps the last one.
+            const std::string& cause = scene.reeving().getLastEvaluationFailure();
+            const std::string what = e.what();
+            throw std::runtime_error(what + (cause.empty() || what.find(cause) != std::string::npos
+                                                 ? ""
+                                                 : "\n  last rope evaluation failure: " + cause));
+        }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st));
         if (viz) viz->report(st);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -251,12 +252,30 @@ public:
             c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
         }
         modal(getZ(s), r, false, c.modalCoordinates);
-        if (r.planar) {
-            c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
-            r.planarModel->solveDependentCoordinates(c.nodes2, c.modalCoordinates, c.planar);
-        } else {
-            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
+        // A failure here is usually a trial state of an integrator step (an extrapolation too far):
+        // Simbody's integrators catch the exception, reject the step and retry with a smaller one
+        // (see recordEvaluationFailure). The message names the rope and the time; the last one is
+        // kept for ReevingSubsystem::getLastEvaluationFailure.
+        try {
+            if (r.planar) {
+                c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
+                r.planarModel->solveDependentCoordinates(c.nodes2, c.modalCoordinates, c.planar);
+            } else {
+                spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
+            }
+        } catch (const std::exception& e) {
+            failEvaluation(s, r, e);
         }
+    }
+
+    /// Records an evaluation failure of rope r and rethrows it as std::runtime_error naming the
+    /// rope and the time.
+    [[noreturn]] void failEvaluation(const State& s, const RopeRecord& r, const std::exception& e) const {
+        std::ostringstream msg;
+        msg << "ReevingSubsystem: rope '" << r.spec.name << "' at t = " << std::setprecision(17) << s.getTime()
+            << " s: " << e.what();
+        recordEvaluationFailure(msg.str());
+        throw std::runtime_error(msg.str());
     }
 
     void updateVelocityPart(const State& s, const RopeRecord& r, RopeCache& c) const {
@@ -266,12 +285,17 @@ public:
             c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
         }
         modal(getZ(s), r, true, c.modalRates);
-        if (r.planar) {
-            c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
-            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.modalCoordinates, c.modalRates, c.planar);
-        } else {
-            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.modalCoordinates, c.modalRates,
-                                                      c.spatial);
+        try {
+            if (r.planar) {
+                c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
+                r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.modalCoordinates, c.modalRates,
+                                               c.planar);
+            } else {
+                spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.modalCoordinates,
+                                                          c.modalRates, c.spatial);
+            }
+        } catch (const std::exception& e) {
+            failEvaluation(s, r, e);
         }
     }
 
@@ -516,12 +540,24 @@ public:
         return out;
     }
 
+    /// Evaluation failures (a rope's dependent coordinates not found at a trial state): how many,
+    /// and the message of the last one. Integrators usually recover from them (smaller step).
+    void recordEvaluationFailure(const std::string& message) const {
+        lastEvaluationFailure_ = message;
+        ++numEvaluationFailures_;
+    }
+    int numEvaluationFailures() const { return numEvaluationFailures_; }
+    const std::string& lastEvaluationFailure() const { return lastEvaluationFailure_; }
+
 private:
     Vec3 gravity_;
     // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order.
     std::vector<MobileNode> mobileNodes_;
     Array_<SimTK::MobilizedBodyIndex> mobileBodies_;
     Array_<Vec3> mobileStations_;
+    mutable std::string lastEvaluationFailure_;
+    mutable int numEvaluationFailures_ = 0;
+
     mutable CacheEntryIndex positionCache_;
     mutable const MultibodySystem* system_ = nullptr;
     mutable const SimbodyMatterSubsystem* matter_ = nullptr;
@@ -685,6 +721,9 @@ double ReevingSubsystem::getTension(const State& s, int rope, int span, double s
     const double eps = strainAt(s, rope, span, sMaterial);
     return axialForce(r.spec.properties, eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
 }
+
+int ReevingSubsystem::getNumEvaluationFailures() const { return getGuts().numEvaluationFailures(); }
+const std::string& ReevingSubsystem::getLastEvaluationFailure() const { return getGuts().lastEvaluationFailure(); }
 
 double ReevingSubsystem::getSpanMaxStrain(const State& s, int rope, int span) const {
     const Guts& g = getGuts();

@@ -263,11 +263,29 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         data.condensedAmplitudes += alpha * step.head(nqc);
         data.multipliers += alpha * step.tail(numMultipliers_);
     }
+    // Name the equation with the largest residual: rows [condensed amplitudes | tension equality
+    // at sheaves 1..N-1 | (QuasiStatic) stationarity in s at sheaves 1..N-1].
+    Eigen::Index worst = 0;
+    C.cwiseAbs().maxCoeff(&worst);
+    const int row = static_cast<int>(worst);
+    std::ostringstream where;
+    if (row < nqc) {
+        int span = 0;
+        for (int j = 0; j < N; ++j)
+            if (condensedOffset_[j] >= 0 && row >= condensedOffset_[j] && row < condensedOffset_[j] + spans_[j].axialModes())
+                span = j;
+        where << "span " << span << " (quasi-static axial amplitudes)";
+    } else if (row < nqc + (N - 1)) {
+        where << "sheave node " << row - nqc + 1 << " (tension equality of spans " << row - nqc << " and "
+              << row - nqc + 1 << ")";
+    } else {
+        where << "sheave node " << row - nqc - (N - 1) + 1 << " (stationarity in its material coordinate)";
+    }
     std::ostringstream msg;
     msg << "RopeModel: the dependent coordinates (sheave tension equality"
         << (nqc > 0 ? ", quasi-static axial modes" : "") << ") did not converge in 50 Newton iterations "
-        << "(max residual " << C.cwiseAbs().maxCoeff()
-        << " in strain units); the rope may be slack or the configuration infeasible";
+        << "(max residual " << C.cwiseAbs().maxCoeff() << " in strain units, at " << where.str()
+        << "); the configuration may be infeasible (a span shorter than its chord allows, nodes crossing)";
     throw std::runtime_error(msg.str());
 }
 

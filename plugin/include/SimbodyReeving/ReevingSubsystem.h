@@ -147,6 +147,17 @@ public:
     /// energy (this one's included) + rope kinetic energy [J] (Stage::Velocity).
     double calcMechanicalEnergy(const SimTK::State& state) const;
 
+    /// Evaluation failures since construction: realizations at which a rope's dependent coordinates
+    /// (sheave material coordinates, quasi-static axial amplitudes) could not be solved, each thrown
+    /// as std::runtime_error naming the rope, the time and the equation (sheave or span). They
+    /// happen at integrator trial states that extrapolate too far; Simbody 3.7's integrators catch
+    /// the exception, reject the step and retry with a smaller one, so most never end a run. When
+    /// one does, the integrator's own message may not carry the cause (CPodes: "CPodes::step()
+    /// returned an error"): getLastEvaluationFailure has it.
+    int getNumEvaluationFailures() const;
+    /// The message of the last evaluation failure ("" if none).
+    const std::string& getLastEvaluationFailure() const;
+
     /// Moves `state` to static equilibrium of bodies and ropes together (velocities and modal
     /// rates set to zero): Newton's method on the accelerations, until the generalized force
     /// residual is <= relativeTolerance times the largest applied generalized force.
