@@ -2,6 +2,7 @@
 // integrator name, and bad input (exit 2, output folder untouched).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -162,4 +163,39 @@ TEST(PendulumDemo, BadInputExitsTwoAndWritesNothing) {
         EXPECT_NE(msg.find("--help"), std::string::npos) << msg;
         EXPECT_FALSE(fs::exists(out)) << args;
     }
+}
+
+// Hostile output locations (issue 14): an existing file, a path under a file, a place no one may
+// create in. Exit 2 with one clear line, before anything is simulated, nothing written.
+TEST(PendulumDemo, UnusableOutputFolderExitsTwoWithOneClearLine) {
+    const fs::path file = scratch("out_is_a_file");
+    { std::ofstream(file) << "keep me\n"; }
+    const std::vector<std::string> outs = {file.string(), (file / "sub").string(), "/proc/reeving-pendulum-test"};
+    for (const std::string& out : outs) {
+        const std::string log = scratch("out_log").string();
+        EXPECT_EQ(run("--axial-modes 0 --t-end 0.1 --no-plots --out '" + out + "'", log), 2) << out;
+        const std::string msg = slurp(log);
+        EXPECT_NE(msg.find("--out '" + out + "': cannot create the output folder"), std::string::npos) << msg;
+        EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
+    }
+    EXPECT_EQ(slurp(file), "keep me\n");
+    fs::remove(file);
+}
+
+// SIGINT during the run: the cases stop at their next report, the program says so and exits 130,
+// and no output file is written (none half-written, none passed off as complete).
+TEST(PendulumDemo, InterruptedRunWritesNothingAndExitsNonZero) {
+    const fs::path out = scratch("interrupted");
+    const std::string log = out.string() + ".log";
+    const std::string cmd = "timeout --preserve-status -s INT 2 '" + kExe +
+                            "' --axial-modes 1,3 --axial-dynamics dynamic --t-end 1000 --no-plots --quiet --out '" +
+                            out.string() + "' > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << slurp(log);
+    const std::string msg = slurp(log);
+    EXPECT_NE(msg.find("reeving-pendulum: interrupted at t = "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no outputs written"), std::string::npos) << msg;
+    ASSERT_TRUE(fs::is_directory(out));
+    EXPECT_TRUE(fs::is_empty(out)) << "files left in " << out;
 }

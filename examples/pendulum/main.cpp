@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +29,45 @@ using namespace pendulum_demo;
 using namespace SimbodyReeving;
 
 namespace {
+
+/// Set by SIGINT/SIGTERM; the cases check it at every report and stop.
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+/// Thrown by a case that saw gInterrupted.
+struct Interrupted : std::runtime_error {
+    explicit Interrupted(double t) : std::runtime_error("interrupted"), time(t) {}
+    double time;
+};
+
+/// Writes `path` through `path.partial`, renamed into place only by commit(): an interrupted or
+/// failed write leaves no half-written file under the real name.
+class OutputFile {
+public:
+    explicit OutputFile(fs::path path) : path_(std::move(path)), partial_(path_.string() + ".partial"), out_(partial_) {
+        if (!out_) throw std::runtime_error("cannot write " + partial_.string());
+    }
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+    ~OutputFile() {
+        if (committed_) return;
+        out_.close();
+        std::error_code ec;
+        fs::remove(partial_, ec);
+    }
+    std::ofstream& stream() { return out_; }
+    void commit() {
+        out_.close();
+        if (!out_) throw std::runtime_error("cannot write " + partial_.string() + " (disk full?)");
+        fs::rename(partial_, path_);
+        committed_ = true;
+    }
+
+private:
+    fs::path path_, partial_;
+    std::ofstream out_;
+    bool committed_ = false;
+};
 
 struct Row {
     double t, x, y, theta, tensionPayload, tensionSheave, sSheave, energy, constraintError;
@@ -103,6 +143,7 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     r.rows.push_back(observe(scene, ts.getState()));
     const int reports = static_cast<int>(std::floor(o.tEnd / o.reportInterval + 1e-9));
     for (int n = 1; n <= reports; ++n) {
+        if (gInterrupted) throw Interrupted(ts.getState().getTime());
         try {
             ts.stepTo(n * o.reportInterval);
         } catch (const std::exception& e) {
@@ -138,16 +179,17 @@ std::string jsonNumber(double v) {
 
 void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
     fs::create_directories(dir);
-    std::ofstream ts(dir / "timeseries.csv");
+    OutputFile tsFile(dir / "timeseries.csv"), stFile(dir / "static_axial_force.csv"), jsFile(dir / "summary.json");
+    std::ofstream& ts = tsFile.stream();
     ts << "t,x,y,theta,tension_payload,tension_sheave,s_sheave,energy,constraint_error\n" << std::setprecision(12);
     for (const Row& w : r.rows)
         ts << w.t << ',' << w.x << ',' << w.y << ',' << w.theta << ',' << w.tensionPayload << ',' << w.tensionSheave
            << ',' << w.sSheave << ',' << w.energy << ',' << w.constraintError << '\n';
-    std::ofstream st(dir / "static_axial_force.csv");
+    std::ofstream& st = stFile.stream();
     st << "span,s,axial_force\n" << std::setprecision(12);
     for (const StaticRow& w : r.staticRows) st << w.span << ',' << w.s << ',' << w.axialForce << '\n';
     const auto& p = o.parameters;
-    std::ofstream js(dir / "summary.json");
+    std::ofstream& js = jsFile.stream();
     js << "{\n"
        << "  \"integrator\": \"" << o.integrator << "\",\n"
        << "  \"accuracy\": " << jsonNumber(o.accuracy) << ",\n"
@@ -169,11 +211,15 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
        << ", \"rhoA\": " << jsonNumber(p.rhoA) << ", \"EA\": " << jsonNumber(p.EA) << ", \"EI\": " << jsonNumber(p.EI)
        << ", \"M\": " << jsonNumber(p.M) << ", \"J\": " << jsonNumber(p.J) << "}\n"
        << "}\n";
+    tsFile.commit();
+    stFile.commit();
+    jsFile.commit();  // last: a summary.json means the case's outputs are complete
 }
 
 // One CSV with every case side by side (same report times), for the comparison figures.
 void writeComparison(const fs::path& dir, const std::vector<CaseResult>& cases) {
-    std::ofstream c(dir / "comparison.csv");
+    OutputFile file(dir / "comparison.csv");
+    std::ofstream& c = file.stream();
     c << "t";
     for (const auto& r : cases) c << ",x_" << r.axialModes << ",tension_payload_" << r.axialModes;
     c << '\n' << std::setprecision(12);
@@ -182,6 +228,7 @@ void writeComparison(const fs::path& dir, const std::vector<CaseResult>& cases) 
         for (const auto& r : cases) c << ',' << r.rows[k].x << ',' << r.rows[k].tensionPayload;
         c << '\n';
     }
+    file.commit();
 }
 
 bool makePlots(const fs::path& dir, const std::vector<CaseResult>& cases, bool single, const Options& o) {
@@ -260,6 +307,27 @@ int main(int argc, char** argv) {
         std::cout << usage();
         return 0;
     }
+    // The output folder must exist or be creatable, and be writable, before anything is simulated.
+    {
+        const fs::path out(o.outDir);
+        std::error_code ec;
+        fs::create_directories(out, ec);
+        if (ec || !fs::is_directory(out)) {
+            std::cerr << "reeving-pendulum: --out '" << o.outDir << "': cannot create the output folder"
+                      << (ec ? ": " + ec.message() : std::string(": it is not a folder")) << "\n";
+            return 2;
+        }
+        const fs::path probe = out / ".reeving-pendulum-write-test";
+        const bool writable = static_cast<bool>(std::ofstream(probe));
+        fs::remove(probe, ec);
+        if (!writable) {
+            std::cerr << "reeving-pendulum: --out '" << o.outDir << "': the output folder is not writable\n";
+            return 2;
+        }
+    }
+    // SIGINT / SIGTERM stop the cases at their next report; nothing is written then.
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
     const bool visualize = o.visualize;
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::atomic<double>> progress(o.axialModes.size());
@@ -310,16 +378,28 @@ int main(int argc, char** argv) {
             }
         }
         if (printed) std::cerr << "\n";
+    } catch (const Interrupted& e) {
+        std::cerr << "\nreeving-pendulum: interrupted at t = " << e.time << " s; no outputs written\n";
+        return 130;
     } catch (const std::exception& e) {
         std::cerr << "reeving-pendulum: simulation failed: " << e.what() << "\n";
         return 1;
     }
+    if (gInterrupted) {
+        std::cerr << "reeving-pendulum: interrupted after the simulation; no outputs written\n";
+        return 130;
+    }
 
     const fs::path out(o.outDir);
     const bool single = cases.size() == 1;
-    for (const CaseResult& r : cases)
-        writeCase(single ? out : out / ("modes-" + std::to_string(r.axialModes)), o, r);
-    if (!single) writeComparison(out, cases);
+    try {
+        for (const CaseResult& r : cases)
+            writeCase(single ? out : out / ("modes-" + std::to_string(r.axialModes)), o, r);
+        if (!single) writeComparison(out, cases);
+    } catch (const std::exception& e) {
+        std::cerr << "reeving-pendulum: writing the outputs failed: " << e.what() << "\n";
+        return 1;
+    }
     if (o.plots) makePlots(out, cases, single, o);
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
