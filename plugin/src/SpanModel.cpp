@@ -357,6 +357,13 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     addLocalToModes<Dim>(sinMean_, Vec(A.transpose() * gravity_), rhoA * l, na, nt, Qg.segment(iM, nm));
     Qg[iS1] = -rhoA * gr;
     Qg[iS2] = rhoA * gr;
+
+    // Finite inputs can still overflow (e.g. EA = 1e300 with a large strain): never return inf/NaN.
+    if (!(std::isfinite(d.kineticEnergy + d.axialEnergy + d.bendingEnergy + d.stringEnergy + d.gravityEnergy) &&
+          d.massMatrix.allFinite() && d.velocityForces.allFinite() && d.elasticForces.allFinite() &&
+          d.gravityForces.allFinite()))
+        throw std::domain_error("SpanModel::evaluate: the result overflowed (non-finite energy, mass matrix or "
+                                "forces) for finite inputs; the state or the rope parameters are out of range");
 }
 
 template <int Dim>

@@ -228,7 +228,8 @@ public:
     /// Evaluates M, Q_v, Q_elastic, Q_gravity and all energies at (q, qdot).
     /// @throws std::invalid_argument if q or qdot has the wrong size or a non-finite entry, if
     ///         s2 <= s1 (span length l = s2 - s1 must be > 0), or if the end nodes coincide.
-    /// @throws std::domain_error (Dim = 3) if the chord is reversed against the reference frame.
+    /// @throws std::domain_error (Dim = 3) if the chord is reversed against the reference frame, or
+    ///         if the result overflows (non-finite) although the inputs are finite.
     void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
                   Data& data) const;
 
