@@ -282,3 +282,43 @@ std::string runName(const ::testing::TestParamInfo<StressRun>& info) {
 INSTANTIATE_TEST_SUITE_P(Pendulum, StressSuite, ::testing::ValuesIn(allRuns()), runName);
 
 }  // namespace
+
+// One hour of simulated time (issue 14): the conservative pendulum, n_a = 1 (quasi-static axial
+// mode, the demo default; the Dynamic model would need about 5 M steps), RK-Merson at 1e-8.
+// Energy drift and sheave residual stay bounded; both are printed every simulated 6 minutes so
+// their growth can be read (bench/STRESS.md).
+TEST(LongRun, OneHourConservativePendulum) {
+    SpanOptions o;
+    o.axialModes = 1;
+    o.transverseModes = 1;
+    o.axialDynamics = AxialDynamics::QuasiStatic;
+    const PendulumScene scene(PendulumParameters{}, o);
+    const ReevingSubsystem& rv = scene.reeving();
+    const State s0 = scene.makeInitialState(1.0, 0.0);
+    scene.system().realize(s0, Stage::Velocity);
+    const double e0 = rv.calcMechanicalEnergy(s0);
+    const double ke0 = scene.system().calcKineticEnergy(s0) + rv.calcRopeKineticEnergy(s0);
+    const double weight = (PendulumParameters{}.M) * PendulumParameters{}.g;
+    auto integ = makeIntegrator("rk-merson", scene.system());
+    integ->setAccuracy(1e-8);
+    SimTK::TimeStepper ts(scene.system(), *integ);
+    ts.initialize(s0);
+    double drift = 0, residual = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 1; k <= 360; ++k) {  // reports every 10 s
+        ts.stepTo(10.0 * k);
+        const State& s = integ->getState();
+        scene.system().realize(s, Stage::Velocity);
+        const double e = rv.calcMechanicalEnergy(s);
+        ASSERT_TRUE(std::isfinite(e)) << "t = " << s.getTime();
+        drift = std::max(drift, std::abs(e - e0));
+        residual = std::max(residual, rv.getMaxConstraintError(s));
+        if (k % 36 == 0)
+            std::printf("[ long ] t = %6.0f s  max drift / KE0 %.3e  max sheave residual / weight %.3e  steps %d  "
+                        "wall %.0f s\n",
+                        s.getTime(), drift / ke0, residual / weight, integ->getNumStepsTaken(),
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    EXPECT_LT(drift, 1e-5 * ke0);
+    EXPECT_LT(residual, 1e-9 * weight);
+}
