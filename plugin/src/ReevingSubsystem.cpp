@@ -252,10 +252,15 @@ public:
             c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
         }
         modal(getZ(s), r, false, c.modalCoordinates);
-        // A failure here is usually a trial state of an integrator step (an extrapolation too far):
-        // Simbody's integrators catch the exception, reject the step and retry with a smaller one
-        // (see recordEvaluationFailure). The message names the rope and the time; the last one is
-        // kept for ReevingSubsystem::getLastEvaluationFailure.
+        // A failure here is usually a trial state of an integrator step (an extrapolation too far).
+        // What Simbody 3.7 does with the exception (its sources, confirmed in
+        // tests/test_step_failures.cpp): the Runge-Kutta family (AbstractIntegratorRep::
+        // attemptDAEStep) catches it, rejects the step and retries at 0.1 h, with no retry limit
+        // (counted as a convergence-test failure); CPodes receives a recoverable right-hand-side
+        // error and retries at 0.25 h, at most 10 times per step; a fixed-step integrator, the
+        // realization of an accepted or interpolated state, and (RK) the realization inside a
+        // constraint projection cannot retry and end the run. Every final message drops the cause,
+        // so it is recorded here (getLastEvaluationFailure) with the rope, the time and the equation.
         try {
             if (r.planar) {
                 c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
