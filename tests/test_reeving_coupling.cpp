@@ -6,6 +6,7 @@
 //     is held to the hook by a SimTK::Constraint::Ball, so the coupled solve goes through
 //     calcAcceleration's constraint handling.
 // Rope: Table 1 properties, one axial and one transverse mode per span, planar (normal z).
+#include "SimbodyReeving/InterpolatingTimeStepper.h"
 #include "SimbodyReeving/ReevingSubsystem.h"
 
 #include <gtest/gtest.h>
@@ -64,6 +65,9 @@ bool allFinite(const SimTK::Vector& v) {
 
 /// Integrates `initial` for kRunTime, checking energy, sheave constraint and finiteness at every report.
 /// `swinging` is a body whose horizontal excursion is recorded, to show the scene really moves.
+/// The QuasiStatic variants step with SimbodyReeving::InterpolatingTimeStepper (interpolated,
+/// projected reports), the Dynamic ones with SimTK::TimeStepper.
+template <class Stepper>
 void runConservative(const char* name, const World& w, const State& initial, const MobilizedBody& swinging) {
     State s = initial;
     w.system.realize(s, Stage::Velocity);
@@ -74,7 +78,7 @@ void runConservative(const char* name, const World& w, const State& initial, con
 
     SimTK::RungeKuttaMersonIntegrator integ(w.system);
     integ.setAccuracy(kAccuracy);
-    SimTK::TimeStepper ts(w.system, integ);
+    Stepper ts(w.system, integ);
     ts.initialize(s);
 
     double maxDrift = 0, maxConstraint = w.reeving.getMaxConstraintError(s), maxSimbodyConstraint = 0;
@@ -84,7 +88,7 @@ void runConservative(const char* name, const World& w, const State& initial, con
     const int reports = static_cast<int>(std::lround(kRunTime / kReportInterval));
     for (int k = 1; k <= reports; ++k) {
         ts.stepTo(k * kReportInterval);
-        const State& st = integ.getState();
+        const State& st = ts.getState();
         w.system.realize(st, Stage::Velocity);
         const double t = st.getTime();
         ASSERT_TRUE(allFinite(st.getQ()) && allFinite(st.getU()) && allFinite(st.getZ())) << name << " t = " << t;
@@ -142,7 +146,10 @@ void movingSheave(SimbodyReeving::AxialDynamics axial, const char* name) {
     ASSERT_LE(residual, 1e-10);
     // Horizontal push; the pinned payload follows its parent (pin rate stays 0).
     block.setUToFitLinearVelocity(s, Vec3(0.5, 0, 0));
-    runConservative(name, w, s, block);
+    if (axial == SimbodyReeving::AxialDynamics::QuasiStatic)
+        runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, block);
+    else
+        runConservative<SimTK::TimeStepper>(name, w, s, block);
 }
 
 // Scene 2: the pendulum of the paper (rope from the Ground origin over a Ground sheave at (3, 0, 0),
@@ -185,7 +192,10 @@ void payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics axial, const c
     payload.setUToFitLinearVelocity(s, Vec3(1, 0, 0));
     w.system.realize(s, Stage::Velocity);
     w.system.project(s);
-    runConservative(name, w, s, payload);
+    if (axial == SimbodyReeving::AxialDynamics::QuasiStatic)
+        runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, payload);
+    else
+        runConservative<SimTK::TimeStepper>(name, w, s, payload);
 }
 
 }  // namespace
