@@ -10,8 +10,9 @@
 namespace SimbodyReeving {
 
 template <int Dim>
-RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength)
-    : spans_(std::move(spans)), length_(unstretchedLength) {
+RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength,
+                          std::vector<MaterialNode> nodeKinds)
+    : spans_(std::move(spans)), nodeKind_(std::move(nodeKinds)), length_(unstretchedLength) {
     if (spans_.empty()) throw std::invalid_argument("RopeModel: a rope needs at least one span (got 0)");
     if (!std::isfinite(length_) || !(length_ > 0)) {
         std::ostringstream msg;
@@ -26,6 +27,32 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             throw std::invalid_argument("RopeModel: all spans of a rope must have the same RopeProperties");
     }
     const int N = numSpans();
+    if (nodeKind_.empty()) {
+        nodeKind_.assign(N + 1, MaterialNode::Sliding);
+        nodeKind_.front() = nodeKind_.back() = MaterialNode::Fixed;
+    }
+    if (static_cast<int>(nodeKind_.size()) != N + 1) {
+        std::ostringstream msg;
+        msg << "RopeModel: " << nodeKind_.size() << " node kinds given for " << N + 1 << " nodes";
+        throw std::invalid_argument(msg.str());
+    }
+    slidingIndex_.assign(N + 1, -1);
+    drivenIndex_.assign(N + 1, -1);
+    for (int k = 0; k <= N; ++k) {
+        const bool end = k == 0 || k == N;
+        if (end && nodeKind_[k] == MaterialNode::Sliding)
+            throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
+                                        " cannot be Sliding (a sheave needs a span on both sides)");
+        if (!end && nodeKind_[k] == MaterialNode::Fixed)
+            throw std::invalid_argument("RopeModel: interior node " + std::to_string(k) +
+                                        " cannot be Fixed (a rope fastened mid-path is two ropes)");
+        if (nodeKind_[k] == MaterialNode::Sliding) {
+            slidingIndex_[k] = numSliding_++;
+            slidingNode_.push_back(k);
+        } else if (nodeKind_[k] == MaterialNode::Driven) {
+            drivenIndex_[k] = numDriven_++;
+        }
+    }
     condensedOffset_.assign(N, -1);
     for (int j = 0; j < N; ++j) {
         const SpanModel<Dim>& sp = spans_[j];
@@ -39,15 +66,21 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         }
     }
     if (numCondensed_ > 0) {
-        numMultipliers_ = N - 1;
+        numMultipliers_ = numSliding_;
         for (int j = 0; j < N; ++j) kernels_.emplace_back(spans_[j]);  // throws for PaperLiteral spans
     }
-    // z = [r_0..r_N | q_free | q_condensed | s_1..s_{N-1} | nu_1..nu_{N-1} | s_0 | s_N]
-    const int nn = Dim * (N + 1), nw = nn + numModal_, nd = numDependent();
+    // z = [r_0..r_N, s_driven | q_free | q_condensed, s_sliding, nu | s_fixed]
+    const int nn = Dim * (N + 1), nx = nn + numDriven_, nw = nx + numModal_, nd = numDependent();
+    std::vector<int> fixedIndex(N + 1, -1);
+    for (int k = 0, f = 0; k <= N; ++k)
+        if (nodeKind_[k] == MaterialNode::Fixed) fixedIndex[k] = f++;
     auto materialIndex = [&](int node) {
-        if (node == 0) return nw + nd;
-        if (node == N) return nw + nd + 1;
-        return nw + numCondensed_ + node - 1;
+        switch (nodeKind_[node]) {
+            case MaterialNode::Driven: return nn + drivenIndex_[node];
+            case MaterialNode::Sliding: return nw + numCondensed_ + slidingIndex_[node];
+            case MaterialNode::Fixed: break;
+        }
+        return nw + nd + fixedIndex[node];
     };
     for (int j = 0; j < N; ++j) {
         const auto& sp = spans_[j];
@@ -59,9 +92,9 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         const int na = sp.axialModes();
         for (int i = 0; i < sp.numModalCoordinates(); ++i) {
             if (isCondensed(j))
-                map[2 * Dim + i] = i < na ? nw + condensedOffset_[j] + i : nn + modalOffset_[j] + i - na;
+                map[2 * Dim + i] = i < na ? nw + condensedOffset_[j] + i : nx + modalOffset_[j] + i - na;
             else
-                map[2 * Dim + i] = nn + modalOffset_[j] + i;
+                map[2 * Dim + i] = nx + modalOffset_[j] + i;
         }
         map[sp.s1Index()] = materialIndex(j);
         map[sp.s2Index()] = materialIndex(j + 1);
@@ -103,8 +136,8 @@ void RopeModel<Dim>::fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::V
 template <int Dim>
 void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
                                          bool withRates) const {
-    const int N = numSpans(), nw = Dim * (N + 1) + numModal_, nd = numDependent();
-    const int nqc = numCondensed_, nc = N - 1;
+    const int N = numSpans(), nw = numExternalCoordinates() + numModal_, nd = numDependent();
+    const int nqc = numCondensed_, nc = numSliding_;
     fillSpanCoordinates(nodes, qm, data);
     Eigen::VectorXd& C = data.newtonResidual;
     data.bias.setZero(nd);
@@ -132,12 +165,13 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
             spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::First, data.firstEnd[j]);
             spans_[j].endStrain(data.spanQ[j], data.spanQdot[j], SpanEnd::Second, data.secondEnd[j]);
         }
-        for (int k = 1; k < N; ++k) {
-            C[k - 1] = data.secondEnd[k - 1].strain - data.firstEnd[k].strain;
-            scatter(k - 1, k - 1, data.secondEnd[k - 1].gradient, 1.0);
-            scatter(k - 1, k, data.firstEnd[k].gradient, -1.0);
+        for (int row = 0; row < nc; ++row) {
+            const int k = slidingNode_[row];
+            C[row] = data.secondEnd[k - 1].strain - data.firstEnd[k].strain;
+            scatter(row, k - 1, data.secondEnd[k - 1].gradient, 1.0);
+            scatter(row, k, data.firstEnd[k].gradient, -1.0);
             if (withRates)
-                data.bias[k - 1] = data.secondEnd[k - 1].accelerationBias - data.firstEnd[k].accelerationBias;
+                data.bias[row] = data.secondEnd[k - 1].accelerationBias - data.firstEnd[k].accelerationBias;
         }
         return;
     }
@@ -164,18 +198,21 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         C[row] += coef * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef);
     };
-    // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too.
+    // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too. Only Sliding nodes
+    // m have a constraint C_m and a multiplier; the terms of other nodes vanish.
     auto addProduct = [&](int row, int m, int j, int quantity, double coef) {
+        if (m < 1 || m > N - 1 || slidingIndex_[m] < 0) return;
+        const int mi = slidingIndex_[m];
         const auto& K = data.condensation[j];
-        const double nu = data.multipliers[m - 1];
+        const double nu = data.multipliers[mi];
         if (withRates) {
             data.bias[row] += coef * (nu * K.accelerationBias[quantity] +
-                                      2.0 * data.multiplierRates[m - 1] * K.rate[quantity]);
+                                      2.0 * data.multiplierRates[mi] * K.rate[quantity]);
             return;
         }
         C[row] += coef * nu * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef * nu);
-        data.Cd(row, nqc + nc + m - 1) += coef * K.value[quantity];
+        data.Cd(row, nqc + nc + mi) += coef * K.value[quantity];
     };
     for (int j = 0; j < N; ++j) {
         if (!isCondensed(j)) continue;
@@ -183,46 +220,89 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         for (int i = 0; i < spans_[j].axialModes(); ++i) {
             const int row = condensedOffset_[j] + i;
             addTerm(row, j, kj.phi(i), invEA);
-            if (j >= 1) addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -1.0);
-            if (j + 1 <= N - 1) addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), 1.0);
+            addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -1.0);
+            addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), 1.0);
         }
     }
-    for (int k = 1; k < N; ++k) {
-        const int row = nqc + k - 1;
+    for (int ki = 0; ki < nc; ++ki) {
+        const int k = slidingNode_[ki], row = nqc + ki;
         addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), 1.0);
         addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -1.0);
     }
-    for (int k = 1; k < N; ++k) {
-        const int row = nqc + nc + k - 1;
+    for (int ki = 0; ki < nc; ++ki) {
+        const int k = slidingNode_[ki], row = nqc + nc + ki;
         // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
         addTerm(row, k - 1, kernels_[k - 1].lengthDerivative(), invEA);
         addTerm(row, k, kernels_[k].lengthDerivative(), -invEA);
         // sum_m nu_m dC_m/ds_k with C_m = eps2_{m-1}(l_{m-1}) - eps1_m(l_m), l_j = s_{j+1} - s_j.
         addProduct(row, k, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::Second), 1.0);
         addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), 1.0);
-        if (k + 1 <= N - 1) addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -1.0);
-        if (k - 1 >= 1) addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -1.0);
+        addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -1.0);
+        addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -1.0);
+    }
+}
+
+template <int Dim>
+void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
+                                                 RopeData<Dim>& data) const {
+    const int N = numSpans();
+    if (drivenS.size() != numDriven_) {
+        std::ostringstream msg;
+        msg << "RopeModel: " << drivenS.size() << " driven material coordinates given for " << numDriven_
+            << " Driven nodes";
+        throw std::invalid_argument(msg.str());
+    }
+    Eigen::VectorXd& s = data.materialCoordinates;
+    bool warm = s.size() == N + 1 && s.allFinite();
+    if (!warm) s.setZero(N + 1);
+    auto known = [&](int k) { return nodeKind_[k] != MaterialNode::Sliding; };
+    for (int k = 0; k <= N; ++k) {
+        if (nodeKind_[k] == MaterialNode::Fixed) s[k] = k == 0 ? 0.0 : length_;
+        if (nodeKind_[k] == MaterialNode::Driven) s[k] = drivenS[drivenIndex_[k]];
+    }
+    // Every stretch between consecutive known nodes must hold material.
+    for (int a = 0; a < N;) {
+        int b = a + 1;
+        while (!known(b)) ++b;
+        if (!(s[b] > s[a])) {
+            std::ostringstream msg;
+            msg << "RopeModel: no rope material between node " << a << " (s = " << s[a] << " m) and node " << b
+                << " (s = " << s[b] << " m): the " << (b - a == 1 ? "span " + std::to_string(a) : "spans")
+                << " between them would have a non-positive unstretched length";
+            throw std::runtime_error(msg.str());
+        }
+        a = b;
+    }
+    for (int k = 0; warm && k < N; ++k) warm = s[k + 1] > s[k];
+    if (warm) return;
+    // Chord-proportional guess for the Sliding nodes between consecutive known nodes.
+    for (int a = 0; a < N;) {
+        int b = a + 1;
+        while (!known(b)) ++b;
+        double total = 0;
+        for (int j = a; j < b; ++j) total += (nodes.col(j + 1) - nodes.col(j)).norm();
+        double acc = 0;
+        for (int j = a; j + 1 < b; ++j) {
+            acc += (nodes.col(j + 1) - nodes.col(j)).norm();
+            s[j + 1] = total > 0 ? s[a] + (s[b] - s[a]) * acc / total : s[a] + (s[b] - s[a]) * (j + 1 - a) / (b - a);
+        }
+        a = b;
     }
 }
 
 template <int Dim>
 void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                                RopeData<Dim>& data) const {
+    static const Eigen::VectorXd none;
+    solveDependentCoordinates(nodes, none, qm, data);
+}
+
+template <int Dim>
+void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
+                                               const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
     const int N = numSpans(), nqc = numCondensed_, nd = numDependent();
     Eigen::VectorXd& s = data.materialCoordinates;
-    bool admissible = s.size() == N + 1 && s[0] == 0.0 && s[N] == length_;
-    for (int k = 0; admissible && k < N; ++k) admissible = s[k + 1] > s[k];
-    if (!admissible) {
-        s.resize(N + 1);
-        double total = 0;
-        for (int j = 0; j < N; ++j) total += (nodes.col(j + 1) - nodes.col(j)).norm();
-        s[0] = 0;
-        double acc = 0;
-        for (int j = 0; j < N; ++j) {
-            acc += (nodes.col(j + 1) - nodes.col(j)).norm();
-            s[j + 1] = (j + 1 == N) ? length_ : length_ * acc / total;
-        }
-    }
+    setKnownMaterialCoordinates(nodes, drivenS, data);
     if (data.condensedAmplitudes.size() != nqc || !data.condensedAmplitudes.allFinite())
         data.condensedAmplitudes.setZero(nqc);
     if (data.multipliers.size() != numMultipliers_ || !data.multipliers.allFinite())
@@ -253,17 +333,16 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         step = data.newtonLu.solve(C);
         step *= -1.0;
         // Halve the step until the material coordinates stay ordered (every span keeps l > 0).
+        auto stepped = [&](int k, double alpha) {
+            return slidingIndex_[k] >= 0 ? s[k] + alpha * step[nqc + slidingIndex_[k]] : s[k];
+        };
         double alpha = 1.0;
         for (int halve = 0; halve < 30; ++halve, alpha *= 0.5) {
             bool ok = true;
-            for (int k = 1; k <= N && ok; ++k) {
-                const double sk = k < N ? s[k] + alpha * step[nqc + k - 1] : s[N];
-                const double prev = k - 1 >= 1 ? s[k - 1] + alpha * step[nqc + k - 2] : s[0];
-                ok = sk > prev;
-            }
+            for (int k = 1; k <= N && ok; ++k) ok = stepped(k, alpha) > stepped(k - 1, alpha);
             if (ok) break;
         }
-        for (int k = 1; k < N; ++k) s[k] += alpha * step[nqc + k - 1];
+        for (int ki = 0; ki < numSliding_; ++ki) s[slidingNode_[ki]] += alpha * step[nqc + ki];
         data.condensedAmplitudes += alpha * step.head(nqc);
         data.multipliers += alpha * step.tail(numMultipliers_);
     }
@@ -279,11 +358,12 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
             if (condensedOffset_[j] >= 0 && row >= condensedOffset_[j] && row < condensedOffset_[j] + spans_[j].axialModes())
                 span = j;
         where << "span " << span << " (quasi-static axial amplitudes)";
-    } else if (row < nqc + (N - 1)) {
-        where << "sheave node " << row - nqc + 1 << " (tension equality of spans " << row - nqc << " and "
-              << row - nqc + 1 << ")";
+    } else if (row < nqc + numSliding_) {
+        const int k = slidingNode_[row - nqc];
+        where << "sheave node " << k << " (tension equality of spans " << k - 1 << " and " << k << ")";
     } else {
-        where << "sheave node " << row - nqc - (N - 1) + 1 << " (stationarity in its material coordinate)";
+        where << "sheave node " << slidingNode_[row - nqc - numSliding_]
+              << " (stationarity in its material coordinate)";
     }
     std::ostringstream msg;
     msg << "RopeModel: the dependent coordinates (sheave tension equality"
@@ -294,12 +374,15 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
 }
 
 template <int Dim>
-bool RopeModel<Dim>::positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+bool RopeModel<Dim>::positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
                                     const RopeData<Dim>& data) const {
     const int N = numSpans();
     if (static_cast<int>(data.spanQ.size()) != N || data.materialCoordinates.size() != N + 1 ||
-        data.condensedAmplitudes.size() != numCondensed_ || data.multipliers.size() != numMultipliers_)
+        data.condensedAmplitudes.size() != numCondensed_ || data.multipliers.size() != numMultipliers_ ||
+        drivenS.size() != numDriven_)
         return false;
+    for (int k = 0; k <= N; ++k)
+        if (drivenIndex_[k] >= 0 && data.materialCoordinates[k] != drivenS[drivenIndex_[k]]) return false;
     for (int j = 0; j < N; ++j) {
         const auto& q = data.spanQ[j];
         const int nmSpan = spans_[j].numModalCoordinates();
@@ -316,20 +399,34 @@ template <int Dim>
 void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities,
                                      const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
                                      RopeData<Dim>& data) const {
-    const int N = numSpans(), nn = Dim * (N + 1), nm = numModal_, nw = nn + nm;
-    const int nqc = numCondensed_, nc = N - 1, nd = numDependent(), nz = nw + nd + 2;
+    static const Eigen::VectorXd none;
+    computeDynamics(nodes, nodeVelocities, none, none, qm, qmdot, data);
+}
+
+template <int Dim>
+void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities,
+                                     const Eigen::VectorXd& drivenS, const Eigen::VectorXd& drivenSdot,
+                                     const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
+                                     RopeData<Dim>& data) const {
+    const int N = numSpans(), nn = Dim * (N + 1), nx = nn + numDriven_, nm = numModal_, nw = nx + nm;
+    const int nqc = numCondensed_, nc = numSliding_, nd = numDependent(), nz = nw + nd + (N + 1 - nc - numDriven_);
     // solveDependentCoordinates left the span coordinates and the constraint Jacobians (velocity
     // independent) of this configuration in data; they are reused when they belong to these
     // positions, and solved afresh otherwise.
-    if (!positionsMatch(nodes, qm, data)) solveDependentCoordinates(nodes, qm, data);
+    if (!positionsMatch(nodes, drivenS, qm, data)) solveDependentCoordinates(nodes, drivenS, qm, data);
+    if (drivenSdot.size() != numDriven_)
+        throw std::invalid_argument("RopeModel::computeDynamics: drivenSdot has the wrong size");
 
-    // Independent velocities w = [rdot; qdot_m].
+    // Independent velocities w = [rdot; sdot_driven; qdot_m].
     data.w.resize(nw);
     for (int k = 0; k <= N; ++k) data.w.template segment<Dim>(Dim * k) = nodeVelocities.col(k);
+    data.w.segment(nn, numDriven_) = drivenSdot;
     data.w.tail(nm) = qmdot;
 
     data.spans.resize(N);
     data.materialRates.setZero(N + 1);
+    for (int k = 0; k <= N; ++k)
+        if (drivenIndex_[k] >= 0) data.materialRates[k] = drivenSdot[drivenIndex_[k]];
     data.condensedRates.setZero(nqc);
     data.multiplierRates.setZero(numMultipliers_);
     auto fillSpanVelocities = [&] {
@@ -353,14 +450,14 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     };
     data.spanQdot.resize(N);
     // Velocity transformation zdot = G w, zddot = G wdot + c: G is the identity on w, zero for the
-    // fixed s_0 and s_N, and Gd = -C_d^-1 C_w for the dependents d; c is nonzero only there.
+    // Fixed material coordinates, and Gd = -C_d^-1 C_w for the dependents d; c is nonzero only there.
     if (nd > 0) {
         data.constraintLu.compute(data.Cd);
         data.Gd = data.constraintLu.solve(data.Cw);
         data.Gd *= -1.0;  // ddot = Gd w
         data.cd.noalias() = data.Gd * data.w;  // (scratch: ddot)
         data.condensedRates = data.cd.head(nqc);
-        data.materialRates.segment(1, nc) = data.cd.segment(nqc, nc);
+        for (int ki = 0; ki < nc; ++ki) data.materialRates[slidingNode_[ki]] = data.cd[nqc + ki];
         data.multiplierRates = data.cd.tail(numMultipliers_);
         // Biases (second time derivatives of the constraints at wdot = 0) with the complete
         // velocities, dependent rates included.
@@ -410,15 +507,16 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         data.Qbar.noalias() += data.Gd.transpose() * data.Qd;
     }
 
-    // Reduce to the nodes: S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, h = Qbar_n - Mbar_nm Mbar_mm^-1 Qbar_m.
-    data.nodeMass = data.Mbar.topLeftCorner(nn, nn);
-    data.nodeForce = data.Qbar.head(nn);
+    // Reduce to the external coordinates: S = Mbar_xx - Mbar_xm Mbar_mm^-1 Mbar_mx,
+    // h = Qbar_x - Mbar_xm Mbar_mm^-1 Qbar_m.
+    data.nodeMass = data.Mbar.topLeftCorner(nx, nx);
+    data.nodeForce = data.Qbar.head(nx);
     if (nm > 0) {
         data.modalMass.compute(data.Mbar.bottomRightCorner(nm, nm));
-        data.modalCoupling = data.modalMass.solve(data.Mbar.bottomLeftCorner(nm, nn));
+        data.modalCoupling = data.modalMass.solve(data.Mbar.bottomLeftCorner(nm, nx));
         data.modalFree = data.modalMass.solve(data.Qbar.tail(nm));
-        data.nodeMass.noalias() -= data.Mbar.topRightCorner(nn, nm) * data.modalCoupling;
-        data.nodeForce.noalias() -= data.Mbar.topRightCorner(nn, nm) * data.modalFree;
+        data.nodeMass.noalias() -= data.Mbar.topRightCorner(nx, nm) * data.modalCoupling;
+        data.nodeForce.noalias() -= data.Mbar.topRightCorner(nx, nm) * data.modalFree;
     }
 }
 
@@ -437,12 +535,12 @@ template <int Dim>
 void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                                            const Eigen::VectorXd& qmddot) const {
     if (numCondensed_ == 0) return;
-    const int N = numSpans(), nn = Dim * (N + 1), nw = nn + numModal_, nd = numDependent();
-    const int nqc = numCondensed_, nc = N - 1;
+    const int N = numSpans(), nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
+    const int nqc = numCondensed_, nc = numSliding_;
     Eigen::VectorXd& zdd = data.zddot;
-    zdd.setZero(nw + nd + 2);
-    zdd.head(nn) = nodeAccelerations;
-    zdd.segment(nn, numModal_) = qmddot;
+    zdd.setZero(nw + nd + (N + 1 - nc - numDriven_));
+    zdd.head(nx) = nodeAccelerations;
+    zdd.segment(nx, numModal_) = qmddot;
     zdd.segment(nw, nd).noalias() = data.Gd * zdd.head(nw);
     zdd.segment(nw, nd) += data.cd;
     const double invEA = 1.0 / properties().axialStiffness;
@@ -465,8 +563,8 @@ void RopeModel<Dim>::recoveredSpanCoordinates(int j, const NodeMatrix& nodes, co
     const auto& sp = spans_[j];
     if (isCondensed(j))
         q.segment(2 * Dim, sp.axialModes()) += data.inertialCorrection.segment(condensedOffset_[j], sp.axialModes());
-    if (j >= 1) q[sp.s1Index()] += data.inertialCorrection[numCondensed_ + j - 1];
-    if (j + 1 <= numSpans() - 1) q[sp.s2Index()] += data.inertialCorrection[numCondensed_ + j];
+    if (slidingIndex_[j] >= 0) q[sp.s1Index()] += data.inertialCorrection[numCondensed_ + slidingIndex_[j]];
+    if (slidingIndex_[j + 1] >= 0) q[sp.s2Index()] += data.inertialCorrection[numCondensed_ + slidingIndex_[j + 1]];
 }
 
 template <int Dim>

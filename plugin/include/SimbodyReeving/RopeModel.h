@@ -15,6 +15,23 @@
 
 namespace SimbodyReeving {
 
+/// How the material coordinate s_k of a rope node is determined: a closed set the RopeModel
+/// dispatches on (new node physics, e.g. wrap geometry or friction, become new kinds).
+enum class MaterialNode {
+    /// A constant: the rope's end is fastened there (start: s_0 = 0; end: s_N = L, the unstretched
+    /// length). End nodes only.
+    Fixed,
+    /// Dependent: a frictionless, massless point sheave; s_k is solved from the tension equality of
+    /// the two spans meeting there (paper eq 32). Interior nodes only.
+    Sliding,
+    /// An external coordinate, given with its rate at every evaluation like the node positions: the
+    /// rope is gripped there by something that moves it (a winch drum at an end, a drive or idler
+    /// sheave in the path, s_k = s_ref + R theta). The rope's generalized force on it (the axial
+    /// force difference across the node, or the force at an end) is part of the node reduction, so
+    /// a coupled solve with the body that drives it is exact. Any node.
+    Driven,
+};
+
 /// The rope's evaluation workspace ("Data" of a RopeModel).
 template <int Dim>
 struct RopeData {
@@ -28,7 +45,7 @@ struct RopeData {
     Eigen::VectorXd multipliers;
     int newtonIterations = 0;             ///< of the last dependent-coordinate solve
     // ---- dynamics (filled by RopeModel::computeDynamics)
-    Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s]
+    Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s] (Driven nodes: as given)
     Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
     Eigen::VectorXd multiplierRates;
     /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
@@ -37,8 +54,10 @@ struct RopeData {
     bool inertialCorrectionValid = false;
     Eigen::VectorXd velocityForcesZ;  ///< Q_v of all spans scattered into z (for the recovery)
     Eigen::VectorXd zddot, inertialLoad;  ///< scratch of the recovery
-    /// Effective mass of the rope at its nodes, S = Mbar_nn - Mbar_nm Mbar_mm^-1 Mbar_mn, and the
-    /// matching force h: the force the nodes' supports must apply to the rope is f = S rddot - h.
+    /// Effective mass of the rope at its external coordinates x = [r_0..r_N, s at the Driven nodes]
+    /// (RopeModel::numExternalCoordinates), S = Mbar_xx - Mbar_xm Mbar_mm^-1 Mbar_mx, and the
+    /// matching force h: the generalized force the supports must apply to the rope is
+    /// f = S xddot - h (for a Driven s_k: the force [N] that holds the rope's material there).
     Eigen::MatrixXd nodeMass;
     Eigen::VectorXd nodeForce;
     double kineticEnergy = 0;    ///< T of all spans [J]
@@ -65,9 +84,10 @@ struct RopeData {
     Eigen::VectorXd modalFree;      ///< Mbar_mm^-1 Qbar_m
 };
 
-/// A rope of N spans between N + 1 nodes: node 0 is the start anchor, nodes 1..N-1 are deviation
-/// sheaves (frictionless, point contact: both spans meet at the node and share its material
-/// coordinate), node N is the end anchor. Node positions are given from outside each evaluation
+/// A rope of N spans between N + 1 nodes: node 0 is the rope's start, nodes 1..N-1 are sheaves
+/// (point contact: both spans meet at the node and share its material coordinate), node N is its
+/// end. Each node's material coordinate is Fixed, Sliding or Driven (MaterialNode; by default the
+/// ends are Fixed anchors and the sheaves Sliding, frictionless). Node positions are given from outside each evaluation
 /// (they are tied to bodies); the modal coordinates q_m of all spans are the rope's own
 /// independent coordinates ("modal state"), except the axial amplitudes of spans with
 /// AxialDynamics::QuasiStatic, which are dependent, solved from dU/dq_a = 0 (AxialCondensation);
@@ -75,9 +95,10 @@ struct RopeData {
 /// equality EA eps_{k-1}(s_k) = EA eps_k(s_k) (paper eq 32), with s_0 = 0 and s_N = L (unstretched
 /// rope length) fixed.
 ///
-/// Rope coordinates z = [r_0..r_N, q_free, q_condensed, s_1..s_{N-1}, nu_1..nu_{N-1}, s_0, s_N];
-/// independent velocities w = [rdot_0..rdot_N, qdot_free]; dependents d = [q_condensed, s_1..s_{N-1},
-/// nu] with constraints C(z) = 0; zdot = G w, zddot = G wdot + c. The reduced equations
+/// Rope coordinates z = [x | q_free | q_condensed, s_sliding, nu | s_fixed] with the external
+/// coordinates x = [r_0..r_N, s_driven]; independent velocities w = [xdot, qdot_free]; dependents
+/// d = [q_condensed, s_sliding, nu] (one multiplier per Sliding node, with condensed spans only) with
+/// constraints C(z) = 0; zdot = G w, zddot = G wdot + c. The reduced equations
 /// Mbar wdot = Qbar with Mbar = G^T M G, Qbar = G^T (Q - M c) keep T + U invariant (the constraints
 /// are holonomic and their reactions do no work along admissible motions).
 ///
@@ -98,13 +119,21 @@ public:
     using NodeMatrix = Eigen::Matrix<double, Dim, Eigen::Dynamic>;
 
     /// @param spans one SpanModel per span, in path order (all with the same RopeProperties).
-    /// @param unstretchedLength L [m] > 0: material coordinate of the end anchor.
-    /// @throws std::invalid_argument for no spans, spans with different rope properties, or L not
-    ///         finite and > 0.
-    RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength);
+    /// @param unstretchedLength L [m] > 0: material coordinate of a Fixed end node.
+    /// @param nodeKinds one MaterialNode per node (N + 1); empty: Fixed ends, Sliding sheaves.
+    /// @throws std::invalid_argument for no spans, spans with different rope properties, L not
+    ///         finite and > 0, nodeKinds of the wrong size, a Fixed interior node or a Sliding end.
+    RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {});
 
     int numSpans() const { return static_cast<int>(spans_.size()); }
     int numNodes() const { return numSpans() + 1; }
+    MaterialNode nodeKind(int node) const { return nodeKind_[node]; }
+    /// Number of Driven nodes: the length of the drivenS vectors below.
+    int numDrivenNodes() const { return numDriven_; }
+    /// Index of node k's material coordinate among the Driven ones (drivenS), or -1.
+    int drivenIndex(int node) const { return drivenIndex_[node]; }
+    /// Number of external coordinates x = [r_0..r_N, s_driven]: Dim (N + 1) + numDrivenNodes().
+    int numExternalCoordinates() const { return Dim * numNodes() + numDriven_; }
     /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
     /// QuasiStatic spans): the length of the qm vectors below.
     int numModalCoordinates() const { return numModal_; }
@@ -125,6 +154,12 @@ public:
     /// (strain units), or until it stagnates at round-off below 1e-12.
     /// @throws std::runtime_error if Newton does not converge in 50 iterations or a span length
     ///         would become non-positive (the rope cannot carry the configuration).
+    /// @param drivenS material coordinates of the Driven nodes [m], in node order.
+    /// @throws std::runtime_error also if the given material coordinates leave a span without
+    ///         material (s_{k+1} <= s_k between Fixed/Driven nodes: a drum hauled the rope in).
+    void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
+                                   RopeData<Dim>& data) const;
+    /// As above for ropes without Driven nodes.
     void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
 
     /// The coordinates q of span j (SpanModel layout) from node positions, modal state coordinates
@@ -137,10 +172,15 @@ public:
     /// solveDependentCoordinates on data when it was done at these positions (nodes and qm compared
     /// exactly), and calls solveDependentCoordinates first otherwise.
     /// @throws std::runtime_error as solveDependentCoordinates, when it has to solve.
+    void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& drivenS,
+                         const Eigen::VectorXd& drivenSdot, const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
+                         RopeData<Dim>& data) const;
+    /// As above for ropes without Driven nodes.
     void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& qm,
                          const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
 
-    /// Modal accelerations for given node accelerations: qddot_m = Mbar_mm^-1 (Qbar_m - Mbar_mn rddot).
+    /// Modal accelerations for given accelerations of the external coordinates x (node positions,
+    /// then Driven material coordinates): qddot_m = Mbar_mm^-1 (Qbar_m - Mbar_mx xddot).
     void modalAccelerations(const RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                             Eigen::VectorXd& qmddot) const;
 
@@ -163,7 +203,8 @@ public:
     void recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
                                   Eigen::VectorXd& q) const;
 
-    /// Axial force difference F_a - F_b at sheave node k (1..N-1) [N].
+    /// Axial force difference F_a - F_b at interior node k (1..N-1) [N]: the tension-equality
+    /// residual at a Sliding node; at a Driven node, the force the rope's grip there carries.
     double constraintError(const RopeData<Dim>& data, int k) const;
 
 private:
@@ -172,15 +213,22 @@ private:
     /// into data.newtonResidual, Jacobians into data.Cw / data.Cd, biases into data.bias.
     void evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
                              bool withRates) const;
-    bool positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data) const;
-    int numDependent() const { return numCondensed_ + numSpans() - 1 + numMultipliers_; }
+    bool positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
+                        const RopeData<Dim>& data) const;
+    int numDependent() const { return numCondensed_ + numSliding_ + numMultipliers_; }
+    /// Writes the Fixed and Driven material coordinates into data.materialCoordinates (keeping the
+    /// Sliding ones as a warm start when they stay ordered, else a chord-proportional guess).
+    void setKnownMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, RopeData<Dim>& data) const;
 
     std::vector<SpanModel<Dim>> spans_;
     std::vector<AxialCondensation<Dim>> kernels_;  // one per span when some span is condensed
     std::vector<std::vector<int>> spanToRope_;  // span-local coordinate -> index in z
     std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
-    int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0;
+    std::vector<MaterialNode> nodeKind_;
+    std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
+    std::vector<int> slidingNode_;                 // sliding index -> node
+    int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0, numSliding_ = 0, numDriven_ = 0;
     double length_ = 0;
 };
 
