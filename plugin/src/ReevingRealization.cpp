@@ -1,0 +1,261 @@
+// ReevingSubsystem::Guts: realization (topology to velocity), the per-rope position and velocity
+// caches, the potential energy and the decorations.
+
+#include "ReevingSubsystemGuts.h"
+
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+using SimTK::Array_;
+using SimTK::DecorativeGeometry;
+using SimTK::DecorativeLine;
+using SimTK::ForceSubsystem;
+using SimTK::MobilizedBody;
+using SimTK::Real;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::SubsystemIndex;
+using SimTK::System;
+using SimTK::Value;
+using SimTK::Vec3;
+using SimTK::Vector;
+
+namespace SimbodyReeving {
+
+using namespace detail;
+
+// ---- realization -----------------------------------------------------------------------
+int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
+    const System& sys = getSystem();
+    const SubsystemIndex me = getMySubsystemIndex();
+    for (SubsystemIndex i(me + 1); i < sys.getNumSubsystems(); ++i)
+        if (dynamic_cast<const ForceSubsystem::Guts*>(&sys.getSubsystem(i).getSubsystemGuts()))
+            throw std::logic_error(
+                "ReevingSubsystem: force subsystem '" + sys.getSubsystem(i).getName() +
+                "' was added after the ReevingSubsystem; construct the ReevingSubsystem after every other "
+                "force subsystem (GeneralForceSubsystem included) so it sees all forces in its coupled solve");
+    system_ = nullptr;
+    matter_ = nullptr;
+    int z = 0;
+    auto& self = const_cast<Guts&>(*this);
+    for (RopeRecord& r : self.ropes) {
+        for (int k = 0; k < r.numNodes(); ++k) {
+            const MobilizedBody& b = *r.node(k).first;
+            if (&b.getMatterSubsystem() != &matter())
+                throw std::logic_error("ReevingSubsystem: rope '" + r.spec.name + "' node " + std::to_string(k) +
+                                       " is on a body of another system's matter subsystem");
+        }
+        r.zOffset = z;
+        z += 2 * r.numModal;
+        r.spatialModel.reset();
+    }
+    self.mobileNodes_.clear();
+    self.mobileBodies_.clear();
+    self.mobileStations_.clear();
+    for (size_t i = 0; i < ropes.size(); ++i)
+        for (int k = 0; k < ropes[i].numNodes(); ++k) {
+            const auto [body, station] = ropes[i].node(k);
+            if (body->isGround()) continue;
+            self.mobileNodes_.push_back({static_cast<int>(i), k, body, station});
+            self.mobileBodies_.push_back(body->getMobilizedBodyIndex());
+            self.mobileStations_.push_back(station);
+        }
+    if (z > 0) allocateZ(s, Vector(z, 0.0));
+    positionCache_ = allocateCacheEntry(s, Stage::Position, new Value<PositionCache>());
+    return 0;
+}
+
+// Integrator error weights of the rope's Z entries. Transverse amplitudes are lengths like body
+// positions (weight 1/m). An axial amplitude error da changes the strain by i pi da / l, i.e. the
+// axial force by EA i pi da / l: weight w = i pi / (l eps_ref) with eps_ref = 1e-3, so an
+// accuracy of 1e-6 holds the axial force to about EA 1e-9 (0.02 N for the Table 1 rope);
+// l = L / (number of spans), the mean span length. Rates: w / omega_i with omega_i the span's
+// i-th axial frequency i pi / l sqrt(EA / rhoA).
+int ReevingSubsystem::Guts::realizeSubsystemInstanceImpl(const State& s) const {
+    if (getZ(s).size() == 0) return 0;
+    Vector& w = const_cast<State&>(s).updZWeights(getMySubsystemIndex());
+    const double pi = std::acos(-1.0);
+    for (const RopeRecord& r : ropes) {
+        const double l = r.spec.unstretchedLength / r.numSpans();
+        const double wave = std::sqrt(r.spec.properties.axialStiffness / r.spec.properties.massPerLength);
+        int k = 0;
+        for (int j = 0; j < r.numSpans(); ++j) {
+            const SpanOptions& o = r.spanOptions[j];
+            const int dynamicAxialModes = o.axialDynamics == AxialDynamics::Dynamic ? o.axialModes : 0;
+            for (int i = 1; i <= dynamicAxialModes; ++i, ++k) {
+                const double weight = i * pi / (l * 1e-3);
+                w[r.zOffset + k] = weight;
+                w[r.zOffset + r.numModal + k] = weight / (i * pi / l * wave);
+            }
+            for (int i = 0; i < (r.planar ? 1 : 2) * o.transverseModes; ++i, ++k) {
+                w[r.zOffset + k] = 1.0;
+                w[r.zOffset + r.numModal + k] = 1.0;
+            }
+        }
+    }
+    return 0;
+}
+
+// The modal coordinates q_m and rates live in Z, and Simbody invalidates only Stage::Dynamics when Z
+// alone changes (Verlet refines z at fixed q, for one). So every stage checks that the rope's cached
+// position- and velocity-level quantities were computed from the current Z and refreshes them if not.
+int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
+    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    pc.ropes.resize(ropes.size());
+    for (size_t i = 0; i < ropes.size(); ++i) updatePositionPart(s, ropes[i], pc.ropes[i]);
+    markCacheValueRealized(s, positionCache_);
+    return 0;
+}
+
+int ReevingSubsystem::Guts::realizeSubsystemVelocityImpl(const State& s) const {
+    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        if (!matchesZ(s, ropes[i], pc.ropes[i].modalCoordinates, false))
+            updatePositionPart(s, ropes[i], pc.ropes[i]);
+        updateVelocityPart(s, ropes[i], pc.ropes[i]);
+    }
+    return 0;
+}
+
+void ReevingSubsystem::Guts::refreshFromZ(const State& s, PositionCache& pc, bool velocityLevel) const {
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        RopeCache& c = pc.ropes[i];
+        const bool positionsCurrent = matchesZ(s, ropes[i], c.modalCoordinates, false);
+        if (!positionsCurrent) updatePositionPart(s, ropes[i], c);
+        if (velocityLevel && (!positionsCurrent || !matchesZ(s, ropes[i], c.modalRates, true)))
+            updateVelocityPart(s, ropes[i], c);
+    }
+}
+
+bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const Eigen::VectorXd& cached,
+                                      bool rates) const {
+    if (cached.size() != r.numModal) return false;
+    const Vector& z = getZ(s);
+    const int offset = r.zOffset + (rates ? r.numModal : 0);
+    for (int j = 0; j < r.numModal; ++j)
+        if (cached[j] != z[offset + j]) return false;
+    return true;
+}
+
+void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+    c.nodes3.resize(3, r.numNodes());
+    for (int k = 0; k < r.numNodes(); ++k) {
+        const auto [body, station] = r.node(k);
+        c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
+    }
+    modal(getZ(s), r, false, c.modalCoordinates);
+    // A failure here is usually a trial state of an integrator step (an extrapolation too far).
+    // What Simbody 3.7 does with the exception (its sources, confirmed in
+    // tests/test_step_failures.cpp): the Runge-Kutta family (AbstractIntegratorRep::
+    // attemptDAEStep) catches it, rejects the step and retries at 0.1 h, with no retry limit
+    // (counted as a convergence-test failure); CPodes receives a recoverable right-hand-side
+    // error and retries at 0.25 h, at most 10 times per step; a fixed-step integrator, the
+    // realization of an accepted or interpolated state, and (RK) the realization inside a
+    // constraint projection cannot retry and end the run. Every final message drops the cause,
+    // so it is recorded here (getLastEvaluationFailure) with the rope, the time and the equation.
+    try {
+        if (r.planar) {
+            c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
+            r.planarModel->solveDependentCoordinates(c.nodes2, c.modalCoordinates, c.planar);
+        } else {
+            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
+        }
+    } catch (const std::exception& e) {
+        failEvaluation(s, r, e);
+    }
+}
+
+void ReevingSubsystem::Guts::failEvaluation(const State& s, const RopeRecord& r,
+                                            const std::exception& e) const {
+    std::ostringstream msg;
+    msg << "ReevingSubsystem: rope '" << r.spec.name << "' at t = " << std::setprecision(17) << s.getTime()
+        << " s: " << e.what();
+    recordEvaluationFailure(msg.str());
+    throw std::runtime_error(msg.str());
+}
+
+void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+    c.nodeVelocities3.resize(3, r.numNodes());
+    for (int k = 0; k < r.numNodes(); ++k) {
+        const auto [body, station] = r.node(k);
+        c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
+    }
+    modal(getZ(s), r, true, c.modalRates);
+    try {
+        if (r.planar) {
+            c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
+            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.modalCoordinates, c.modalRates,
+                                           c.planar);
+        } else {
+            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.modalCoordinates,
+                                                      c.modalRates, c.spatial);
+        }
+    } catch (const std::exception& e) {
+        failEvaluation(s, r, e);
+    }
+}
+
+template <int Dim>
+double ReevingSubsystem::Guts::potential(const RopeModel<Dim>& model, const RopeData<Dim>& data,
+                                         const Eigen::Matrix<double, Dim, Eigen::Dynamic>& nodes,
+                                         const Eigen::VectorXd& qm) const {
+    double u = 0;
+    Eigen::VectorXd q;
+    for (int j = 0; j < model.numSpans(); ++j) {
+        model.spanCoordinates(j, nodes, qm, data, q);
+        SpanData<Dim> d;
+        model.span(j).evaluate(q, Eigen::VectorXd::Zero(q.size()), d);
+        u += d.potentialEnergy();
+    }
+    return u;
+}
+
+Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {
+    const PositionCache& pc = positionCache(s);
+    Real u = 0;
+    // From Stage::Velocity on, the velocity-level rope data (refreshed by positionCache) hold the
+    // energies of these positions: no second span evaluation.
+    const bool velocityCurrent = s.getSystemStage() >= Stage::Velocity;
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeRecord& r = ropes[i];
+        const RopeCache& c = pc.ropes[i];
+        if (velocityCurrent) {
+            u += r.planar ? c.planar.strainEnergy + c.planar.gravityEnergy
+                          : c.spatial.strainEnergy + c.spatial.gravityEnergy;
+        } else if (r.planar) {
+            u += potential(*r.planarModel, c.planar, planarNodes(r, c.nodes3), modal(getZ(s), r, false));
+        } else {
+            u += potential(*r.spatialModel, c.spatial, c.nodes3, modal(getZ(s), r, false));
+        }
+    }
+    return u;
+}
+
+int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, Stage stage,
+                                                                Array_<DecorativeGeometry>& geometry) const {
+    if (stage != Stage::Position) return 0;
+    for (size_t i = 0; i < ropes.size(); ++i)
+        for (int j = 0; j < ropes[i].numSpans(); ++j) {
+            const std::vector<Vec3> p = sample(s, static_cast<int>(i), j, decorationPoints);
+            for (size_t k = 0; k + 1 < p.size(); ++k)
+                geometry.push_back(DecorativeLine(p[k], p[k + 1]).setColor(Vec3(0.55, 0.35, 0.1)).setLineThickness(3));
+        }
+    return 0;
+}
+
+const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const RopeRecord& r,
+                                                         const Eigen::Matrix3Xd& nodes) const {
+    if (!r.spatialModel) {
+        std::vector<SpanModel<3>> spans;
+        for (int j = 0; j < r.numSpans(); ++j)
+            spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_),
+                               makeReferenceFrame(nodes.col(j + 1) - nodes.col(j)));
+        r.spatialModel = std::make_shared<const RopeModel<3>>(std::move(spans), r.spec.unstretchedLength);
+    }
+    return *r.spatialModel;
+}
+
+}  // namespace SimbodyReeving

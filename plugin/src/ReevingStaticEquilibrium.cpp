@@ -1,0 +1,123 @@
+// ReevingSubsystem::findStaticEquilibrium.
+
+#include "ReevingSubsystemGuts.h"
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+using SimTK::MultibodySystem;
+using SimTK::SimbodyMatterSubsystem;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::Vector;
+
+namespace SimbodyReeving {
+
+using namespace detail;
+
+double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTolerance, int maxIterations) const {
+    const Guts& g = getGuts();
+    const MultibodySystem& mbs = g.mbs();
+    const SimbodyMatterSubsystem& matter = g.matter();
+    state.updU() = 0;
+    for (int i = 0; i < getNumRopes(); ++i) setModalRates(state, i, Vector(getNumModalCoordinates(i), 0.0));
+    const int nu = state.getNU();
+    int nm = 0;
+    for (int i = 0; i < getNumRopes(); ++i) nm += getNumModalCoordinates(i);
+    const int n = nu + nm;
+
+    // Generalized force residual at zero velocity: bodies M udot, ropes Mbar_mm qddot_m; and the
+    // scale: the largest applied generalized force on bodies and rope modes.
+    auto residual = [&](State& st, double* scale) {
+        mbs.realize(st, Stage::Acceleration);
+        Eigen::VectorXd r(n);
+        Vector Mudot;
+        matter.multiplyByM(st, st.getUDot(), Mudot);
+        for (int k = 0; k < nu; ++k) r[k] = Mudot[k];
+        const Vector& zdot = g.getZDot(st);
+        const PositionCache& pc = g.positionCache(st);
+        int off = nu;
+        double fmax = 0;
+        for (int i = 0; i < getNumRopes(); ++i) {
+            const RopeRecord& rr = g.ropes[i];
+            Eigen::VectorXd qdd(rr.numModal);
+            for (int j = 0; j < rr.numModal; ++j) qdd[j] = zdot[rr.zOffset + rr.numModal + j];
+            const int nn = (rr.planar ? 2 : 3) * rr.numNodes();
+            const Eigen::MatrixXd& Mbar = rr.planar ? pc.ropes[i].planar.Mbar : pc.ropes[i].spatial.Mbar;
+            const Eigen::VectorXd& Qbar = rr.planar ? pc.ropes[i].planar.Qbar : pc.ropes[i].spatial.Qbar;
+            r.segment(off, rr.numModal) = Mbar.bottomRightCorner(rr.numModal, rr.numModal) * qdd;
+            if (rr.numModal > 0) fmax = std::max(fmax, Qbar.tail(rr.numModal).cwiseAbs().maxCoeff());
+            fmax = std::max(fmax, Qbar.head(nn).cwiseAbs().maxCoeff());
+            off += rr.numModal;
+        }
+        if (scale) {
+            Vector applied;
+            matter.calcResidualForceIgnoringConstraints(st, mbs.getMobilityForces(st, Stage::Dynamics),
+                                                        mbs.getRigidBodyForces(st, Stage::Dynamics),
+                                                        Vector(nu, 0.0), applied);
+            for (int k = 0; k < nu; ++k) fmax = std::max(fmax, std::abs(applied[k]));
+            *scale = fmax;
+        }
+        return r;
+    };
+    auto displace = [&](State& st, const Eigen::VectorXd& dy) {
+        Vector du(nu), dq;
+        for (int k = 0; k < nu; ++k) du[k] = dy[k];
+        mbs.realize(st, Stage::Position);
+        matter.multiplyByN(st, false, du, dq);
+        st.updQ() += dq;
+        int off = nu;
+        for (int i = 0; i < getNumRopes(); ++i) {
+            Vector q = getModalCoordinates(st, i);
+            for (int j = 0; j < q.size(); ++j) q[j] += dy[off + j];
+            setModalCoordinates(st, i, q);
+            off += q.size();
+        }
+        mbs.realize(st, Stage::Position);
+        mbs.project(st, 1e-12);
+    };
+
+    double scale = 0;
+    Eigen::VectorXd r = residual(state, &scale);
+    for (int iter = 0; iter < maxIterations; ++iter) {
+        const double rel = r.cwiseAbs().maxCoeff() / scale;
+        if (rel <= relativeTolerance) return rel;
+        // Jacobian of the accelerations by central differences in (u-space, modal) coordinates.
+        Eigen::MatrixXd J(n, n);
+        for (int k = 0; k < n; ++k) {
+            const double h = 1e-7;
+            State sp = state, sm = state;
+            Eigen::VectorXd dy = Eigen::VectorXd::Zero(n);
+            dy[k] = h;
+            displace(sp, dy);
+            displace(sm, -dy);
+            J.col(k) = (residual(sp, nullptr) - residual(sm, nullptr)) / (2 * h);
+        }
+        const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+        // Backtracking on the residual norm.
+        double alpha = 1.0;
+        State trial = state;
+        for (int ls = 0; ls < 20; ++ls, alpha *= 0.5) {
+            trial = state;
+            displace(trial, alpha * step);
+            const Eigen::VectorXd rt = residual(trial, nullptr);
+            if (rt.norm() < r.norm() || ls == 19) {
+                state = trial;
+                r = residual(state, &scale);
+                break;
+            }
+        }
+    }
+    const double rel = r.cwiseAbs().maxCoeff() / scale;
+    if (rel <= relativeTolerance) return rel;
+    std::ostringstream msg;
+    msg << "ReevingSubsystem::findStaticEquilibrium: no convergence in " << maxIterations
+        << " iterations (relative residual " << rel << ")";
+    throw std::runtime_error(msg.str());
+}
+
+}  // namespace SimbodyReeving
