@@ -1,6 +1,8 @@
 // reeving-pendulum: the paper's two-branch pendulum study (Mohammadi & Escalona, section 3, Table 1),
 // reproducible from one command. See --help and README.md.
 #include "PendulumCli.h"
+#include "common/DemoOutput.h"
+#include "common/Interrupt.h"
 
 #include <SimbodyReeving/Integrators.h>
 #include <SimbodyReeving/InterpolatingTimeStepper.h>
@@ -10,7 +12,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -27,46 +28,14 @@ using SimTK::Stage;
 using SimTK::State;
 using namespace pendulum_demo;
 using namespace SimbodyReeving;
+using demo_common::OutputFile;
 
 namespace {
 
-/// Set by SIGINT/SIGTERM; the cases check it at every report and stop.
-std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted = true; }
-
-/// Thrown by a case that saw gInterrupted.
+/// Thrown by a case that saw demo_common::interrupted().
 struct Interrupted : std::runtime_error {
     explicit Interrupted(double t) : std::runtime_error("interrupted"), time(t) {}
     double time;
-};
-
-/// Writes `path` through `path.partial`, renamed into place only by commit(): an interrupted or
-/// failed write leaves no half-written file under the real name.
-class OutputFile {
-public:
-    explicit OutputFile(fs::path path) : path_(std::move(path)), partial_(path_.string() + ".partial"), out_(partial_) {
-        if (!out_) throw std::runtime_error("cannot write " + partial_.string());
-    }
-    OutputFile(const OutputFile&) = delete;
-    OutputFile& operator=(const OutputFile&) = delete;
-    ~OutputFile() {
-        if (committed_) return;
-        out_.close();
-        std::error_code ec;
-        fs::remove(partial_, ec);
-    }
-    std::ofstream& stream() { return out_; }
-    void commit() {
-        out_.close();
-        if (!out_) throw std::runtime_error("cannot write " + partial_.string() + " (disk full?)");
-        fs::rename(partial_, path_);
-        committed_ = true;
-    }
-
-private:
-    fs::path path_, partial_;
-    std::ofstream out_;
-    bool committed_ = false;
 };
 
 struct Row {
@@ -143,7 +112,7 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     r.rows.push_back(observe(scene, ts.getState()));
     const int reports = static_cast<int>(std::floor(o.tEnd / o.reportInterval + 1e-9));
     for (int n = 1; n <= reports; ++n) {
-        if (gInterrupted) throw Interrupted(ts.getState().getTime());
+        if (demo_common::interrupted()) throw Interrupted(ts.getState().getTime());
         try {
             ts.stepTo(n * o.reportInterval);
         } catch (const std::exception& e) {
@@ -308,26 +277,9 @@ int main(int argc, char** argv) {
         return 0;
     }
     // The output folder must exist or be creatable, and be writable, before anything is simulated.
-    {
-        const fs::path out(o.outDir);
-        std::error_code ec;
-        fs::create_directories(out, ec);
-        if (ec || !fs::is_directory(out)) {
-            std::cerr << "reeving-pendulum: --out '" << o.outDir << "': cannot create the output folder"
-                      << (ec ? ": " + ec.message() : std::string(": it is not a folder")) << "\n";
-            return 2;
-        }
-        const fs::path probe = out / ".reeving-pendulum-write-test";
-        const bool writable = static_cast<bool>(std::ofstream(probe));
-        fs::remove(probe, ec);
-        if (!writable) {
-            std::cerr << "reeving-pendulum: --out '" << o.outDir << "': the output folder is not writable\n";
-            return 2;
-        }
-    }
+    if (!demo_common::prepareOutputFolder("reeving-pendulum", o.outDir)) return 2;
     // SIGINT / SIGTERM stop the cases at their next report; nothing is written then.
-    std::signal(SIGINT, onInterrupt);
-    std::signal(SIGTERM, onInterrupt);
+    demo_common::installInterruptHandlers();
     const bool visualize = o.visualize;
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::atomic<double>> progress(o.axialModes.size());
@@ -380,14 +332,14 @@ int main(int argc, char** argv) {
         if (printed) std::cerr << "\n";
     } catch (const Interrupted& e) {
         std::cerr << "\nreeving-pendulum: interrupted at t = " << e.time << " s; no outputs written\n";
-        return 130;
+        return demo_common::kInterruptedExitStatus;
     } catch (const std::exception& e) {
         std::cerr << "reeving-pendulum: simulation failed: " << e.what() << "\n";
         return 1;
     }
-    if (gInterrupted) {
+    if (demo_common::interrupted()) {
         std::cerr << "reeving-pendulum: interrupted after the simulation; no outputs written\n";
-        return 130;
+        return demo_common::kInterruptedExitStatus;
     }
 
     const fs::path out(o.outDir);
