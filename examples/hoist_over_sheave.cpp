@@ -45,9 +45,9 @@ int main(int argc, char** argv) {
 
     RopeSpec rope;
     rope.name = "hoist rope";
-    rope.start = {matter.Ground(), Vec3(0, 0, 0)};           // anchored on Ground at the origin [m]
-    rope.sheaves = {{matter.Ground(), Vec3(3, 0, 0), 0.1}};  // sheave on Ground: centre [m], radius [m]
-    rope.end = {payload, Vec3(0, 0.3, 0)};                   // on the payload, 0.3 m above its centre [m]
+    rope.start = RopeAnchor{matter.Ground(), Vec3(0, 0, 0)};           // anchored on Ground at the origin [m]
+    rope.sheaves = {DeviationSheave{matter.Ground(), Vec3(3, 0, 0), 0.1}};  // sheave on Ground: centre [m], radius [m]
+    rope.end = RopeAnchor{payload, Vec3(0, 0.3, 0)};                   // on the payload, 0.3 m above its centre [m]
     rope.properties.massPerLength = 0.6205;                  // rhoA [kg/m]
     rope.properties.axialStiffness = 16.5e6;                 // EA [N]
     rope.properties.bendingStiffness = 30.9;                 // EI [N m^2]

@@ -18,7 +18,9 @@
 #include <cmath>
 #include <cstdio>
 
+using SimbodyReeving::DeviationSheave;
 using SimbodyReeving::ReevingSubsystem;
+using SimbodyReeving::RopeAnchor;
 using SimbodyReeving::RopeProperties;
 using SimbodyReeving::RopeSpec;
 using SimbodyReeving::SpanOptions;
@@ -124,9 +126,9 @@ void movingSheave(SimbodyReeving::AxialDynamics axial, const char* name) {
                                      Transform(Vec3(0, 0.5, 0)));
     RopeSpec rope;
     rope.name = "hoist rope";
-    rope.start = {w.matter.Ground(), Vec3(0)};
-    rope.sheaves = {{block, Vec3(0), 0.1}};
-    rope.end = {w.matter.Ground(), Vec3(1, 0, 0)};
+    rope.start = RopeAnchor{w.matter.Ground(), Vec3(0)};
+    rope.sheaves = {DeviationSheave{block, Vec3(0), 0.1}};
+    rope.end = RopeAnchor{w.matter.Ground(), Vec3(1, 0, 0)};
     rope.properties = kTable1;
     rope.unstretchedLength = 2 * 20 + 1;
     rope.spanDefaults = oneModeEach(axial);
@@ -164,9 +166,9 @@ void payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics axial, const c
     const SimTK::Constraint::Ball ball(hook, Vec3(0), payload, Vec3(0, 0.3, 0));
     RopeSpec rope;
     rope.name = "pendulum rope";
-    rope.start = {w.matter.Ground(), Vec3(0)};
-    rope.sheaves = {{w.matter.Ground(), Vec3(3, 0, 0), 0.1}};
-    rope.end = {hook, Vec3(0)};
+    rope.start = RopeAnchor{w.matter.Ground(), Vec3(0)};
+    rope.sheaves = {DeviationSheave{w.matter.Ground(), Vec3(3, 0, 0), 0.1}};
+    rope.end = RopeAnchor{hook, Vec3(0)};
     rope.properties = kTable1;
     rope.unstretchedLength = 3 + 20;
     rope.spanDefaults = oneModeEach(axial);

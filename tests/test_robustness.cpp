@@ -135,10 +135,10 @@ SceneOutcome randomScene(Hostile& h) {
     MobilizedBody::Free block(matter.Ground(), SimTK::Transform(h.point(30, 0.0)), body, SimTK::Transform());
     RopeSpec spec;
     spec.name = "random rope";
-    spec.start = {matter.Ground(), h.point(30)};
+    spec.start = RopeAnchor{matter.Ground(), h.point(30)};
     const int sheaves = h.integer(0, 3);
     double path = 0;
-    Vec3 previous = spec.start.station;
+    Vec3 previous = spec.start.point;
     for (int k = 0; k < sheaves; ++k) {
         const bool onBlock = h.chance(0.3);
         const Vec3 at = onBlock ? h.point(0.5) : h.point(30);
@@ -150,7 +150,7 @@ SceneOutcome randomScene(Hostile& h) {
         path += (at - previous).norm();
         previous = at;
     }
-    spec.end = {hook, h.chance(0.1) ? h.point(1) : Vec3(0)};
+    spec.end = RopeAnchor{hook, h.chance(0.1) ? h.point(1) : Vec3(0)};
     path += 30;
     spec.properties = {h.value(0.01, 5), h.value(1e4, 1e9), h.value(0, 100), h.chance(0.3)};
     spec.unstretchedLength = h.chance(0.05) ? h.value(-1, 1, 1.0) : path * h.uniform(0.3, 2.0);

@@ -135,8 +135,8 @@ struct DropScene {
             matter.Ground(), SimTK::Transform(Vec3(0, -L, 0)),
             SimTK::Body::Rigid(SimTK::MassProperties(M, Vec3(0), SimTK::Inertia(1))), SimTK::Transform());
         RopeSpec spec;
-        spec.start = {matter.Ground(), Vec3(0)};
-        spec.end = {*payload, Vec3(0)};
+        spec.start = RopeAnchor{matter.Ground(), Vec3(0)};
+        spec.end = RopeAnchor{*payload, Vec3(0)};
         spec.properties = properties;
         spec.unstretchedLength = L;
         spec.spanDefaults = spans;
@@ -366,12 +366,12 @@ TEST(TensionOnlyDrop, HookBlockWithBothFallsSlack) {
                                      SimTK::Transform());
     RopeSpec spec;
     spec.name = "two falls";
-    spec.start = {matter.Ground(), Vec3(-0.5, 0, 0)};
+    spec.start = RopeAnchor{matter.Ground(), Vec3(-0.5, 0, 0)};
     DeviationSheave sheave;
     sheave.body = block;
     sheave.radius = 0.2;
     spec.sheaves = {sheave};
-    spec.end = {matter.Ground(), Vec3(0.5, 0, 0)};
+    spec.end = RopeAnchor{matter.Ground(), Vec3(0.5, 0, 0)};
     spec.properties = {0.6205, 16.5e6, 30.9, true};
     spec.unstretchedLength = 2 * std::sqrt(0.25 + depth * depth);
     spec.spanDefaults.axialModes = 1;

@@ -40,9 +40,9 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
 
     RopeSpec rope;
     rope.name = "pendulum rope";
-    rope.start = {matter_->Ground(), Vec3(0)};
-    rope.sheaves = {{matter_->Ground(), Vec3(p.a, 0, 0), p.r}};
-    rope.end = {*payload_, Vec3(0, p.d, 0)};
+    rope.start = RopeAnchor{matter_->Ground(), Vec3(0)};
+    rope.sheaves = {DeviationSheave{matter_->Ground(), Vec3(p.a, 0, 0), p.r}};
+    rope.end = RopeAnchor{*payload_, Vec3(0, p.d, 0)};
     rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     rope.unstretchedLength = p.a + p.L;
     rope.spanDefaults = spans;

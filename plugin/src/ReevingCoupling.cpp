@@ -1,5 +1,6 @@
-// ReevingSubsystem::Guts: realizeDynamics, the coupled rope/body solve (free node accelerations,
-// node mobility Lambda, the Schur complement on the node forces, modal accelerations).
+// ReevingSubsystem::Guts: realizeDynamics, the coupled rope/body solve (free accelerations of the
+// coupled coordinates, their mobility Lambda, the Schur complement on the rope's support forces,
+// modal accelerations).
 
 #include "ReevingSubsystemGuts.h"
 
@@ -17,64 +18,89 @@ namespace SimbodyReeving {
 
 using namespace detail;
 
+// The coupled vector y = [positions in Ground of the mobile nodes (3 each) | driven material
+// coordinates (1 each)]. Each rope's external coordinates x map into it by its embedding T
+// (RopeCoupling), so the rope's S and h enter as T S T^T and T h; a driven s = s_ref + dsdTheta
+// theta moves with its pin: its row of the Jacobian is dsdTheta at the pin's mobility, and a
+// force f_s on it is the generalized force dsdTheta f_s on the pin.
 int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
     refreshFromZ(s, pc, true);
     CouplingWorkspace& ws = pc.coupling;
     Vector_<SpatialVec>& bodyForces = mbs().updRigidBodyForces(s, Stage::Dynamics);
-    const Vector& mobilityForces = mbs().updMobilityForces(s, Stage::Dynamics);
+    Vector& mobilityForces = mbs().updMobilityForces(s, Stage::Dynamics);
 
-    // Rope-side S and h of the mobile nodes (on bodies other than Ground), in 3D.
-    const int m = static_cast<int>(mobileNodes_.size());
-    ws.S.setZero(3 * m, 3 * m);
-    ws.h.setZero(3 * m);
-    for (int a = 0; a < m; ++a)
-        for (int b = 0; b < m; ++b) {
-            if (mobileNodes_[a].rope != mobileNodes_[b].rope) continue;
-            const RopeRecord& r = ropes[mobileNodes_[a].rope];
-            const RopeCache& c = pc.ropes[mobileNodes_[a].rope];
-            ws.S.block<3, 3>(3 * a, 3 * b) = nodeMass3(r, c, mobileNodes_[a].node, mobileNodes_[b].node);
-            if (a == b) ws.h.segment<3>(3 * a) = nodeForce3(r, c, mobileNodes_[a].node);
+    const int m = static_cast<int>(mobileNodes_.size()), na = static_cast<int>(mobileAngles_.size());
+    const int n = 3 * m + na;
+    ws.S.setZero(n, n);
+    ws.h.setZero(n);
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeCoupling& rc = ropeCoupling_[i];
+        if (rc.rows.empty()) continue;
+        RopeCache& c = pc.ropes[i];
+        const RopeData<2>* d2 = ropes[i].planar ? &c.planar : nullptr;
+        const Eigen::MatrixXd& S = d2 ? d2->nodeMass : c.spatial.nodeMass;
+        const Eigen::VectorXd& h = d2 ? d2->nodeForce : c.spatial.nodeForce;
+        c.embeddedMass.noalias() = rc.embedding * S;
+        const int k = static_cast<int>(rc.rows.size());
+        for (int a = 0; a < k; ++a) {
+            ws.h[rc.rows[a]] = rc.embedding.row(a).dot(h);
+            for (int b = 0; b < k; ++b) ws.S(rc.rows[a], rc.rows[b]) = c.embeddedMass.row(a).dot(rc.embedding.row(b));
         }
+    }
 
-    ws.f.setZero(3 * m);
-    ws.rdd.setZero(3 * m);
-    if (m > 0) {
-        // Free node accelerations a0 under every force applied so far.
+    ws.f.setZero(n);
+    ws.rdd.setZero(n);
+    if (n > 0) {
+        // Free accelerations a0 under every force applied so far (prescribed motion included).
         matter().calcAcceleration(s, mobilityForces, bodyForces, ws.udot, ws.A_GB);
-        nodeAccelerations(s, ws.A_GB, ws.a0);
-        // Node mobility Lambda: node accelerations per unit node force.
-        ws.Lambda.resize(3 * m, 3 * m);
+        couplingAccelerations(s, ws.A_GB, ws.udot, ws.a0);
+        // Mobility Lambda: accelerations of y per unit force on y.
+        ws.Lambda.resize(n, n);
         if (!anyConstraintEnabled(s)) {
-            // No constraint: Lambda = J M^-1 J^T with J the nodes' station Jacobian (3m x nu), one
-            // O(n) multiplyByMInv per column. multiplyByMInv leaves prescribed mobilities' udot at 0,
+            // No constraint: Lambda = J M^-1 J^T with J the Jacobian of y (station rows from
+            // calcStationJacobian, driven rows dsdTheta at the pin's mobility), one O(n)
+            // multiplyByMInv per column. multiplyByMInv leaves prescribed mobilities' udot at 0,
             // as prescribed (and locked) motion does not respond to forces.
-            matter().calcStationJacobian(s, mobileBodies_, mobileStations_, ws.stationJacobian);
-            const int nu = ws.stationJacobian.ncol();
+            const int nu = s.getNU();
+            ws.J.setZero(n, nu);
+            if (m > 0) {
+                matter().calcStationJacobian(s, mobileBodies_, mobileStations_, ws.stationJacobian);
+                for (int row = 0; row < 3 * m; ++row)
+                    for (int i = 0; i < nu; ++i) ws.J(row, i) = ws.stationJacobian(row, i);
+            }
+            for (int a = 0; a < na; ++a)
+                ws.J(3 * m + a, static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s))) = mobileAngles_[a].dsdTheta;
             ws.generalizedForce.resize(nu);
-            for (int col = 0; col < 3 * m; ++col) {
-                for (int i = 0; i < nu; ++i) ws.generalizedForce[i] = ws.stationJacobian(col, i);
+            for (int col = 0; col < n; ++col) {
+                for (int i = 0; i < nu; ++i) ws.generalizedForce[i] = ws.J(col, i);
                 matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
                 for (int row = 0; row <= col; ++row) {
                     double acc = 0;
-                    for (int i = 0; i < nu; ++i) acc += ws.stationJacobian(row, i) * ws.udotUnit[i];
+                    for (int i = 0; i < nu; ++i) acc += ws.J(row, i) * ws.udotUnit[i];
                     ws.Lambda(row, col) = ws.Lambda(col, row) = acc;  // symmetric
                 }
             }
         } else {
             // Constraints: calcAcceleration honours them; Lambda by differences, one call per column.
-            for (int col = 0; col < 3 * m; ++col) {
+            for (int col = 0; col < n; ++col) {
                 ws.bodyForcesUnit = bodyForces;
-                Vec3 unit(0);
-                unit[col % 3] = 1.0;
-                mobileNodes_[col / 3].body->applyForceToBodyPoint(s, mobileNodes_[col / 3].station, unit,
-                                                                  ws.bodyForcesUnit);
-                matter().calcAcceleration(s, mobilityForces, ws.bodyForcesUnit, ws.udot, ws.A_GB);
-                nodeAccelerations(s, ws.A_GB, ws.aUnit);
+                ws.mobilityForcesUnit = mobilityForces;
+                if (col < 3 * m) {
+                    Vec3 unit(0);
+                    unit[col % 3] = 1.0;
+                    mobileNodes_[col / 3].body->applyForceToBodyPoint(s, mobileNodes_[col / 3].station, unit,
+                                                                      ws.bodyForcesUnit);
+                } else {
+                    const MobileAngle& ma = mobileAngles_[col - 3 * m];
+                    ma.body->applyOneMobilityForce(s, 0, ma.dsdTheta, ws.mobilityForcesUnit);
+                }
+                matter().calcAcceleration(s, ws.mobilityForcesUnit, ws.bodyForcesUnit, ws.udot, ws.A_GB);
+                couplingAccelerations(s, ws.A_GB, ws.udot, ws.aUnit);
                 ws.Lambda.col(col) = ws.aUnit - ws.a0;
             }
         }
-        // Node forces on the rope: (I + S Lambda) f = S a0 - h; the bodies receive -f.
+        // Support forces on the rope: (I + S Lambda) f = S a0 - h; the bodies receive -f.
         ws.lhs.noalias() = ws.S * ws.Lambda;
         ws.lhs.diagonal().array() += 1.0;
         ws.rhs.noalias() = ws.S * ws.a0;
@@ -86,27 +112,36 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         for (int a = 0; a < m; ++a)
             mobileNodes_[a].body->applyForceToBodyPoint(s, mobileNodes_[a].station,
                                                         -toSimTK(ws.f.segment<3>(3 * a)), bodyForces);
+        for (int a = 0; a < na; ++a) {
+            const MobileAngle& ma = mobileAngles_[a];
+            ma.body->applyOneMobilityForce(s, 0, -ma.dsdTheta * ws.f[3 * m + a], mobilityForces);
+        }
     }
 
-    // Modal accelerations of every rope.
+    // Modal accelerations of every rope from its external accelerations x_dd = T^T y_dd (zero at
+    // Ground nodes).
     Vector& zdot = updZDot(s);
     const Vector& z = getZ(s);
     for (size_t i = 0; i < ropes.size(); ++i) {
         const RopeRecord& r = ropes[i];
         RopeCache& c = pc.ropes[i];
+        const RopeCoupling& rc = ropeCoupling_[i];
+        c.externalAccelerations.setZero(r.numExternal());
+        for (size_t a = 0; a < rc.rows.size(); ++a)
+            c.externalAccelerations += rc.embedding.row(static_cast<Eigen::Index>(a)).transpose() * ws.rdd[rc.rows[a]];
         c.nodeAccelerations3.setZero(3, r.numNodes());
-        for (int a = 0; a < m; ++a)
-            if (mobileNodes_[a].rope == static_cast<int>(i))
-                c.nodeAccelerations3.col(mobileNodes_[a].node) = ws.rdd.segment<3>(3 * a);
+        for (int k = 0; k < r.numNodes(); ++k) {
+            if (r.planar)
+                c.nodeAccelerations3.col(k) = r.planeBasis * c.externalAccelerations.segment<2>(2 * k);
+            else
+                c.nodeAccelerations3.col(k) = c.externalAccelerations.segment<3>(3 * k);
+        }
         if (r.planar) {
-            c.nodeAccelerations2.noalias() = r.planeBasis.transpose() * c.nodeAccelerations3;
-            const Eigen::Map<const Eigen::VectorXd> a(c.nodeAccelerations2.data(), c.nodeAccelerations2.size());
-            r.planarModel->modalAccelerations(c.planar, a, c.modalAccelerations);
-            r.planarModel->recoverInertialStrain(c.planar, a, c.modalAccelerations);
+            r.planarModel->modalAccelerations(c.planar, c.externalAccelerations, c.modalAccelerations);
+            r.planarModel->recoverInertialStrain(c.planar, c.externalAccelerations, c.modalAccelerations);
         } else {
-            const Eigen::Map<const Eigen::VectorXd> a(c.nodeAccelerations3.data(), c.nodeAccelerations3.size());
-            r.spatialModel->modalAccelerations(c.spatial, a, c.modalAccelerations);
-            r.spatialModel->recoverInertialStrain(c.spatial, a, c.modalAccelerations);
+            r.spatialModel->modalAccelerations(c.spatial, c.externalAccelerations, c.modalAccelerations);
+            r.spatialModel->recoverInertialStrain(c.spatial, c.externalAccelerations, c.modalAccelerations);
         }
         for (int j = 0; j < r.numModal; ++j) {
             zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];
@@ -123,27 +158,27 @@ bool ReevingSubsystem::Guts::anyConstraintEnabled(const State& s) const {
     return false;
 }
 
-Eigen::Matrix3d ReevingSubsystem::Guts::nodeMass3(const RopeRecord& r, const RopeCache& c, int a, int b) const {
-    if (!r.planar) return c.spatial.nodeMass.block<3, 3>(3 * a, 3 * b);
-    Eigen::Matrix<double, 3, 2> E;
-    E << r.e1, r.e2;
-    return E * c.planar.nodeMass.block<2, 2>(2 * a, 2 * b) * E.transpose();
-}
-Eigen::Vector3d ReevingSubsystem::Guts::nodeForce3(const RopeRecord& r, const RopeCache& c, int a) const {
-    if (!r.planar) return c.spatial.nodeForce.segment<3>(3 * a);
-    return r.e1 * c.planar.nodeForce[2 * a] + r.e2 * c.planar.nodeForce[2 * a + 1];
+Eigen::VectorXd ReevingSubsystem::Guts::ropeReaction(const RopeRecord& r, const RopeCache& c) const {
+    const Eigen::MatrixXd& S = r.planar ? c.planar.nodeMass : c.spatial.nodeMass;
+    Eigen::VectorXd f = r.planar ? c.planar.nodeForce : c.spatial.nodeForce;
+    f.noalias() -= S * c.externalAccelerations;
+    return f;
 }
 
-void ReevingSubsystem::Guts::nodeAccelerations(const State& s, const Vector_<SpatialVec>& A_GB,
-                                               Eigen::VectorXd& a) const {
-    a.resize(3 * static_cast<Eigen::Index>(mobileNodes_.size()));
-    for (size_t k = 0; k < mobileNodes_.size(); ++k) {
+void ReevingSubsystem::Guts::couplingAccelerations(const State& s, const Vector_<SpatialVec>& A_GB,
+                                                   const Vector& udot, Eigen::VectorXd& a) const {
+    const Eigen::Index m = static_cast<Eigen::Index>(mobileNodes_.size());
+    a.resize(3 * m + static_cast<Eigen::Index>(mobileAngles_.size()));
+    for (Eigen::Index k = 0; k < m; ++k) {
         const MobilizedBody& b = *mobileNodes_[k].body;
         const SpatialVec& A = A_GB[b.getMobilizedBodyIndex()];
         const Vec3 p = b.getBodyRotation(s) * mobileNodes_[k].station;
         const Vec3& w = b.getBodyAngularVelocity(s);
-        a.segment<3>(3 * static_cast<Eigen::Index>(k)) = toEigen(A[1] + A[0] % p + w % (w % p));
+        a.segment<3>(3 * k) = toEigen(A[1] + A[0] % p + w % (w % p));
     }
+    for (size_t d = 0; d < mobileAngles_.size(); ++d)
+        a[3 * m + static_cast<Eigen::Index>(d)] =
+            mobileAngles_[d].dsdTheta * udot[static_cast<int>(mobileAngles_[d].body->getFirstUIndex(s))];
 }
 
 }  // namespace SimbodyReeving

@@ -119,10 +119,11 @@ Vec3 ReevingSubsystem::getNodeForce(const State& s, int rope, int node) const {
     if (s.getSystemStage() < Stage::Dynamics)
         throw std::logic_error("ReevingSubsystem::getNodeForce: realize the state to Stage::Dynamics first");
     const RopeCache& c = g.positionCache(s).ropes[rope];
-    // The rope's node equation is S rdd - h = f (f: force on the rope); the body receives -f.
-    Eigen::Vector3d force = g.nodeForce3(r, c, node);
-    for (int b = 0; b < r.numNodes(); ++b) force.noalias() -= g.nodeMass3(r, c, node, b) * c.nodeAccelerations3.col(b);
-    return toSimTK(force);
+    // The rope's equation at its external coordinates is S xdd - h = f (f: force on the rope); the
+    // body receives -f = h - S xdd.
+    const Eigen::VectorXd reaction = g.ropeReaction(r, c);
+    if (r.planar) return toSimTK(r.planeBasis * reaction.segment<2>(2 * node));
+    return toSimTK(Eigen::Vector3d(reaction.segment<3>(3 * node)));
 }
 
 double ReevingSubsystem::getMaterialCoordinate(const State& s, int rope, int node) const {
@@ -146,7 +147,8 @@ double ReevingSubsystem::getMaxConstraintError(const State& s) const {
     double worst = 0;
     for (int i = 0; i < getNumRopes(); ++i)
         for (int k = 1; k + 1 < getGuts().ropes[i].numNodes(); ++k)
-            worst = std::max(worst, std::abs(getConstraintError(s, i, k)));
+            if (getGuts().ropes[i].nodeSpec(k).kind == RopeNodeKind::DeviationSheave)
+                worst = std::max(worst, std::abs(getConstraintError(s, i, k)));
     return worst;
 }
 

@@ -3,6 +3,8 @@
 
 #include "ReevingSubsystemGuts.h"
 
+#include "ForceFreeSubsystem.h"
+
 #include <cmath>
 #include <iomanip>
 #include <memory>
@@ -32,7 +34,8 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     const System& sys = getSystem();
     const SubsystemIndex me = getMySubsystemIndex();
     for (SubsystemIndex i(me + 1); i < sys.getNumSubsystems(); ++i)
-        if (dynamic_cast<const ForceSubsystem::Guts*>(&sys.getSubsystem(i).getSubsystemGuts()))
+        if (dynamic_cast<const ForceSubsystem::Guts*>(&sys.getSubsystem(i).getSubsystemGuts()) &&
+            !dynamic_cast<const ForceFreeSubsystemGuts*>(&sys.getSubsystem(i).getSubsystemGuts()))
             throw std::logic_error(
                 "ReevingSubsystem: force subsystem '" + sys.getSubsystem(i).getName() +
                 "' was added after the ReevingSubsystem; construct the ReevingSubsystem after every other "
@@ -52,9 +55,13 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         z += 2 * r.numModal;
         r.spatialModel.reset();
     }
+    // The coupled vector y: every rope's mobile nodes (3 rows each), then every driven material
+    // coordinate (1 row each); each rope's embedding T maps its external coordinates into y.
     self.mobileNodes_.clear();
+    self.mobileAngles_.clear();
     self.mobileBodies_.clear();
     self.mobileStations_.clear();
+    self.ropeCoupling_.assign(ropes.size(), RopeCoupling{});
     for (size_t i = 0; i < ropes.size(); ++i)
         for (int k = 0; k < ropes[i].numNodes(); ++k) {
             const auto [body, station] = ropes[i].node(k);
@@ -63,6 +70,42 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
             self.mobileBodies_.push_back(body->getMobilizedBodyIndex());
             self.mobileStations_.push_back(station);
         }
+    for (size_t i = 0; i < ropes.size(); ++i)
+        for (size_t d = 0; d < ropes[i].driven.size(); ++d) {
+            const RopeRecord::DrivenNode& dn = ropes[i].driven[d];
+            self.mobileAngles_.push_back({static_cast<int>(i), static_cast<int>(d),
+                                          &ropes[i].nodeSpec(dn.node).body, dn.dsdTheta});
+        }
+    const int numMobile = static_cast<int>(mobileNodes_.size());
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeRecord& r = ropes[i];
+        RopeCoupling& rc = self.ropeCoupling_[i];
+        std::vector<std::pair<int, int>> entries;  // (row in y, x column or -1 - node for 3 rows)
+        for (int a = 0; a < numMobile; ++a)
+            if (mobileNodes_[a].rope == static_cast<int>(i)) entries.push_back({3 * a, mobileNodes_[a].node});
+        int angleRow = 3 * numMobile;
+        std::vector<std::pair<int, int>> angles;
+        for (const MobileAngle& ma : mobileAngles_) {
+            if (ma.rope == static_cast<int>(i)) angles.push_back({angleRow, ma.driven});
+            ++angleRow;
+        }
+        rc.embedding.setZero(3 * static_cast<int>(entries.size()) + static_cast<int>(angles.size()), r.numExternal());
+        int row = 0;
+        for (const auto& [yRow, node] : entries) {
+            for (int d = 0; d < 3; ++d) {
+                rc.rows.push_back(yRow + d);
+                if (r.planar)
+                    rc.embedding.block<1, 2>(row + d, 2 * node) = r.planeBasis.row(d);
+                else
+                    rc.embedding(row + d, 3 * node + d) = 1.0;
+            }
+            row += 3;
+        }
+        for (const auto& [yRow, d] : angles) {
+            rc.rows.push_back(yRow);
+            rc.embedding(row++, r.dim() * r.numNodes() + d) = 1.0;
+        }
+    }
     if (z > 0) allocateZ(s, Vector(z, 0.0));
     positionCache_ = allocateCacheEntry(s, Stage::Position, new Value<PositionCache>());
     return 0;
@@ -147,6 +190,7 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
         c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
     }
     modal(getZ(s), r, false, c.modalCoordinates);
+    drivenCoordinates(s, r, c.drivenS, nullptr);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
     // What Simbody 3.7 does with the exception (its sources, confirmed in
     // tests/test_step_failures.cpp): the Runge-Kutta family (AbstractIntegratorRep::
@@ -159,9 +203,9 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
     try {
         if (r.planar) {
             c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
-            r.planarModel->solveDependentCoordinates(c.nodes2, c.modalCoordinates, c.planar);
+            r.planarModel->solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
         } else {
-            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.modalCoordinates, c.spatial);
+            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
         }
     } catch (const std::exception& e) {
         failEvaluation(s, r, e);
@@ -184,14 +228,15 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
         c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
     }
     modal(getZ(s), r, true, c.modalRates);
+    drivenCoordinates(s, r, c.drivenS, &c.drivenSdot);
     try {
         if (r.planar) {
             c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
-            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.modalCoordinates, c.modalRates,
-                                           c.planar);
+            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.drivenS, c.drivenSdot, c.modalCoordinates,
+                                           c.modalRates, c.planar);
         } else {
-            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.modalCoordinates,
-                                                      c.modalRates, c.spatial);
+            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot,
+                                                      c.modalCoordinates, c.modalRates, c.spatial);
         }
     } catch (const std::exception& e) {
         failEvaluation(s, r, e);
@@ -253,9 +298,22 @@ const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const RopeRecord& r,
         for (int j = 0; j < r.numSpans(); ++j)
             spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_),
                                makeReferenceFrame(nodes.col(j + 1) - nodes.col(j)));
-        r.spatialModel = std::make_shared<const RopeModel<3>>(std::move(spans), r.spec.unstretchedLength);
+        r.spatialModel = std::make_shared<const RopeModel<3>>(std::move(spans), r.spec.unstretchedLength,
+                                                              r.materialKinds);
     }
     return *r.spatialModel;
+}
+
+void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord& r, Eigen::VectorXd& sDriven,
+                                               Eigen::VectorXd* sDrivenDot) const {
+    const int n = static_cast<int>(r.driven.size());
+    sDriven.resize(n);
+    if (sDrivenDot) sDrivenDot->resize(n);
+    for (int d = 0; d < n; ++d) {
+        const MobilizedBody& pin = r.nodeSpec(r.driven[d].node).body;
+        sDriven[d] = r.driven[d].sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
+        if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * pin.getOneU(s, 0);
+    }
 }
 
 }  // namespace SimbodyReeving

@@ -28,7 +28,17 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
     const int nu = state.getNU();
     int nm = 0;
     for (int i = 0; i < getNumRopes(); ++i) nm += getNumModalCoordinates(i);
-    const int n = nu + nm;
+    // Mobilities with prescribed motion (a drum on a speed profile, a trolley on its traverse
+    // profile) keep their motion: neither unknowns nor residual rows.
+    mbs.realize(state, Stage::Instance);
+    std::vector<int> freeU;
+    for (SimTK::MobilizedBodyIndex b(0); b < matter.getNumBodies(); ++b) {
+        const SimTK::MobilizedBody& mb = matter.getMobilizedBody(b);
+        if (mb.isGround() || mb.getUDotMotionMethod(state) != SimTK::Motion::Free) continue;
+        for (int k = 0; k < mb.getNumU(state); ++k) freeU.push_back(mb.getFirstUIndex(state) + k);
+    }
+    const int nf = static_cast<int>(freeU.size());
+    const int n = nf + nm;
 
     // Generalized force residual at zero velocity: bodies M udot, ropes Mbar_mm qddot_m; and the
     // scale: the largest applied generalized force on bodies and rope modes.
@@ -37,16 +47,16 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
         Eigen::VectorXd r(n);
         Vector Mudot;
         matter.multiplyByM(st, st.getUDot(), Mudot);
-        for (int k = 0; k < nu; ++k) r[k] = Mudot[k];
+        for (int k = 0; k < nf; ++k) r[k] = Mudot[freeU[k]];
         const Vector& zdot = g.getZDot(st);
         const PositionCache& pc = g.positionCache(st);
-        int off = nu;
+        int off = nf;
         double fmax = 0;
         for (int i = 0; i < getNumRopes(); ++i) {
             const RopeRecord& rr = g.ropes[i];
             Eigen::VectorXd qdd(rr.numModal);
             for (int j = 0; j < rr.numModal; ++j) qdd[j] = zdot[rr.zOffset + rr.numModal + j];
-            const int nn = (rr.planar ? 2 : 3) * rr.numNodes();
+            const int nn = rr.numExternal();
             const Eigen::MatrixXd& Mbar = rr.planar ? pc.ropes[i].planar.Mbar : pc.ropes[i].spatial.Mbar;
             const Eigen::VectorXd& Qbar = rr.planar ? pc.ropes[i].planar.Qbar : pc.ropes[i].spatial.Qbar;
             r.segment(off, rr.numModal) = Mbar.bottomRightCorner(rr.numModal, rr.numModal) * qdd;
@@ -59,18 +69,18 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
             matter.calcResidualForceIgnoringConstraints(st, mbs.getMobilityForces(st, Stage::Dynamics),
                                                         mbs.getRigidBodyForces(st, Stage::Dynamics),
                                                         Vector(nu, 0.0), applied);
-            for (int k = 0; k < nu; ++k) fmax = std::max(fmax, std::abs(applied[k]));
+            for (int k = 0; k < nf; ++k) fmax = std::max(fmax, std::abs(applied[freeU[k]]));
             *scale = fmax;
         }
         return r;
     };
     auto displace = [&](State& st, const Eigen::VectorXd& dy) {
-        Vector du(nu), dq;
-        for (int k = 0; k < nu; ++k) du[k] = dy[k];
+        Vector du(nu, 0.0), dq;
+        for (int k = 0; k < nf; ++k) du[freeU[k]] = dy[k];
         mbs.realize(st, Stage::Position);
         matter.multiplyByN(st, false, du, dq);
         st.updQ() += dq;
-        int off = nu;
+        int off = nf;
         for (int i = 0; i < getNumRopes(); ++i) {
             Vector q = getModalCoordinates(st, i);
             for (int j = 0; j < q.size(); ++j) q[j] += dy[off + j];

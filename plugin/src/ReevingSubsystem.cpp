@@ -44,23 +44,59 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     r.spec = specIn;
     const RopeSpec& spec = r.spec;
     const std::string who = "rope '" + spec.name + "': ";
-    auto checkAnchor = [&](const RopeAnchor& a, const char* which) {
-        if (a.body.isEmptyHandle()) invalid(who + which + " anchor has no body");
-        if (!finite(a.station)) invalid(who + which + " anchor station [m] = " + str(a.station) + " must be finite");
-    };
-    checkAnchor(spec.start, "start");
-    checkAnchor(spec.end, "end");
-    for (size_t k = 0; k < spec.sheaves.size(); ++k) {
-        const DeviationSheave& sh = spec.sheaves[k];
-        const std::string name = who + "sheave " + std::to_string(k);
-        if (sh.body.isEmptyHandle()) invalid(name + " has no body");
-        if (!finite(sh.centre)) invalid(name + " centre [m] = " + str(sh.centre) + " must be finite");
-        if (!std::isfinite(sh.radius) || !(sh.radius > 0)) {
-            std::ostringstream o;
-            o << name << " radius [m] = " << sh.radius << " must be finite and > 0";
-            invalid(o.str());
+    const SimTK::SimbodyMatterSubsystem* matter =
+        SimTK::MultibodySystem::isInstanceOf(getSystem()) &&
+                SimTK::MultibodySystem::downcast(getSystem()).hasMatterSubsystem()
+            ? &SimTK::MultibodySystem::downcast(getSystem()).getMatterSubsystem()
+            : nullptr;
+    auto kindName = [](RopeNodeKind k) {
+        switch (k) {
+            case RopeNodeKind::Anchor: return "Anchor";
+            case RopeNodeKind::DeviationSheave: return "DeviationSheave";
+            case RopeNodeKind::WinchDrum: return "WinchDrum";
+            case RopeNodeKind::TurningSheave: return "TurningSheave";
         }
+        return "unknown kind";
+    };
+    auto number = [](const std::string& what, double v, const char* must) {
+        std::ostringstream o;
+        o << what << " = " << v << " must be " << must;
+        return o.str();
+    };
+    for (int k = 0; k < r.numNodes(); ++k) {
+        const RopeNode& n = r.nodeSpec(k);
+        const bool end = k == 0 || k == r.numNodes() - 1;
+        const std::string name = who + (k == 0                  ? std::string("start node")
+                                        : k == r.numNodes() - 1 ? std::string("end node")
+                                                                : "sheave " + std::to_string(k - 1)) +
+                                 " (" + kindName(n.kind) + ", node " + std::to_string(k) + ")";
+        if (end && (n.kind == RopeNodeKind::DeviationSheave || n.kind == RopeNodeKind::TurningSheave))
+            invalid(name + ": a rope end must be an Anchor or a WinchDrum (a sheave needs a span on both sides)");
+        if (!end && (n.kind == RopeNodeKind::Anchor || n.kind == RopeNodeKind::WinchDrum))
+            invalid(name + ": a node inside the path must be a DeviationSheave or a TurningSheave (a rope fastened "
+                           "mid-path is two ropes)");
+        if (n.body.isEmptyHandle()) invalid(name + " has no body");
+        if (matter && &n.body.getMatterSubsystem() != matter)
+            invalid(name + " is on a body of another system's matter subsystem");
+        if (!finite(n.point)) invalid(name + " point [m] = " + str(n.point) + " must be finite");
+        if (n.kind == RopeNodeKind::Anchor) continue;
+        if (!std::isfinite(n.radius) || !(n.radius > 0)) invalid(number(name + " radius [m]", n.radius, "finite and > 0"));
+        if (n.kind == RopeNodeKind::DeviationSheave) continue;
+        // WinchDrum, TurningSheave: on a Pin, node on its axis.
+        if (!SimTK::MobilizedBody::Pin::isInstanceOf(n.body))
+            invalid(name + ": its body must be a MobilizedBody::Pin (the rope turns it about the pin axis)");
+        const SimTK::Transform& X_BM = n.body.getDefaultOutboardFrame();
+        const SimTK::Vec3 axis = X_BM.R().z(), offset = n.point - X_BM.p();
+        if ((offset - axis * SimTK::dot(offset, axis)).norm() > 1e-12 * std::max(1.0, offset.norm()))
+            invalid(name + " point " + str(n.point) + " is off the pin axis (it would orbit as the pin turns)");
+        if (n.sense != 1 && n.sense != -1) invalid(name + " sense = " + std::to_string(n.sense) + " must be +1 or -1");
+        if (n.kind == RopeNodeKind::WinchDrum && (!std::isfinite(n.ropeOnDrum) || n.ropeOnDrum < 0))
+            invalid(number(name + " ropeOnDrum [m]", n.ropeOnDrum, "finite and >= 0"));
+        if (n.kind == RopeNodeKind::TurningSheave && !std::isfinite(n.materialCoordinateAtZeroAngle))
+            invalid(number(name + " materialCoordinateAtZeroAngle [m]", n.materialCoordinateAtZeroAngle, "finite"));
     }
+    if (!std::isfinite(spec.minimumSpanLength) || !(spec.minimumSpanLength > 0))
+        invalid(number(who + "minimumSpanLength [m]", spec.minimumSpanLength, "finite and > 0"));
     // Consecutive path points on the same body must not coincide.
     for (int k = 0; k + 1 < r.numNodes(); ++k) {
         const auto a = r.node(k), b = r.node(k + 1);
@@ -85,6 +121,37 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                     std::to_string(r.numSpans() - 1));
         r.spanOptions[index] = options;
     }
+    // Material coordinates: Fixed at anchors, Sliding at deviation sheaves, Driven (s = sRef +
+    // dsdTheta theta) at drums and turning sheaves.
+    r.materialKinds.resize(r.numNodes());
+    for (int k = 0; k < r.numNodes(); ++k) {
+        const RopeNode& n = r.nodeSpec(k);
+        switch (n.kind) {
+            case RopeNodeKind::Anchor: r.materialKinds[k] = MaterialNode::Fixed; break;
+            case RopeNodeKind::DeviationSheave: r.materialKinds[k] = MaterialNode::Sliding; break;
+            case RopeNodeKind::WinchDrum:
+            case RopeNodeKind::TurningSheave: {
+                r.materialKinds[k] = MaterialNode::Driven;
+                RopeRecord::DrivenNode d;
+                d.node = k;
+                d.drum = n.kind == RopeNodeKind::WinchDrum;
+                d.ropeOnDrum = n.ropeOnDrum;
+                d.payout = n.sense * n.radius;
+                if (!d.drum) {
+                    d.sRef = n.materialCoordinateAtZeroAngle;
+                    d.dsdTheta = n.sense * n.radius;
+                } else if (k == 0) {
+                    d.sRef = 0;
+                    d.dsdTheta = -n.sense * n.radius;
+                } else {
+                    d.sRef = spec.unstretchedLength;
+                    d.dsdTheta = n.sense * n.radius;
+                }
+                r.driven.push_back(d);
+                break;
+            }
+        }
+    }
     if (!finite(spec.planeNormal)) invalid(who + "planeNormal = " + str(spec.planeNormal) + " must be finite");
     r.planar = spec.planeNormal.norm() > 0;
     const Eigen::Vector3d gravity = toEigen(g.gravity());
@@ -101,7 +168,8 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             std::vector<SpanModel<2>> spans;
             const Eigen::Vector2d g2(r.e1.dot(gravity), r.e2.dot(gravity));
             for (int j = 0; j < r.numSpans(); ++j) spans.emplace_back(spec.properties, r.spanOptions[j], g2);
-            r.planarModel = std::make_shared<const RopeModel<2>>(std::move(spans), spec.unstretchedLength);
+            r.planarModel =
+                std::make_shared<const RopeModel<2>>(std::move(spans), spec.unstretchedLength, r.materialKinds);
             r.numModal = r.planarModel->numModalCoordinates();
         } else {
             for (int j = 0; j < r.numSpans(); ++j) {
@@ -116,6 +184,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
         if (msg.rfind("ReevingSubsystem", 0) == 0) throw;
         invalid(who + msg);
     }
+    if (g.ropes.empty()) installLimitHandler(updSystem(), getMySubsystemIndex());
     g.ropes.push_back(std::move(r));
     invalidateSubsystemTopologyCache();
     return static_cast<int>(g.ropes.size()) - 1;

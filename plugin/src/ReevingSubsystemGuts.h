@@ -57,14 +57,38 @@ struct RopeRecord {
     int numModal = 0;
     int zOffset = 0;  // first Z entry (modal coordinates), rates follow
 
+    /// The nodes whose material coordinate turns with a pin (WinchDrum, TurningSheave), in node
+    /// order: s_k = sRef + dsdTheta theta (RopeModel's Driven nodes).
+    struct DrivenNode {
+        int node = 0;
+        double sRef = 0, dsdTheta = 0;
+        bool drum = false;
+        double ropeOnDrum = 0, payout = 0;  // drums: rope stored = ropeOnDrum - payout theta
+    };
+    std::vector<DrivenNode> driven;
+    std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
+
     int numSpans() const { return static_cast<int>(spec.sheaves.size()) + 1; }
     int numNodes() const { return numSpans() + 1; }
+    const RopeNode& nodeSpec(int k) const {
+        if (k == 0) return spec.start;
+        if (k == numNodes() - 1) return spec.end;
+        return spec.sheaves[k - 1];
+    }
     // Node k: (body, station)
     std::pair<const SimTK::MobilizedBody*, SimTK::Vec3> node(int k) const {
-        if (k == 0) return {&spec.start.body, spec.start.station};
-        if (k == numNodes() - 1) return {&spec.end.body, spec.end.station};
-        return {&spec.sheaves[k - 1].body, spec.sheaves[k - 1].centre};
+        const RopeNode& n = nodeSpec(k);
+        return {&n.body, n.point};
     }
+    /// Index of node k among the driven nodes, or -1.
+    int drivenIndex(int k) const {
+        for (size_t d = 0; d < driven.size(); ++d)
+            if (driven[d].node == k) return static_cast<int>(d);
+        return -1;
+    }
+    int dim() const { return planar ? 2 : 3; }
+    /// Number of the rope's external coordinates (RopeModel::numExternalCoordinates).
+    int numExternal() const { return dim() * numNodes() + static_cast<int>(driven.size()); }
 };
 
 /// Cache (per evaluation) of one rope:
@@ -77,19 +101,22 @@ struct RopeCache {
     Eigen::VectorXd modalCoordinates, modalRates;
     RopeData<2> planar;
     RopeData<3> spatial;
+    Eigen::VectorXd drivenS, drivenSdot;  // material coordinates and rates of the driven nodes
     // dynamics
-    Eigen::Matrix3Xd nodeAccelerations3;
-    Eigen::Matrix2Xd nodeAccelerations2;
+    Eigen::VectorXd externalAccelerations;  // xddot of RopeModel's external coordinates (node positions
+                                            // in the plane basis for planar ropes, driven s)
+    Eigen::Matrix3Xd nodeAccelerations3;    // in Ground
     Eigen::VectorXd modalAccelerations;
+    Eigen::MatrixXd embeddedMass;           // scratch: T S of the coupled solve
 };
 
 /// Cache (per evaluation, scratch of realizeSubsystemDynamicsImpl):
 /// Workspace of the coupled rope/body solve (sized once, reused every evaluation).
 struct CouplingWorkspace {
-    Eigen::MatrixXd S, Lambda, lhs;
+    Eigen::MatrixXd S, Lambda, lhs, J;
     Eigen::VectorXd h, f, rdd, a0, aUnit, rhs;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-    SimTK::Vector udot, generalizedForce, udotUnit;
+    SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
     SimTK::Matrix stationJacobian;
     SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit;
 };
@@ -102,11 +129,27 @@ struct PositionCache {
 };
 
 /// Model (fixed at realizeTopology):
-/// A rope node on a body other than Ground: it takes part in the coupled solve.
+/// A rope node on a body other than Ground: it takes part in the coupled solve (3 rows).
 struct MobileNode {
     int rope = 0, node = 0;
     const SimTK::MobilizedBody* body = nullptr;
     SimTK::Vec3 station{0};
+};
+
+/// Model (fixed at realizeTopology): a driven material coordinate in the coupled solve (1 row):
+/// s = sRef + dsdTheta theta, theta the pin's coordinate.
+struct MobileAngle {
+    int rope = 0, driven = 0;
+    const SimTK::MobilizedBody* body = nullptr;
+    double dsdTheta = 0;
+};
+
+/// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
+/// coupled vector y = [3 per MobileNode | 1 per MobileAngle] and the embedding T (rows x the rope's
+/// external coordinates): y_rope = T x (Ground nodes have no rows), S_y = T S_x T^T, h_y = T h_x.
+struct RopeCoupling {
+    std::vector<int> rows;  // coupled rows of this rope, in y order
+    Eigen::MatrixXd embedding;
 };
 
 }  // namespace detail
@@ -171,12 +214,27 @@ public:
 
     bool anyConstraintEnabled(const SimTK::State& s) const;
 
-    Eigen::Matrix3d nodeMass3(const detail::RopeRecord& r, const detail::RopeCache& c, int a, int b) const;
-    Eigen::Vector3d nodeForce3(const detail::RopeRecord& r, const detail::RopeCache& c, int a) const;
+    /// The generalized force the rope exerts on its supports at its external coordinates,
+    /// h - S xddot (the reaction of the coupled solve; Stage::Dynamics): rows Dim k.. for node k
+    /// (plane basis for planar ropes), Dim (N + 1) + d for driven node d.
+    Eigen::VectorXd ropeReaction(const detail::RopeRecord& r, const detail::RopeCache& c) const;
 
-    /// Accelerations in Ground of the mobile nodes from the bodies' spatial accelerations.
-    void nodeAccelerations(const SimTK::State& s, const SimTK::Vector_<SimTK::SpatialVec>& A_GB,
-                           Eigen::VectorXd& a) const;
+    /// Accelerations of the coupled vector y (mobile nodes in Ground, then driven material
+    /// coordinates) from the bodies' spatial accelerations and the mobilities' udot.
+    void couplingAccelerations(const SimTK::State& s, const SimTK::Vector_<SimTK::SpatialVec>& A_GB,
+                               const SimTK::Vector& udot, Eigen::VectorXd& a) const;
+
+    /// Material coordinates (and rates) of rope r's driven nodes in state s.
+    void drivenCoordinates(const SimTK::State& s, const detail::RopeRecord& r, Eigen::VectorXd& sDriven,
+                           Eigen::VectorXd* sDrivenDot) const;
+
+    // ---- rope limits (ReevingLimits.cpp) ----------------------------------------------------
+    /// Smallest margin to a rope limit over all ropes [m] (Stage::Position): span material length
+    /// minus RopeSpec::minimumSpanLength, rope left on each drum; and a description of the
+    /// limiting one.
+    double limitMargin(const SimTK::State& s, std::string* which) const;
+    void recordLimit(const std::string& message) const { limitReached_ = message; }
+    const std::string& limitReached() const { return limitReached_; }
 
     // ---- sampling (ReevingQueries.cpp) -----------------------------------------------------
     std::vector<SimTK::Vec3> sample(const SimTK::State& s, int rope, int span, int numPoints) const;
@@ -220,10 +278,14 @@ public:
 
 private:
     SimTK::Vec3 gravity_;
-    // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order.
+    // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order, then the
+    // driven material coordinates, and each rope's place in the coupled vector.
     std::vector<detail::MobileNode> mobileNodes_;
+    std::vector<detail::MobileAngle> mobileAngles_;
+    std::vector<detail::RopeCoupling> ropeCoupling_;
     SimTK::Array_<SimTK::MobilizedBodyIndex> mobileBodies_;
     SimTK::Array_<SimTK::Vec3> mobileStations_;
+    mutable std::string limitReached_;
     mutable std::string lastEvaluationFailure_;
     mutable int numEvaluationFailures_ = 0;
 
@@ -233,6 +295,10 @@ private:
 };
 
 namespace detail {
+
+/// Adds to `system` the event handler that ends a run at a rope limit (span at its minimum
+/// length, drum out of rope) of the ReevingSubsystem with index `reeving` (ReevingLimits.cpp).
+void installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving);
 
 /// Helper: rope `rope` of g; throws std::invalid_argument if the index is out of range.
 inline const RopeRecord& ropeAt(const ReevingSubsystem::Guts& g, int rope) {

@@ -15,11 +15,48 @@
 
 namespace SimbodyReeving {
 
-/// A station (point fixed on a body) where a rope is attached: a MobilizedBody (Ground allowed)
+/// The kinds of rope node: a closed set the ReevingSubsystem dispatches on (wrap geometry or
+/// friction would be new kinds). Each kind fixes how the node's position and its material
+/// coordinate s are determined (RopeModel's MaterialNode in brackets):
+///   - Anchor: a rope end fastened to a station of a body [Fixed: s_0 = 0, s_N = L].
+///   - DeviationSheave: a frictionless, massless sheave in the path [Sliding: the axial forces of
+///     both spans are equal there, paper eq 32].
+///   - WinchDrum: a rope end wound on a drum that turns with a MobilizedBody::Pin [Driven]:
+///     at the rope's end node s_N = L + sense R theta, at its start node s_0 = -sense R theta, with
+///     theta the pin angle (its q) and sense = +1 when a positive theta pays rope out.
+///   - TurningSheave: a sheave in the path on a MobilizedBody::Pin that the rope turns without slip,
+///     a drive sheave (motor on the pin) or an idler with inertia [Driven]:
+///     s_k = s_ref + sense R theta, sense = +1 when a positive theta moves the rope from the start
+///     side to the end side.
+/// Driven nodes: the material coordinate tracks R theta exactly (a holonomic tie), i.e. the rope
+/// on the drum or sheave is taken as inextensible and massless (add its mass to the body's inertia
+/// if it matters). Rope leaves a span at the strain it has there; its strain energy leaves the
+/// model with it, through the rope's generalized force on s, so the energy balance stays exact:
+/// the work of whatever drives the pin equals the change of the system's mechanical energy
+/// (MotionWorkMeter, getDrivenNodePower). Tracking R theta / stretch instead (rope wound at its
+/// strain) would make s depend on the strain: not holonomic, and different only by the strain
+/// (~1e-3) in the hoisting speed. The node's position is the point on the pin axis; the wrap arc
+/// is not modelled (point sheaves, as the paper).
+enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave };
+
+/// One node of a rope's path (see RopeNodeKind). Build it with the kind's struct below (RopeAnchor,
+/// DeviationSheave, WinchDrum, TurningSheave), which converts to a RopeNode.
+struct RopeNode {
+    RopeNodeKind kind = RopeNodeKind::Anchor;
+    SimTK::MobilizedBody body;  ///< Ground allowed for Anchor and DeviationSheave; a Pin for the others
+    SimTK::Vec3 point{0};       ///< station (Anchor) or centre, in the body frame [m]
+    double radius = 0;          ///< sheaves and drums [m], > 0
+    int sense = 1;              ///< WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind)
+    double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
+    double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave: s_ref [m]
+};
+
+/// A station (point fixed on a body) where a rope end is fastened: a MobilizedBody (Ground allowed)
 /// and the point's location in that body's frame [m].
 struct RopeAnchor {
     SimTK::MobilizedBody body;
     SimTK::Vec3 station{0};
+    operator RopeNode() const { return {RopeNodeKind::Anchor, body, station, 0.0, 1, 0.0, 0.0}; }
 };
 
 /// A frictionless deviation sheave: its centre on a body (Ground allowed) [m] and its radius [m].
@@ -31,16 +68,55 @@ struct DeviationSheave {
     SimTK::MobilizedBody body;
     SimTK::Vec3 centre{0};
     double radius = 0;
+    operator RopeNode() const { return {RopeNodeKind::DeviationSheave, body, centre, radius, 1, 0.0, 0.0}; }
+};
+
+/// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
+/// its radius R [m] > 0, the rope stored on it at pin angle 0 [m] >= 0 (the stored rope is
+/// ropeOnDrum - sense R theta; the run ends when it reaches 0), the payout sense (+1: a positive
+/// pin angle pays rope out) and the point on the pin axis where the rope node sits (drum body
+/// frame, default its origin).
+struct WinchDrum {
+    SimTK::MobilizedBody body;
+    double radius = 0;
+    double ropeOnDrum = 0;
+    int payoutSense = 1;
+    SimTK::Vec3 centre{0};
+    operator RopeNode() const { return {RopeNodeKind::WinchDrum, body, centre, radius, payoutSense, ropeOnDrum, 0.0}; }
+};
+
+/// A sheave the rope turns without slip (drive sheave, idler with inertia): a MobilizedBody::Pin,
+/// its radius R [m] > 0, the material coordinate at the sheave at pin angle 0 [m] (sets how the
+/// rope is distributed on both sides: with no slip, that is history, not equilibrium), the sense
+/// (+1: a positive pin angle moves rope towards the rope's end) and the point on the pin axis
+/// (body frame, default origin).
+struct TurningSheave {
+    SimTK::MobilizedBody body;
+    double radius = 0;
+    double materialCoordinateAtZeroAngle = 0;
+    int sense = 1;
+    SimTK::Vec3 centre{0};
+    operator RopeNode() const {
+        return {RopeNodeKind::TurningSheave, body, centre, radius, sense, 0.0, materialCoordinateAtZeroAngle};
+    }
 };
 
 /// Everything that describes one rope. SI units.
 struct RopeSpec {
     std::string name = "rope";
-    RopeAnchor start;                       ///< material coordinate s = 0
-    std::vector<DeviationSheave> sheaves;   ///< in path order
-    RopeAnchor end;                         ///< material coordinate s = unstretchedLength
-    RopeProperties properties;              ///< rhoA, EA, EI (see RopeProperties)
-    double unstretchedLength = 0;           ///< total unstretched length L of the rope [m], > 0
+    RopeNode start;                  ///< Anchor or WinchDrum
+    std::vector<RopeNode> sheaves;   ///< DeviationSheave or TurningSheave, in path order
+    RopeNode end;                    ///< Anchor or WinchDrum
+    RopeProperties properties;       ///< rhoA, EA, EI (see RopeProperties)
+    /// Unstretched length L of the rope between its start and end nodes at pin angles 0 [m], > 0
+    /// (material coordinates: s = 0 at an anchored start, s = L at an anchored end).
+    double unstretchedLength = 0;
+    /// Shortest unstretched span length the run accepts [m], > 0: a span whose material length
+    /// reaches it (two-blocking: the hook block at the trolley sheaves; a drum hauling the last
+    /// span in) ends the run cleanly, as does a drum running out of rope: the subsystem's event
+    /// handler requests termination (Integrator::EventHandlerRequestedTermination) and
+    /// getLimitReached() names the rope, span or drum and the time.
+    double minimumSpanLength = 0.2;
     SpanOptions spanDefaults;               ///< mode counts and options of every span...
     std::vector<std::pair<int, SpanOptions>> spanOverrides;  ///< ...except these (span index, options)
     /// Non-zero: the rope is planar, all its nodes stay in the plane through the start anchor with
@@ -60,12 +136,16 @@ struct RopeSpec {
 /// bodies' free accelerations and their response to unit forces at the rope nodes, and solves the
 /// rope's reduced equations together with those (a Schur complement on the node forces f):
 ///     (I + S Lambda) f = S a0 - h,
-/// S, h the rope reduced to its nodes, a0 the free node accelerations, Lambda the bodies' node
-/// mobility. -f is applied to the bodies and the rope's modal accelerations follow. The solve honours
-/// Simbody's constraints and prescribed motion because calcAcceleration does.
+/// S, h the rope reduced to its external coordinates (node positions on bodies other than Ground,
+/// and the material coordinates of WinchDrum / TurningSheave nodes, s = s_ref + sense R theta), a0
+/// their free accelerations, Lambda the bodies' mobility at them (for a driven s: the pin's, scaled
+/// by (sense R)^2). -f is applied to the bodies (forces at the stations, torques sense R f_s on the
+/// pins) and the rope's modal accelerations follow. The solve honours Simbody's constraints and
+/// prescribed motion (a drum on a speed profile) because calcAcceleration does.
 ///
-/// Must be constructed after every other force subsystem of the system (GeneralForceSubsystem
-/// included): realizeTopology throws std::logic_error otherwise.
+/// Must be constructed after every other force subsystem of the system that applies forces
+/// (GeneralForceSubsystem included; a MotionWorkMeter may come later): realizeTopology throws
+/// std::logic_error otherwise.
 ///
 /// Energy: the rope's strain and gravity energy are this subsystem's potential energy (so
 /// MultibodySystem::calcPotentialEnergy includes them); its kinetic energy is calcRopeKineticEnergy;
@@ -78,10 +158,12 @@ public:
     ReevingSubsystem(SimTK::MultibodySystem& system, const SimTK::Vec3& gravity);
 
     /// Adds a rope; returns its index. Must be called before realizeTopology.
-    /// @throws std::invalid_argument naming the problem: empty anchor body, non-finite station,
-    ///         non-positive or non-finite sheave radius or rope length, bad rope properties or mode
-    ///         counts, a span override index out of range, non-finite plane normal, gravity out of
-    ///         the rope plane.
+    /// @throws std::invalid_argument naming the problem: empty node body, a body of another
+    ///         system, non-finite station, a sheave kind at an end or an end kind in the path, a
+    ///         WinchDrum or TurningSheave whose body is not a MobilizedBody::Pin or whose point is
+    ///         off the pin axis, sense not +-1, negative ropeOnDrum, non-positive or non-finite
+    ///         radius, rope length or minimumSpanLength, bad rope properties or mode counts, a span
+    ///         override index out of range, non-finite plane normal, gravity out of the rope plane.
     int addRope(const RopeSpec& spec);
 
     int getNumRopes() const;
@@ -129,13 +211,33 @@ public:
     /// @throws std::invalid_argument if rope or node is out of range.
     /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
     SimTK::Vec3 getNodeForce(const SimTK::State& state, int rope, int node) const;
+    /// Torque about the pin axis that the rope applies to the body of a WinchDrum or TurningSheave
+    /// node [N m] (Stage::Dynamics): sense R times the rope's pull on its material at the node (at a
+    /// drum, about the axial force of the span there; at a turning sheave, the difference of both
+    /// spans' forces), from the coupled solve (inertia included).
+    /// @throws std::invalid_argument if rope or node is out of range or the node is not driven.
+    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
+    double getDrivenNodeTorque(const SimTK::State& state, int rope, int node) const;
+    /// Power the rope delivers to the body of a WinchDrum or TurningSheave node [W]
+    /// (Stage::Dynamics): getDrivenNodeTorque times the pin rate. Summed over the nodes and with the
+    /// bodies' own work it closes the energy balance of a driven machine.
+    /// @throws as getDrivenNodeTorque.
+    double getDrivenNodePower(const SimTK::State& state, int rope, int node) const;
+    /// Rope stored on a WinchDrum node [m]: ropeOnDrum - sense R theta.
+    /// @throws std::invalid_argument if rope or node is out of range or the node is not a WinchDrum.
+    double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;
+    /// The rope limit that ended the last run ("" if none): a span reaching
+    /// RopeSpec::minimumSpanLength or a drum running out of rope, with rope, span or node, and time.
+    const std::string& getLimitReached() const;
+
     /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m].
     double getMaterialCoordinate(const SimTK::State& state, int rope, int node) const;
     /// Material coordinate range [s1, s2] of a span [m].
     std::pair<double, double> getSpanMaterialRange(const SimTK::State& state, int rope, int span) const;
-    /// F_a - F_b at sheave k (1..N-1): the tension-equality residual [N].
+    /// F_a - F_b at sheave k (1..N-1) [N]: the tension-equality residual at a DeviationSheave; at a
+    /// TurningSheave the force its grip carries (not a residual).
     double getConstraintError(const SimTK::State& state, int rope, int sheave) const;
-    /// Largest |F_a - F_b| over all sheaves of all ropes [N].
+    /// Largest |F_a - F_b| over all DeviationSheaves of all ropes [N].
     double getMaxConstraintError(const SimTK::State& state) const;
     /// Positions in Ground of numPoints >= 2 equally spaced material points of a span [m].
     std::vector<SimTK::Vec3> sampleSpan(const SimTK::State& state, int rope, int span, int numPoints) const;
@@ -160,7 +262,9 @@ public:
 
     /// Moves `state` to static equilibrium of bodies and ropes together (velocities and modal
     /// rates set to zero): Newton's method on the accelerations, until the generalized force
-    /// residual is <= relativeTolerance times the largest applied generalized force.
+    /// residual is <= relativeTolerance times the largest applied generalized force. Mobilities
+    /// with prescribed motion (SimTK::Motion) keep it: they are neither unknowns nor residuals
+    /// (a drum held by its motion is a fixed drum here).
     /// Returns the achieved relative residual.
     /// @throws std::runtime_error if it does not converge in maxIterations.
     double findStaticEquilibrium(SimTK::State& state, double relativeTolerance = 1e-10, int maxIterations = 50) const;

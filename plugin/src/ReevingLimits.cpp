@@ -1,0 +1,128 @@
+// ReevingSubsystem: rope limits that end a run cleanly (a span at RopeSpec::minimumSpanLength:
+// two-blocking or a drum hauling the last span in; a drum out of rope), and the driven-node
+// queries (torque, power, rope on drum).
+
+#include "ReevingSubsystemGuts.h"
+
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+using SimTK::MobilizedBody;
+using SimTK::Stage;
+using SimTK::State;
+
+namespace SimbodyReeving {
+
+using namespace detail;
+
+double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) const {
+    const PositionCache& pc = positionCache(s);
+    double margin = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeRecord& r = ropes[i];
+        const Eigen::VectorXd& sv =
+            r.planar ? pc.ropes[i].planar.materialCoordinates : pc.ropes[i].spatial.materialCoordinates;
+        for (int j = 0; j < r.numSpans(); ++j) {
+            const double m = sv[j + 1] - sv[j] - r.spec.minimumSpanLength;
+            if (m < margin) {
+                margin = m;
+                if (which) {
+                    std::ostringstream o;
+                    o << "rope '" << r.spec.name << "' span " << j << " (nodes " << j << "-" << j + 1
+                      << "): its unstretched length reached minimumSpanLength = " << r.spec.minimumSpanLength
+                      << " m (two-blocking, or a drum hauled the span in)";
+                    *which = o.str();
+                }
+            }
+        }
+        for (const RopeRecord::DrivenNode& d : r.driven) {
+            if (!d.drum) continue;
+            const double onDrum = d.ropeOnDrum - d.payout * r.nodeSpec(d.node).body.getOneQ(s, 0);
+            if (onDrum < margin) {
+                margin = onDrum;
+                if (which)
+                    *which = "rope '" + r.spec.name + "' winch drum at node " + std::to_string(d.node) +
+                             " ran out of rope";
+            }
+        }
+    }
+    return margin;
+}
+
+namespace {
+
+/// Witness: the smallest margin to a rope limit [m]; when it falls through zero the run ends.
+class RopeLimitEvent : public SimTK::TriggeredEventHandler {
+public:
+    RopeLimitEvent(const SimTK::System& system, SimTK::SubsystemIndex reeving)
+        : SimTK::TriggeredEventHandler(Stage::Position), system_(system), reeving_(reeving) {
+        getTriggerInfo().setTriggerOnRisingSignTransition(false);
+        getTriggerInfo().setTriggerOnFallingSignTransition(true);
+        getTriggerInfo().setRequiredLocalizationTimeWindow(1e-6);
+    }
+    SimTK::Real getValue(const State& s) const override { return guts(s).limitMargin(s, nullptr); }
+    void handleEvent(State& s, SimTK::Real, bool& shouldTerminate) const override {
+        std::string which;
+        guts(s).limitMargin(s, &which);
+        std::ostringstream o;
+        o << "ReevingSubsystem: run ended at t = " << std::setprecision(10) << s.getTime() << " s: " << which;
+        guts(s).recordLimit(o.str());
+        shouldTerminate = true;
+    }
+
+private:
+    // The system owns this handler; the subsystem's guts are looked up through it (a handle
+    // object the user keeps may not outlive the set-up code).
+    const ReevingSubsystem::Guts& guts(const State&) const {
+        return dynamic_cast<const ReevingSubsystem::Guts&>(system_.getSubsystem(reeving_).getSubsystemGuts());
+    }
+
+    const SimTK::System& system_;
+    SimTK::SubsystemIndex reeving_;
+};
+
+}  // namespace
+
+void detail::installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving) {
+    system.addEventHandler(new RopeLimitEvent(system, reeving));  // the system owns it
+}
+
+// ---- driven-node queries ---------------------------------------------------------------------
+
+namespace {
+const RopeRecord::DrivenNode& drivenNodeAt(const RopeRecord& r, int node, const char* what) {
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    const int d = r.drivenIndex(node);
+    if (d < 0 || (std::string(what) == "WinchDrum" && !r.driven[d].drum))
+        invalid(std::string("rope '") + r.spec.name + "' node " + std::to_string(node) + " is not a " + what);
+    return r.driven[d];
+}
+}  // namespace
+
+double ReevingSubsystem::getDrivenNodeTorque(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum or TurningSheave");
+    if (s.getSystemStage() < Stage::Dynamics)
+        throw std::logic_error("ReevingSubsystem::getDrivenNodeTorque: realize the state to Stage::Dynamics first");
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    const Eigen::VectorXd reaction = g.ropeReaction(r, c);
+    return d.dsdTheta * reaction[r.dim() * r.numNodes() + r.drivenIndex(node)];
+}
+
+double ReevingSubsystem::getDrivenNodePower(const State& s, int rope, int node) const {
+    const double torque = getDrivenNodeTorque(s, rope, node);
+    return torque * ropeAt(getGuts(), rope).nodeSpec(node).body.getOneU(s, 0);
+}
+
+double ReevingSubsystem::getRopeOnDrum(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum");
+    return d.ropeOnDrum - d.payout * r.nodeSpec(node).body.getOneQ(s, 0);
+}
+
+const std::string& ReevingSubsystem::getLimitReached() const { return getGuts().limitReached(); }
+
+}  // namespace SimbodyReeving
