@@ -1,0 +1,231 @@
+// The reeving-crane executable end to end (issue 13, acceptance 6): outputs with their columns and
+// keys, the number of falls, a rope limit ending the run (exit 3, outputs written), bad input and
+// unusable output folders (exit 2, nothing written), SIGINT (exit 130, nothing written).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kExe = REEVING_CRANE_EXE;
+
+int run(const std::string& args, const std::string& log) {
+    const std::string cmd = "'" + kExe + "' " + args + " > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("reeving_crane_test_" + name);
+    fs::remove_all(p);
+    fs::remove(p.string() + ".log");
+    return p;
+}
+
+// Every value of every data row is a finite number and every row has the header's column count;
+// returns the header's columns and sets `rows`.
+std::vector<std::string> checkCsv(const fs::path& p, size_t& rows) {
+    std::ifstream in(p);
+    std::string header, line;
+    std::getline(in, header);
+    std::vector<std::string> columns;
+    {
+        std::stringstream ss(header);
+        std::string c;
+        while (std::getline(ss, c, ',')) columns.push_back(c);
+    }
+    rows = 0;
+    while (std::getline(in, line)) {
+        std::stringstream ss(line);
+        std::string cell;
+        size_t n = 0;
+        while (std::getline(ss, cell, ',')) {
+            char* end = nullptr;
+            const double v = std::strtod(cell.c_str(), &end);
+            EXPECT_TRUE(end != cell.c_str() && std::isfinite(v)) << p << ": '" << cell << "'";
+            ++n;
+        }
+        EXPECT_EQ(n, columns.size()) << p << ": " << line;
+        ++rows;
+    }
+    return columns;
+}
+
+std::vector<std::string> expectedColumns(int falls) {
+    std::vector<std::string> c{"t", "trolley_x", "hook_x", "hook_height", "sway", "payload_angle"};
+    for (int k = 1; k <= falls; ++k) c.push_back("fall_" + std::to_string(k));
+    for (const char* s : {"drum_speed", "motor_torque", "motor_power", "rope_on_drum", "trolley_force", "trolley_power",
+                          "motion_work", "energy_residual"})
+        c.push_back(s);
+    return c;
+}
+
+void checkSummary(const fs::path& p) {
+    const std::string json = slurp(p);
+    for (const char* key : {"program", "falls", "axial_modes", "transverse_modes", "axial_dynamics", "integrator",
+                            "accuracy", "report_interval", "lift_m", "traverse_m", "t_end", "t_reached", "termination",
+                            "limit", "static_fall_tension_N", "static_reference_tension_N", "max_fall_tension_N",
+                            "max_abs_sway_rad", "max_abs_payload_angle_rad", "final_hook_height_m",
+                            "final_rope_on_drum_m", "max_abs_motor_torque_Nm", "max_abs_motor_power_W",
+                            "final_motion_work_J", "max_abs_energy_residual_J", "energy_residual_relative", "steps",
+                            "rhs_evaluations", "wall_seconds", "real_time_factor", "snapshot_times", "parameters"})
+        EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
+    EXPECT_EQ(json.find("nan"), std::string::npos);
+    EXPECT_EQ(json.find("null"), std::string::npos);
+}
+
+// Number of gnuplot data sets (snapshots) in snapshots.dat.
+int countSnapshots(const fs::path& p) {
+    const std::string text = slurp(p);
+    int n = 0;
+    for (size_t at = text.find("# snapshot "); at != std::string::npos; at = text.find("# snapshot ", at + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST(CraneDemo, WritesAllOutputs) {
+    const fs::path out = scratch("default");
+    ASSERT_EQ(run("--t-end 1.5 --report-interval 0.1 --quiet --out '" + out.string() + "'", out.string() + ".log"), 0)
+        << slurp(out.string() + ".log");
+    size_t rows = 0;
+    EXPECT_EQ(checkCsv(out / "timeseries.csv", rows), expectedColumns(4));
+    EXPECT_EQ(rows, 16u);  // t = 0, 0.1, ..., 1.5
+    checkSummary(out / "summary.json");
+    const std::string json = slurp(out / "summary.json");
+    EXPECT_NE(json.find("\"termination\": \"completed\""), std::string::npos);
+    EXPECT_NE(json.find("\"falls\": 4"), std::string::npos);
+    EXPECT_EQ(countSnapshots(out / "snapshots.dat"), 6);
+    for (const auto& e : fs::directory_iterator(out))
+        EXPECT_EQ(e.path().extension(), e.path().extension() == ".partial" ? ".none" : e.path().extension()) << e.path();
+    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+        for (const char* fig : {"fig_hook_height_sway.png", "fig_fall_tensions.png", "fig_energy.png", "fig_snapshots.png"})
+            EXPECT_GT(fs::exists(out / fig) ? fs::file_size(out / fig) : 0u, 1000u) << fig;
+    }
+}
+
+TEST(CraneDemo, FallsAndModeOptions) {
+    for (const auto& [falls, args] : std::vector<std::pair<int, std::string>>{
+             {1, "--axial-modes 0"}, {3, "--axial-modes 2 --transverse-modes 2"}, {12, "--axial-modes 1"},
+             {2, "--axial-modes 1 --axial-dynamics dynamic --integrator rk3"}}) {
+        const fs::path out = scratch("falls_" + std::to_string(falls));
+        EXPECT_EQ(run("--falls " + std::to_string(falls) + " " + args +
+                          " --t-end 0.2 --report-interval 0.05 --snapshots 2 --no-plots --quiet --out '" +
+                          out.string() + "'",
+                      out.string() + ".log"),
+                  0)
+            << falls << ": " << slurp(out.string() + ".log");
+        size_t rows = 0;
+        EXPECT_EQ(checkCsv(out / "timeseries.csv", rows), expectedColumns(falls)) << falls;
+        EXPECT_EQ(rows, 5u);
+        checkSummary(out / "summary.json");
+        EXPECT_NE(slurp(out / "summary.json").find("\"falls\": " + std::to_string(falls) + ","), std::string::npos);
+        EXPECT_EQ(countSnapshots(out / "snapshots.dat"), 2);
+        EXPECT_FALSE(fs::exists(out / "fig_snapshots.png"));
+    }
+}
+
+// A lift beyond the two-blocking height: the shortest fall reaches minimumSpanLength, the run ends
+// there cleanly, the outputs up to that instant are written, exit status 3 with one stderr line.
+TEST(CraneDemo, TwoBlockingEndsTheRunWithExitThree) {
+    const fs::path out = scratch("two_blocking");
+    const std::string log = out.string() + ".log";
+    ASSERT_EQ(run("--lift 12 --axial-modes 0 --t-end 15 --report-interval 0.1 --no-plots --quiet --out '" +
+                      out.string() + "'",
+                  log),
+              3)
+        << slurp(log);
+    const std::string json = slurp(out / "summary.json");
+    EXPECT_NE(json.find("\"termination\": \"limit_reached\""), std::string::npos) << json;
+    EXPECT_EQ(json.find("\"limit\": \"\""), std::string::npos) << json;
+    size_t rows = 0;
+    checkCsv(out / "timeseries.csv", rows);
+    EXPECT_GT(rows, 20u);
+    EXPECT_LT(rows, 111u);  // ended before the lift's end at 10 s
+    const std::string msg = slurp(log);
+    EXPECT_NE(msg.find("reeving-crane: rope limit reached at t = "), std::string::npos) << msg;
+    EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 2) << msg;  // the summary line and the note
+}
+
+TEST(CraneDemo, BadInputExitsTwoAndWritesNothing) {
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"--bogus", "--bogus"},
+        {"--falls 0", "--falls '0'"},
+        {"--falls 13", "--falls '13'"},
+        {"--falls two", "--falls 'two'"},
+        {"--axial-modes 17", "--axial-modes '17'"},
+        {"--transverse-modes -1", "--transverse-modes '-1'"},
+        {"--axial-dynamics fast", "--axial-dynamics 'fast'"},
+        {"--lift 0", "--lift '0'"},
+        {"--traverse inf", "--traverse 'inf'"},
+        {"--t-end -1", "--t-end '-1'"},
+        {"--integrator rk45", "--integrator 'rk45'"},
+        {"--accuracy 2", "--accuracy '2'"},
+        {"--set EA=-5", "--set 'EA=-5'"},
+        {"--set Q=1", "--set 'Q=1'"},
+        {"--set payloadMass", "--set 'payloadMass'"},
+        {"--snapshots 0", "--snapshots '0'"},
+        {"--report-interval nan", "--report-interval 'nan'"},
+        {"--out", "--out"},
+    };
+    for (const auto& [args, needle] : cases) {
+        const fs::path out = scratch("bad");
+        const std::string log = out.string() + ".log";
+        EXPECT_EQ(run(args + (args == "--out" ? "" : " --out '" + out.string() + "'"), log), 2) << args;
+        const std::string msg = slurp(log);
+        EXPECT_NE(msg.find(needle), std::string::npos) << args << " -> " << msg;
+        EXPECT_NE(msg.find("--help"), std::string::npos) << msg;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
+    const fs::path out = scratch("help");
+    EXPECT_EQ(run("--help", out.string() + ".log"), 0);
+    EXPECT_NE(slurp(out.string() + ".log").find("Exit status"), std::string::npos);
+}
+
+TEST(CraneDemo, UnusableOutputFolderExitsTwoWithOneClearLine) {
+    const fs::path file = scratch("out_is_a_file");
+    { std::ofstream(file) << "keep me\n"; }
+    for (const std::string& out : {file.string(), (file / "sub").string()}) {
+        const std::string log = scratch("out_log").string();
+        EXPECT_EQ(run("--t-end 0.1 --no-plots --out '" + out + "'", log), 2) << out;
+        const std::string msg = slurp(log);
+        EXPECT_NE(msg.find("reeving-crane: --out '" + out + "': cannot create the output folder"), std::string::npos)
+            << msg;
+        EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
+    }
+    EXPECT_EQ(slurp(file), "keep me\n");
+    fs::remove(file);
+}
+
+TEST(CraneDemo, InterruptedRunWritesNothingAndExitsNonZero) {
+    const fs::path out = scratch("interrupted");
+    const std::string log = out.string() + ".log";
+    const std::string cmd = "timeout --preserve-status -s INT 3 '" + kExe +
+                            "' --falls 12 --axial-modes 3 --axial-dynamics dynamic --t-end 1000 --no-plots --quiet "
+                            "--out '" +
+                            out.string() + "' > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << slurp(log);
+    const std::string msg = slurp(log);
+    EXPECT_NE(msg.find("reeving-crane: interrupted at t = "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no outputs written"), std::string::npos) << msg;
+    ASSERT_TRUE(fs::is_directory(out));
+    EXPECT_TRUE(fs::is_empty(out)) << "files left in " << out;
+}
