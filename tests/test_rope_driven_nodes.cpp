@@ -139,3 +139,61 @@ TEST(RopeDrivenNodes, BadNodeKindsAreInvalidArguments) {
                               {MaterialNode::Fixed, MaterialNode::Fixed}),
                  std::invalid_argument);  // wrong count
 }
+
+// A drum that turned a long way since the last evaluation (an interpolated report metres of rope
+// later): the warm start is mapped into the new material range and, failing that, Newton restarts
+// cold; the result is the cold solution.
+TEST(RopeDrivenNodes, LargeDrumTurnBetweenEvaluationsStillConverges) {
+    for (AxialDynamics axial : {AxialDynamics::Dynamic, AxialDynamics::QuasiStatic}) {
+        std::vector<MaterialNode> kinds(13, MaterialNode::Sliding);
+        kinds.front() = MaterialNode::Driven;
+        kinds.back() = MaterialNode::Fixed;
+        const RopeModel<2> rope(makeSpans(12, 1, 1, axial), 12 * 10.0, kinds);
+        Eigen::Matrix2Xd nodes(2, 13);
+        for (int k = 0; k <= 12; ++k) nodes.col(k) << 0.1 * k, (k % 2 == 1 ? -10.0 : 0.0);
+        const Eigen::VectorXd qm = Eigen::VectorXd::Zero(rope.numModalCoordinates());
+        RopeData<2> warm, cold;
+        rope.solveDependentCoordinates(nodes, Eigen::VectorXd::Constant(1, 0.0), qm, warm);
+        // 8.5 m hauled in while the hook block rose 8.5 / 12 m.
+        for (int k = 1; k <= 12; k += 2) nodes(1, k) += 8.5 / 12;
+        rope.solveDependentCoordinates(nodes, Eigen::VectorXd::Constant(1, 8.5), qm, warm);
+        rope.solveDependentCoordinates(nodes, Eigen::VectorXd::Constant(1, 8.5), qm, cold);
+        EXPECT_LE((warm.materialCoordinates - cold.materialCoordinates).cwiseAbs().maxCoeff(), 1e-9);
+    }
+}
+
+// Rope stored on a drum (setStoredRope): the drum's generalized force does not depend on the
+// height datum, and at rest it is -dV/ds of the potential including the stored rope.
+TEST(RopeDrivenNodes, StoredRopeMakesTheDrumForceDatumFree) {
+    for (AxialDynamics axial : {AxialDynamics::Dynamic, AxialDynamics::QuasiStatic}) {
+        auto make = [&] {
+            RopeModel<2> rope(makeSpans(2, 2, 1, axial), 23.0,
+                              {MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed});
+            rope.setStoredRope(0, 40.0);
+            return rope;
+        };
+        const RopeModel<2> rope = make();
+        const int nm = rope.numModalCoordinates();
+        Eigen::VectorXd qm(nm);
+        for (int i = 0; i < nm; ++i) qm[i] = 1e-4 * std::sin(2.0 + i);
+        const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nm), zero1 = Eigen::VectorXd::Zero(1);
+        const Eigen::VectorXd sd = Eigen::VectorXd::Constant(1, 0.5);
+        Eigen::Matrix2Xd nodes = pendulumNodes();
+        RopeData<2> a, b;
+        rope.computeDynamics(nodes, Eigen::Matrix2Xd::Zero(2, 3), sd, zero1, qm, zero, a);
+        nodes.row(1).array() += 25.0;  // the same machine 25 m higher
+        rope.computeDynamics(nodes, Eigen::Matrix2Xd::Zero(2, 3), sd, zero1, qm, zero, b);
+        EXPECT_NEAR(a.nodeForce[6], b.nodeForce[6], 1e-9 * std::abs(a.nodeForce[6]));
+        auto potential = [&](double s0) {
+            RopeData<2> d;
+            rope.computeDynamics(nodes, Eigen::Matrix2Xd::Zero(2, 3), Eigen::VectorXd::Constant(1, s0), zero1, qm,
+                                 zero, d);
+            return d.strainEnergy + d.gravityEnergy;
+        };
+        const double h = 1e-6, dV = (potential(0.5 + h) - potential(0.5 - h)) / (2 * h);
+        // Qbar holds the spans' generalized force; the stored rope adds rhoA g . r_0 (slope +1).
+        const double stored = kRope.massPerLength * kGravity.dot(nodes.col(0));
+        EXPECT_NEAR(b.Qbar[6] + stored, -dV, 1e-6 * std::abs(dV) + 1e-3);
+        EXPECT_THROW(RopeModel<2>(make()).setStoredRope(1, 1.0), std::invalid_argument);
+    }
+}

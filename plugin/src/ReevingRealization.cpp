@@ -255,7 +255,7 @@ double ReevingSubsystem::Guts::potential(const RopeModel<Dim>& model, const Rope
         model.span(j).evaluate(q, Eigen::VectorXd::Zero(q.size()), d);
         u += d.potentialEnergy();
     }
-    return u;
+    return u + model.storedRopeGravityEnergy(nodes, data);
 }
 
 Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {
@@ -298,8 +298,9 @@ const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const RopeRecord& r,
         for (int j = 0; j < r.numSpans(); ++j)
             spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_),
                                makeReferenceFrame(nodes.col(j + 1) - nodes.col(j)));
-        r.spatialModel = std::make_shared<const RopeModel<3>>(std::move(spans), r.spec.unstretchedLength,
-                                                              r.materialKinds);
+        auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
+        r.addStoredRope(*model);
+        r.spatialModel = std::move(model);
     }
     return *r.spatialModel;
 }

@@ -168,8 +168,9 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             std::vector<SpanModel<2>> spans;
             const Eigen::Vector2d g2(r.e1.dot(gravity), r.e2.dot(gravity));
             for (int j = 0; j < r.numSpans(); ++j) spans.emplace_back(spec.properties, r.spanOptions[j], g2);
-            r.planarModel =
-                std::make_shared<const RopeModel<2>>(std::move(spans), spec.unstretchedLength, r.materialKinds);
+            auto model = std::make_shared<RopeModel<2>>(std::move(spans), spec.unstretchedLength, r.materialKinds);
+            r.addStoredRope(*model);
+            r.planarModel = std::move(model);
             r.numModal = r.planarModel->numModalCoordinates();
         } else {
             for (int j = 0; j < r.numSpans(); ++j) {

@@ -87,6 +87,13 @@ struct RopeRecord {
         return -1;
     }
     int dim() const { return planar ? 2 : 3; }
+    /// Declares the rope stored on each WinchDrum to the model (RopeModel::setStoredRope): at a
+    /// start drum l = ropeOnDrum + s_0, at an end drum l = ropeOnDrum + L - s_N.
+    template <int Dim>
+    void addStoredRope(RopeModel<Dim>& model) const {
+        for (const DrivenNode& d : driven)
+            if (d.drum) model.setStoredRope(d.node, d.node == 0 ? d.ropeOnDrum : d.ropeOnDrum + spec.unstretchedLength);
+    }
     /// Number of the rope's external coordinates (RopeModel::numExternalCoordinates).
     int numExternal() const { return dim() * numNodes() + static_cast<int>(driven.size()); }
 };

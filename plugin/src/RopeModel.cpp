@@ -103,6 +103,33 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
 }
 
 template <int Dim>
+void RopeModel<Dim>::setStoredRope(int node, double lengthAtZero) {
+    const int N = numSpans();
+    if ((node != 0 && node != N) || nodeKind_[node] != MaterialNode::Driven)
+        throw std::invalid_argument("RopeModel::setStoredRope: node " + std::to_string(node) +
+                                    " is not a Driven end node (rope is stored on drums at the rope's ends)");
+    if (!std::isfinite(lengthAtZero))
+        throw std::invalid_argument("RopeModel::setStoredRope: lengthAtZero must be finite");
+    for (Storage& st : storage_)
+        if (st.node == node) {
+            st.lengthAtZero = lengthAtZero;
+            return;
+        }
+    storage_.push_back({node, lengthAtZero, node == 0 ? 1.0 : -1.0});
+}
+
+template <int Dim>
+double RopeModel<Dim>::storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
+    double u = 0;
+    const double rhoA = properties().massPerLength;
+    for (const Storage& st : storage_) {
+        const double l = st.lengthAtZero + st.slope * data.materialCoordinates[st.node];
+        u -= rhoA * l * spans_.front().gravity().dot(nodes.col(st.node));
+    }
+    return u;
+}
+
+template <int Dim>
 void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                      const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     const auto& sp = spans_[j];
@@ -256,10 +283,21 @@ void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const 
     bool warm = s.size() == N + 1 && s.allFinite();
     if (!warm) s.setZero(N + 1);
     auto known = [&](int k) { return nodeKind_[k] != MaterialNode::Sliding; };
-    for (int k = 0; k <= N; ++k) {
-        if (nodeKind_[k] == MaterialNode::Fixed) s[k] = k == 0 ? 0.0 : length_;
-        if (nodeKind_[k] == MaterialNode::Driven) s[k] = drivenS[drivenIndex_[k]];
+    auto knownValue = [&](int k) {
+        return nodeKind_[k] == MaterialNode::Fixed ? (k == 0 ? 0.0 : length_) : drivenS[drivenIndex_[k]];
+    };
+    // Warm start: where the known coordinates on either side of a stretch of Sliding nodes moved
+    // (drums turned), the old Sliding values are mapped proportionally into the new stretch.
+    for (int a = 0; warm && a < N;) {
+        int b = a + 1;
+        while (!known(b)) ++b;
+        const double oldA = s[a], oldB = s[b], newA = knownValue(a), newB = knownValue(b);
+        if ((oldA != newA || oldB != newB) && oldB > oldA && newB > newA)
+            for (int k = a + 1; k < b; ++k) s[k] = newA + (s[k] - oldA) * ((newB - newA) / (oldB - oldA));
+        a = b;
     }
+    for (int k = 0; k <= N; ++k)
+        if (known(k)) s[k] = knownValue(k);
     // Every stretch between consecutive known nodes must hold material.
     for (int a = 0; a < N;) {
         int b = a + 1;
@@ -302,6 +340,7 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
                                                const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
     const int N = numSpans(), nqc = numCondensed_, nd = numDependent();
     Eigen::VectorXd& s = data.materialCoordinates;
+    const bool warm = s.size() == N + 1 && s.allFinite();
     setKnownMaterialCoordinates(nodes, drivenS, data);
     if (data.condensedAmplitudes.size() != nqc || !data.condensedAmplitudes.allFinite())
         data.condensedAmplitudes.setZero(nqc);
@@ -312,7 +351,21 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
     for (auto& v : data.spanQdot) v.setZero();
     const Eigen::VectorXd& C = data.newtonResidual;
     double previous = std::numeric_limits<double>::infinity();
+    // Newton from the previous solution (warm start). If that fails, once more from the cold
+    // start (chord-proportional material coordinates, zero amplitudes and multipliers): a warm start
+    // far from the new solution (a report interpolated a long way from the last evaluation, the
+    // rope having run metres over its sheaves) may lie outside Newton's basin.
+    bool coldRetry = warm;
     for (int iter = 0; iter <= 50; ++iter) {
+        if (iter == 50 && coldRetry) {
+            coldRetry = false;
+            iter = 0;
+            previous = std::numeric_limits<double>::infinity();
+            s.resize(0);
+            setKnownMaterialCoordinates(nodes, drivenS, data);
+            data.condensedAmplitudes.setZero(nqc);
+            data.multipliers.setZero(numMultipliers_);
+        }
         evaluateConstraints(nodes, qm, data, false);
         if (nd == 0) return;
         // Converged at 1e-15 in strain, or stagnating at round-off below 1e-12 (eps = 1/2(|t|^2/l^2 - 1)
@@ -327,7 +380,8 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
             return;
         }
         previous = err;
-        if (iter == 50) break;
+        if (iter == 50 && !coldRetry) break;
+        if (iter == 50) continue;  // the cold retry starts at the top of the loop
         data.newtonLu.compute(data.Cd);
         Eigen::VectorXd& step = data.newtonStep;
         step = data.newtonLu.solve(C);
@@ -517,6 +571,29 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         data.modalFree = data.modalMass.solve(data.Qbar.tail(nm));
         data.nodeMass.noalias() -= data.Mbar.topRightCorner(nx, nm) * data.modalCoupling;
         data.nodeForce.noalias() -= data.Mbar.topRightCorner(nx, nm) * data.modalFree;
+    }
+
+    // Rope stored on drums (setStoredRope): L_st = 1/2 rhoA l(s) (|rdot|^2 + sdot^2) + rhoA l(s) g.r,
+    // l = l0 + c s, gives
+    //     rhoA l rddot = rhoA l g - rhoA c sdot rdot + f_r,
+    //     rhoA l sddot = rhoA c (1/2 |rdot|^2 - 1/2 sdot^2 + g.r) + f_s,
+    // i.e. mass rhoA l on the node's position and on s, and these forces in h. It involves only the
+    // external coordinates, so it adds to S and h after the modal reduction.
+    const double rhoA = properties().massPerLength;
+    for (const Storage& st : storage_) {
+        const int k = st.node, xs = nn + drivenIndex_[k];
+        const double l = st.lengthAtZero + st.slope * data.materialCoordinates[k];
+        const double sdot = data.materialRates[k];
+        const Vec rdot = nodeVelocities.col(k);
+        const Vec& g = spans_.front().gravity();
+        for (int d = 0; d < Dim; ++d) {
+            data.nodeMass(Dim * k + d, Dim * k + d) += rhoA * l;
+            data.nodeForce[Dim * k + d] += rhoA * l * g[d] - rhoA * st.slope * sdot * rdot[d];
+        }
+        data.nodeMass(xs, xs) += rhoA * l;
+        data.nodeForce[xs] += rhoA * st.slope * (0.5 * rdot.squaredNorm() - 0.5 * sdot * sdot + g.dot(nodes.col(k)));
+        data.kineticEnergy += 0.5 * rhoA * l * (rdot.squaredNorm() + sdot * sdot);
+        data.gravityEnergy -= rhoA * l * g.dot(nodes.col(k));
     }
 }
 

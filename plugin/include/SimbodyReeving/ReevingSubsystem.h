@@ -29,18 +29,23 @@ namespace SimbodyReeving {
 ///     s_k = s_ref + sense R theta, sense = +1 when a positive theta moves the rope from the start
 ///     side to the end side.
 /// Driven nodes: the material coordinate tracks R theta exactly (a holonomic tie), i.e. the rope
-/// on the drum or sheave is taken as inextensible and massless (add its mass to the body's inertia
-/// if it matters). Rope leaves a span at the strain it has there; its strain energy leaves the
-/// model with it, through the rope's generalized force on s, so the energy balance stays exact:
-/// the work of whatever drives the pin equals the change of the system's mechanical energy
-/// (MotionWorkMeter, getDrivenNodePower). Tracking R theta / stretch instead (rope wound at its
-/// strain) would make s depend on the strain: not holonomic, and different only by the strain
-/// (~1e-3) in the hoisting speed. The node's position is the point on the pin axis; the wrap arc
-/// is not modelled (point sheaves, as the paper).
+/// on the drum or sheave is taken as inextensible. Rope leaves a span at the strain it has there;
+/// its strain energy leaves the model with it, through the rope's generalized force on s, so the
+/// energy balance stays exact: the work of whatever drives the pin equals the change of the
+/// system's mechanical energy (MotionWorkMeter, getDrivenNodePower). Tracking R theta / stretch
+/// instead (rope wound at its strain) would make s depend on the strain: not holonomic, and
+/// different only by the strain (~1e-3) in the hoisting speed. The rope stored on a WinchDrum keeps
+/// its mass: a ring of rhoA (ropeOnDrum - sense R theta) at radius R on the node, whose weight and
+/// inertia load the drum's body and whose kinetic and gravity energy are part of the rope's
+/// (RopeModel::setStoredRope; without it the drum torque would depend on the height datum). Do not
+/// add that rope to the drum body's mass as well. The node's position is the point on the pin axis;
+/// the wrap arc is not modelled (point sheaves, as the paper).
 enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave };
 
 /// One node of a rope's path (see RopeNodeKind). Build it with the kind's struct below (RopeAnchor,
-/// DeviationSheave, WinchDrum, TurningSheave), which converts to a RopeNode.
+/// DeviationSheave, WinchDrum, TurningSheave), which converts to a RopeNode; the two-argument
+/// {body, station} and three-argument {body, centre, radius} forms make an Anchor and a
+/// DeviationSheave, as RopeSpec's fields accepted before the other kinds existed.
 struct RopeNode {
     RopeNodeKind kind = RopeNodeKind::Anchor;
     SimTK::MobilizedBody body;  ///< Ground allowed for Anchor and DeviationSheave; a Pin for the others
@@ -49,6 +54,13 @@ struct RopeNode {
     int sense = 1;              ///< WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind)
     double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
     double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave: s_ref [m]
+
+    RopeNode() = default;
+    /// An Anchor at `station` of `body`.
+    RopeNode(const SimTK::MobilizedBody& anchorBody, const SimTK::Vec3& station) : body(anchorBody), point(station) {}
+    /// A DeviationSheave of radius `sheaveRadius` centred at `centre` of `body`.
+    RopeNode(const SimTK::MobilizedBody& sheaveBody, const SimTK::Vec3& centre, double sheaveRadius)
+        : kind(RopeNodeKind::DeviationSheave), body(sheaveBody), point(centre), radius(sheaveRadius) {}
 };
 
 /// A station (point fixed on a body) where a rope end is fastened: a MobilizedBody (Ground allowed)
@@ -56,7 +68,7 @@ struct RopeNode {
 struct RopeAnchor {
     SimTK::MobilizedBody body;
     SimTK::Vec3 station{0};
-    operator RopeNode() const { return {RopeNodeKind::Anchor, body, station, 0.0, 1, 0.0, 0.0}; }
+    operator RopeNode() const { return RopeNode(body, station); }
 };
 
 /// A frictionless deviation sheave: its centre on a body (Ground allowed) [m] and its radius [m].
@@ -68,7 +80,7 @@ struct DeviationSheave {
     SimTK::MobilizedBody body;
     SimTK::Vec3 centre{0};
     double radius = 0;
-    operator RopeNode() const { return {RopeNodeKind::DeviationSheave, body, centre, radius, 1, 0.0, 0.0}; }
+    operator RopeNode() const { return RopeNode(body, centre, radius); }
 };
 
 /// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
@@ -82,7 +94,13 @@ struct WinchDrum {
     double ropeOnDrum = 0;
     int payoutSense = 1;
     SimTK::Vec3 centre{0};
-    operator RopeNode() const { return {RopeNodeKind::WinchDrum, body, centre, radius, payoutSense, ropeOnDrum, 0.0}; }
+    operator RopeNode() const {
+        RopeNode n(body, centre, radius);
+        n.kind = RopeNodeKind::WinchDrum;
+        n.sense = payoutSense;
+        n.ropeOnDrum = ropeOnDrum;
+        return n;
+    }
 };
 
 /// A sheave the rope turns without slip (drive sheave, idler with inertia): a MobilizedBody::Pin,
@@ -97,7 +115,11 @@ struct TurningSheave {
     int sense = 1;
     SimTK::Vec3 centre{0};
     operator RopeNode() const {
-        return {RopeNodeKind::TurningSheave, body, centre, radius, sense, 0.0, materialCoordinateAtZeroAngle};
+        RopeNode n(body, centre, radius);
+        n.kind = RopeNodeKind::TurningSheave;
+        n.sense = sense;
+        n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
+        return n;
     }
 };
 

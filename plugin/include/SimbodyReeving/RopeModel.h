@@ -134,6 +134,21 @@ public:
     int drivenIndex(int node) const { return drivenIndex_[node]; }
     /// Number of external coordinates x = [r_0..r_N, s_driven]: Dim (N + 1) + numDrivenNodes().
     int numExternalCoordinates() const { return Dim * numNodes() + numDriven_; }
+
+    /// Declares rope stored at a Driven end node (a winch drum): its length is
+    ///     l = lengthAtZero + s_0 (start node) or l = lengthAtZero - s_N (end node) [m]
+    /// (hauling material out of the spans stores it), held as a ring of radius R at the node
+    /// moving with it, so it has
+    ///     T_stored = 1/2 rhoA l (|rdot_k|^2 + sdot_k^2),   U_stored = -rhoA l g . r_k.
+    /// Without it the material would vanish from the model at the drum, carrying its potential
+    /// energy -rhoA g . r_k per metre out through the span's generalized force on s_k: a drum torque
+    /// that depends on the height datum. With it the torque is datum-free, the stored rope's weight
+    /// and inertia load the node's body, and T + U (spans + stored rope) keeps its invariance.
+    /// Added to nodeMass, nodeForce and the energies by computeDynamics.
+    /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
+    void setStoredRope(int node, double lengthAtZero);
+    /// Gravity energy of the stored rope at these node positions and material coordinates [J].
+    double storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
     /// QuasiStatic spans): the length of the qm vectors below.
     int numModalCoordinates() const { return numModal_; }
@@ -228,6 +243,11 @@ private:
     std::vector<MaterialNode> nodeKind_;
     std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
     std::vector<int> slidingNode_;                 // sliding index -> node
+    struct Storage {
+        int node = -1;
+        double lengthAtZero = 0, slope = 0;  // l = lengthAtZero + slope s_node
+    };
+    std::vector<Storage> storage_;                 // rope stored at Driven end nodes (drums)
     int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0, numSliding_ = 0, numDriven_ = 0;
     double length_ = 0;
 };
