@@ -118,6 +118,9 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
 // l = L / (number of spans), the mean span length. Rates: w / omega_i with omega_i the span's
 // i-th axial frequency i pi / l sqrt(EA / rhoA).
 int ReevingSubsystem::Guts::realizeSubsystemInstanceImpl(const State& s) const {
+    // A new run (an integrator's initialize realizes Stage::Instance afresh) has reached no limit
+    // yet; a limit ends a run, so this never clears the message of the current one.
+    recordLimit("");
     if (getZ(s).size() == 0) return 0;
     Vector& w = const_cast<State&>(s).updZWeights(getMySubsystemIndex());
     const double pi = std::acos(-1.0);

@@ -250,6 +250,7 @@ public:
     double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;
     /// The rope limit that ended the last run ("" if none): a span reaching
     /// RopeSpec::minimumSpanLength or a drum running out of rope, with rope, span or node, and time.
+    /// Cleared when a state is realized to Stage::Instance afresh (an integrator's initialize).
     const std::string& getLimitReached() const;
 
     /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m].
