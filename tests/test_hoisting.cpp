@@ -33,7 +33,14 @@ constexpr double kG = 9.81;
 SimTK::Body::Rigid pointMass(double m) { return SimTK::Body::Rigid(SimTK::MassProperties(m, Vec3(0), SimTK::Inertia(1e-3 * m))); }
 SimTK::Body::Rigid wheel(double J) { return SimTK::Body::Rigid(SimTK::MassProperties(1.0, Vec3(0), SimTK::Inertia(J, J, J))); }
 // Frames whose x axis is Ground's y: a Slider along them moves vertically.
-SimTK::Transform vertical(const Vec3& p) { return SimTK::Transform(SimTK::Rotation(SimTK::Pi / 2, SimTK::ZAxis), p); }
+SimTK::Transform vertical(const Vec3& p) {
+    // x -> y, y -> -x, z -> z: a quarter turn about z, written out (the Rotation(angle, axis)
+    // constructor trips a false -Warray-bounds inside Simbody's headers in the sanitizer build).
+    const SimTK::Mat33 R(0, -1, 0,  //
+                         1, 0, 0,   //
+                         0, 0, 1);
+    return SimTK::Transform(SimTK::Rotation(R, true), p);
+}
 
 /// A hoist: a winch drum (Pin about z on Ground at height H, radius R) at the rope's start, n falls
 /// zigzagging between Ground sheaves (top) and a hook block of mass M on a vertical Slider
