@@ -31,7 +31,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     Vector& mobilityForces = mbs().updMobilityForces(s, Stage::Dynamics);
 
     const int m = static_cast<int>(mobileNodes_.size()), na = static_cast<int>(mobileAngles_.size());
-    const int n = 3 * m + na;
+    const int ns = numStationRows_, n = ns + na;
     ws.S.setZero(n, n);
     ws.h.setZero(n);
     for (size_t i = 0; i < ropes.size(); ++i) {
@@ -66,11 +66,16 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             ws.J.setZero(n, nu);
             if (m > 0) {
                 matter().calcStationJacobian(s, mobileBodies_, mobileStations_, ws.stationJacobian);
-                for (int row = 0; row < 3 * m; ++row)
-                    for (int i = 0; i < nu; ++i) ws.J(row, i) = ws.stationJacobian(row, i);
+                for (int row = 0; row < ns; ++row) {
+                    const auto [a, d] = rowOwner_[row];
+                    const Eigen::Vector3d dir = mobileNodes_[a].directions.col(d);
+                    for (int i = 0; i < nu; ++i)
+                        ws.J(row, i) = dir[0] * ws.stationJacobian(3 * a, i) + dir[1] * ws.stationJacobian(3 * a + 1, i) +
+                                       dir[2] * ws.stationJacobian(3 * a + 2, i);
+                }
             }
             for (int a = 0; a < na; ++a)
-                ws.J(3 * m + a, static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s))) = mobileAngles_[a].dsdTheta;
+                ws.J(ns + a, static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s))) = mobileAngles_[a].dsdTheta;
             ws.generalizedForce.resize(nu);
             for (int col = 0; col < n; ++col) {
                 for (int i = 0; i < nu; ++i) ws.generalizedForce[i] = ws.J(col, i);
@@ -86,13 +91,12 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             for (int col = 0; col < n; ++col) {
                 ws.bodyForcesUnit = bodyForces;
                 ws.mobilityForcesUnit = mobilityForces;
-                if (col < 3 * m) {
-                    Vec3 unit(0);
-                    unit[col % 3] = 1.0;
-                    mobileNodes_[col / 3].body->applyForceToBodyPoint(s, mobileNodes_[col / 3].station, unit,
-                                                                      ws.bodyForcesUnit);
+                if (col < ns) {
+                    const MobileNode& mn = mobileNodes_[rowOwner_[col].first];
+                    mn.body->applyForceToBodyPoint(s, mn.station, toSimTK(mn.directions.col(rowOwner_[col].second)),
+                                                   ws.bodyForcesUnit);
                 } else {
-                    const MobileAngle& ma = mobileAngles_[col - 3 * m];
+                    const MobileAngle& ma = mobileAngles_[col - ns];
                     ma.body->applyOneMobilityForce(s, 0, ma.dsdTheta, ws.mobilityForcesUnit);
                 }
                 matter().calcAcceleration(s, ws.mobilityForcesUnit, ws.bodyForcesUnit, ws.udot, ws.A_GB);
@@ -109,12 +113,14 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         ws.f = ws.lu.solve(ws.rhs);
         ws.rdd = ws.a0;
         ws.rdd.noalias() -= ws.Lambda * ws.f;
-        for (int a = 0; a < m; ++a)
-            mobileNodes_[a].body->applyForceToBodyPoint(s, mobileNodes_[a].station,
-                                                        -toSimTK(ws.f.segment<3>(3 * a)), bodyForces);
+        for (int a = 0; a < m; ++a) {
+            const MobileNode& mn = mobileNodes_[a];
+            const Eigen::Vector3d force = mn.directions.leftCols(mn.dims) * ws.f.segment(mn.row, mn.dims);
+            mn.body->applyForceToBodyPoint(s, mn.station, -toSimTK(force), bodyForces);
+        }
         for (int a = 0; a < na; ++a) {
             const MobileAngle& ma = mobileAngles_[a];
-            ma.body->applyOneMobilityForce(s, 0, -ma.dsdTheta * ws.f[3 * m + a], mobilityForces);
+            ma.body->applyOneMobilityForce(s, 0, -ma.dsdTheta * ws.f[ns + a], mobilityForces);
         }
     }
 
@@ -167,17 +173,18 @@ Eigen::VectorXd ReevingSubsystem::Guts::ropeReaction(const RopeRecord& r, const 
 
 void ReevingSubsystem::Guts::couplingAccelerations(const State& s, const Vector_<SpatialVec>& A_GB,
                                                    const Vector& udot, Eigen::VectorXd& a) const {
-    const Eigen::Index m = static_cast<Eigen::Index>(mobileNodes_.size());
-    a.resize(3 * m + static_cast<Eigen::Index>(mobileAngles_.size()));
-    for (Eigen::Index k = 0; k < m; ++k) {
-        const MobilizedBody& b = *mobileNodes_[k].body;
+    const Eigen::Index ns = numStationRows_;
+    a.resize(ns + static_cast<Eigen::Index>(mobileAngles_.size()));
+    for (const MobileNode& mn : mobileNodes_) {
+        const MobilizedBody& b = *mn.body;
         const SpatialVec& A = A_GB[b.getMobilizedBodyIndex()];
-        const Vec3 p = b.getBodyRotation(s) * mobileNodes_[k].station;
+        const Vec3 p = b.getBodyRotation(s) * mn.station;
         const Vec3& w = b.getBodyAngularVelocity(s);
-        a.segment<3>(3 * k) = toEigen(A[1] + A[0] % p + w % (w % p));
+        const Eigen::Vector3d a3 = toEigen(A[1] + A[0] % p + w % (w % p));
+        a.segment(mn.row, mn.dims).noalias() = mn.directions.leftCols(mn.dims).transpose() * a3;
     }
     for (size_t d = 0; d < mobileAngles_.size(); ++d)
-        a[3 * m + static_cast<Eigen::Index>(d)] =
+        a[ns + static_cast<Eigen::Index>(d)] =
             mobileAngles_[d].dsdTheta * udot[static_cast<int>(mobileAngles_[d].body->getFirstUIndex(s))];
 }
 

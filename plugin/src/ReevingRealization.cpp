@@ -66,10 +66,22 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         for (int k = 0; k < ropes[i].numNodes(); ++k) {
             const auto [body, station] = ropes[i].node(k);
             if (body->isGround()) continue;
-            self.mobileNodes_.push_back({static_cast<int>(i), k, body, station});
+            MobileNode mn{static_cast<int>(i), k, body, station};
+            mn.dims = ropes[i].dim();
+            if (ropes[i].planar) {
+                mn.directions.setZero();
+                mn.directions.leftCols<2>() = ropes[i].planeBasis;
+            }
+            self.mobileNodes_.push_back(mn);
             self.mobileBodies_.push_back(body->getMobilizedBodyIndex());
             self.mobileStations_.push_back(station);
         }
+    self.rowOwner_.clear();
+    for (size_t a = 0; a < mobileNodes_.size(); ++a) {
+        self.mobileNodes_[a].row = static_cast<int>(rowOwner_.size());
+        for (int d = 0; d < mobileNodes_[a].dims; ++d) self.rowOwner_.push_back({static_cast<int>(a), d});
+    }
+    self.numStationRows_ = static_cast<int>(rowOwner_.size());
     for (size_t i = 0; i < ropes.size(); ++i)
         for (size_t d = 0; d < ropes[i].driven.size(); ++d) {
             const RopeRecord::DrivenNode& dn = ropes[i].driven[d];
@@ -80,26 +92,26 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     for (size_t i = 0; i < ropes.size(); ++i) {
         const RopeRecord& r = ropes[i];
         RopeCoupling& rc = self.ropeCoupling_[i];
-        std::vector<std::pair<int, int>> entries;  // (row in y, x column or -1 - node for 3 rows)
+        std::vector<std::pair<int, int>> entries;  // (first row in y, node)
         for (int a = 0; a < numMobile; ++a)
-            if (mobileNodes_[a].rope == static_cast<int>(i)) entries.push_back({3 * a, mobileNodes_[a].node});
-        int angleRow = 3 * numMobile;
+            if (mobileNodes_[a].rope == static_cast<int>(i)) entries.push_back({mobileNodes_[a].row, mobileNodes_[a].node});
+        int angleRow = numStationRows_;
         std::vector<std::pair<int, int>> angles;
         for (const MobileAngle& ma : mobileAngles_) {
             if (ma.rope == static_cast<int>(i)) angles.push_back({angleRow, ma.driven});
             ++angleRow;
         }
-        rc.embedding.setZero(3 * static_cast<int>(entries.size()) + static_cast<int>(angles.size()), r.numExternal());
+        // A node's rows are its rope's own node coordinates (the plane basis for planar ropes),
+        // so the embedding is a selection.
+        const int dim = r.dim();
+        rc.embedding.setZero(dim * static_cast<int>(entries.size()) + static_cast<int>(angles.size()), r.numExternal());
         int row = 0;
         for (const auto& [yRow, node] : entries) {
-            for (int d = 0; d < 3; ++d) {
+            for (int d = 0; d < dim; ++d) {
                 rc.rows.push_back(yRow + d);
-                if (r.planar)
-                    rc.embedding.block<1, 2>(row + d, 2 * node) = r.planeBasis.row(d);
-                else
-                    rc.embedding(row + d, 3 * node + d) = 1.0;
+                rc.embedding(row + d, dim * node + d) = 1.0;
             }
-            row += 3;
+            row += dim;
         }
         for (const auto& [yRow, d] : angles) {
             rc.rows.push_back(yRow);

@@ -136,11 +136,14 @@ struct PositionCache {
 };
 
 /// Model (fixed at realizeTopology):
-/// A rope node on a body other than Ground: it takes part in the coupled solve (3 rows).
+/// A rope node on a body other than Ground: it takes part in the coupled solve with one row per
+/// direction its rope can pull in (3 for a spatial rope; 2, the plane's, for a planar one).
 struct MobileNode {
     int rope = 0, node = 0;
     const SimTK::MobilizedBody* body = nullptr;
     SimTK::Vec3 station{0};
+    int row = 0, dims = 3;                                    // rows row..row+dims-1 of y
+    Eigen::Matrix3d directions = Eigen::Matrix3d::Identity();  // column d: row d's direction in Ground
 };
 
 /// Model (fixed at realizeTopology): a driven material coordinate in the coupled solve (1 row):
@@ -152,8 +155,9 @@ struct MobileAngle {
 };
 
 /// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
-/// coupled vector y = [3 per MobileNode | 1 per MobileAngle] and the embedding T (rows x the rope's
-/// external coordinates): y_rope = T x (Ground nodes have no rows), S_y = T S_x T^T, h_y = T h_x.
+/// coupled vector y = [2 or 3 per MobileNode | 1 per MobileAngle] and the embedding T (rows x the
+/// rope's external coordinates): y_rope = T x (Ground nodes have no rows), S_y = T S_x T^T,
+/// h_y = T h_x.
 struct RopeCoupling {
     std::vector<int> rows;  // coupled rows of this rope, in y order
     Eigen::MatrixXd embedding;
@@ -288,6 +292,8 @@ private:
     // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order, then the
     // driven material coordinates, and each rope's place in the coupled vector.
     std::vector<detail::MobileNode> mobileNodes_;
+    int numStationRows_ = 0;                 // rows of y taken by the mobile nodes
+    std::vector<std::pair<int, int>> rowOwner_;  // y row -> (mobile node, direction), station rows
     std::vector<detail::MobileAngle> mobileAngles_;
     std::vector<detail::RopeCoupling> ropeCoupling_;
     SimTK::Array_<SimTK::MobilizedBodyIndex> mobileBodies_;
