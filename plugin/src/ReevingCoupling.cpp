@@ -19,8 +19,8 @@ namespace SimbodyReeving {
 using namespace detail;
 
 // The coupled vector y = [positions in Ground of the mobile nodes (3 each) | driven material
-// coordinates (1 each)]. Each rope's external coordinates x map into it by its embedding T
-// (RopeCoupling), so the rope's S and h enter as T S T^T and T h; a driven s = s_ref + dsdTheta
+// coordinates (1 each)]. Each rope's external coordinates x map into it by a selection
+// (RopeCoupling), so the rope's S and h enter as the matching entries; a driven s = s_ref + dsdTheta
 // theta moves with its pin: its row of the Jacobian is dsdTheta at the pin's mobility, and a
 // force f_s on it is the generalized force dsdTheta f_s on the pin.
 int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
@@ -37,15 +37,14 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     for (size_t i = 0; i < ropes.size(); ++i) {
         const RopeCoupling& rc = ropeCoupling_[i];
         if (rc.rows.empty()) continue;
-        RopeCache& c = pc.ropes[i];
+        const RopeCache& c = pc.ropes[i];
         const RopeData<2>* d2 = ropes[i].planar ? &c.planar : nullptr;
         const Eigen::MatrixXd& S = d2 ? d2->nodeMass : c.spatial.nodeMass;
         const Eigen::VectorXd& h = d2 ? d2->nodeForce : c.spatial.nodeForce;
-        c.embeddedMass.noalias() = rc.embedding * S;
         const int k = static_cast<int>(rc.rows.size());
-        for (int a = 0; a < k; ++a) {
-            ws.h[rc.rows[a]] = rc.embedding.row(a).dot(h);
-            for (int b = 0; b < k; ++b) ws.S(rc.rows[a], rc.rows[b]) = c.embeddedMass.row(a).dot(rc.embedding.row(b));
+        for (int b = 0; b < k; ++b) {
+            ws.h[rc.rows[b]] = h[rc.external[b]];
+            for (int a = 0; a < k; ++a) ws.S(rc.rows[a], rc.rows[b]) = S(rc.external[a], rc.external[b]);
         }
     }
 
@@ -133,8 +132,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         RopeCache& c = pc.ropes[i];
         const RopeCoupling& rc = ropeCoupling_[i];
         c.externalAccelerations.setZero(r.numExternal());
-        for (size_t a = 0; a < rc.rows.size(); ++a)
-            c.externalAccelerations += rc.embedding.row(static_cast<Eigen::Index>(a)).transpose() * ws.rdd[rc.rows[a]];
+        for (size_t a = 0; a < rc.rows.size(); ++a) c.externalAccelerations[rc.external[a]] = ws.rdd[rc.rows[a]];
         c.nodeAccelerations3.setZero(3, r.numNodes());
         for (int k = 0; k < r.numNodes(); ++k) {
             if (r.planar)

@@ -55,8 +55,8 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         z += 2 * r.numModal;
         r.spatialModel.reset();
     }
-    // The coupled vector y: every rope's mobile nodes (3 rows each), then every driven material
-    // coordinate (1 row each); each rope's embedding T maps its external coordinates into y.
+    // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
+    // coordinate (1 row each); each rope records which of its external coordinates each row is.
     self.mobileNodes_.clear();
     self.mobileAngles_.clear();
     self.mobileBodies_.clear();
@@ -101,21 +101,16 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
             if (ma.rope == static_cast<int>(i)) angles.push_back({angleRow, ma.driven});
             ++angleRow;
         }
-        // A node's rows are its rope's own node coordinates (the plane basis for planar ropes),
-        // so the embedding is a selection.
+        // A node's rows are its rope's own node coordinates (the plane basis for planar ropes).
         const int dim = r.dim();
-        rc.embedding.setZero(dim * static_cast<int>(entries.size()) + static_cast<int>(angles.size()), r.numExternal());
-        int row = 0;
-        for (const auto& [yRow, node] : entries) {
+        for (const auto& [yRow, node] : entries)
             for (int d = 0; d < dim; ++d) {
                 rc.rows.push_back(yRow + d);
-                rc.embedding(row + d, dim * node + d) = 1.0;
+                rc.external.push_back(dim * node + d);
             }
-            row += dim;
-        }
         for (const auto& [yRow, d] : angles) {
             rc.rows.push_back(yRow);
-            rc.embedding(row++, r.dim() * r.numNodes() + d) = 1.0;
+            rc.external.push_back(dim * r.numNodes() + d);
         }
     }
     if (z > 0) allocateZ(s, Vector(z, 0.0));

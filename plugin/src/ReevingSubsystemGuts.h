@@ -114,7 +114,6 @@ struct RopeCache {
                                             // in the plane basis for planar ropes, driven s)
     Eigen::Matrix3Xd nodeAccelerations3;    // in Ground
     Eigen::VectorXd modalAccelerations;
-    Eigen::MatrixXd embeddedMass;           // scratch: T S of the coupled solve
 };
 
 /// Cache (per evaluation, scratch of realizeSubsystemDynamicsImpl):
@@ -155,12 +154,13 @@ struct MobileAngle {
 };
 
 /// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
-/// coupled vector y = [2 or 3 per MobileNode | 1 per MobileAngle] and the embedding T (rows x the
-/// rope's external coordinates): y_rope = T x (Ground nodes have no rows), S_y = T S_x T^T,
-/// h_y = T h_x.
+/// coupled vector y = [2 or 3 per MobileNode | 1 per MobileAngle] and, for each, the rope's
+/// external coordinate it is (a node's rows are its rope's own node coordinates, in the plane basis
+/// for planar ropes): y[rows[a]] = x[external[a]]; Ground nodes have no rows. So
+/// S_y(rows[a], rows[b]) = S_x(external[a], external[b]) and h_y likewise.
 struct RopeCoupling {
-    std::vector<int> rows;  // coupled rows of this rope, in y order
-    Eigen::MatrixXd embedding;
+    std::vector<int> rows;      // coupled rows of this rope, in y order
+    std::vector<int> external;  // the rope's external coordinate of each row
 };
 
 }  // namespace detail
