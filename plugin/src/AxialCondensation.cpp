@@ -28,6 +28,7 @@ inline Taylor2 reciprocal(const Taylor2& a) {
     const double r = 1.0 / a.v;
     return {r, -a.d * r * r, (2.0 * a.d * a.d * r - a.dd) * r * r};
 }
+inline double primal(const Taylor2& a) { return a.v; }
 inline Taylor2 sqrt(const Taylor2& a) {
     const double s = std::sqrt(a.v);
     return {s, 0.5 * a.d / s, 0.5 * a.dd / s - 0.25 * a.d * a.d / (s * a.v)};
@@ -49,6 +50,8 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
     EA_ = span.properties().axialStiffness;
     rhoA_ = span.properties().massPerLength;
     EI_ = span.properties().bendingStiffness;
+    law_ = span.axialLaw();
+    slackStiffness_ = span.slackRegularised() ? 0.5 * o.quasiStaticSlackStiffness * EA_ : 0.0;
     gravity_ = span.gravity();
     referenceFrame_ = span.referenceFrame();
     const int nq = span.quadraturePoints(Integrand::Strain);
@@ -96,9 +99,12 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
             t2 += tau * tau;
         }
         const Scalar eps = 0.5 * (t2 * invL2) - Scalar(0.5);
-        const Scalar epsLambda = eps * lambda;
-        for (int i = 0; i < na_; ++i) out[phi(i)] += (weights_[k] * slopes_(k, i)) * epsLambda;
-        axialLength += weights_[k] * ((-1.5) * (eps * eps) - eps);
+        const double e0 = primal(eps);
+        if (law_.slack(e0)) continue;  // slack point: no axial force, no energy
+        const Scalar f = law_.f(eps, e0);
+        const Scalar fLambda = f * lambda;
+        for (int i = 0; i < na_; ++i) out[phi(i)] += (weights_[k] * slopes_(k, i)) * fLambda;
+        axialLength += weights_[k] * (law_.F(eps, e0) - f * (2.0 * eps + Scalar(1.0)));
     }
     // Gravity: U_g = -rhoA l (g . r_mean + sum_d (g . A_e col d) ubar_d).
     Scalar gravityOnModes(0.0);
@@ -115,6 +121,16 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
                 bending += bendFactor_[i] * (transverse[d * nt_ + i] * transverse[d * nt_ + i]);
     out[lengthDerivative()] = EA_ * axialLength + (-1.5 * EI_) * (bending * (invL2 * invL2)) -
                               rhoA_ * (gravityOnMean + gravityOnModes);
+    // Slack regularisation: Phi_i += delta EA k_i^2 a_i / (2 l), dU/dl -= delta EA / (4 l^2) sum k_i^2 a_i^2.
+    if (slackStiffness_ > 0) {
+        Scalar sum(0.0);
+        for (int i = 0; i < na_; ++i) {
+            const double k2 = SpanModel<Dim>::axialModeWavenumberSquared(i);
+            out[phi(i)] += (slackStiffness_ * k2) * (axial[i] * invL);
+            sum += k2 * (axial[i] * axial[i]);
+        }
+        out[lengthDerivative()] += (-0.5 * slackStiffness_) * (sum * invL2);
+    }
     // End strains and their slopes.
     for (int end = 0; end < 2; ++end) {
         const SpanEnd E = end == 0 ? SpanEnd::First : SpanEnd::Second;
@@ -175,24 +191,27 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
             t2 += tau[dir] * tau[dir];
         }
         const double eps = 0.5 * (t2 / l2 - 1.0);
-        const double epsLambda = eps * lambda;
-        const double dEL = lambda * lambda / l2 + eps;        // d(eps lambda)/d lambda
-        const double dELdl = -lambda * (2.0 * eps + 1.0) / l;  // d(eps lambda)/dl
+        if (law_.slack(eps)) continue;  // slack point: no axial force, no energy
+        const double f = law_.f(eps), fp = law_.fPrime(eps);
+        const double fLambda = f * lambda;
+        const double dEL = fp * lambda * lambda / l2 + f;          // d(f lambda)/d lambda
+        const double dELdl = -fp * lambda * (2.0 * eps + 1.0) / l;  // d(f lambda)/dl
         for (int i = 0; i < na_; ++i) {
             const double c = w * S[i];
-            d.value[phi(i)] += c * epsLambda;
+            d.value[phi(i)] += c * fLambda;
             G(phi(i), xChord) += c * dEL;
             G(phi(i), xLength) += c * dELdl;
             for (int j = 0; j < na_; ++j) G(phi(i), xModal + j) += c * dEL * S[j];
             for (int dir = 0; dir + 1 < Dim; ++dir) {
-                const double f = c * lambda * tau[dir] / l2;
-                for (int j = 0; j < nt_; ++j) G(phi(i), xModal + na_ + dir * nt_ + j) += f * S[j];
+                const double ft = c * fp * lambda * tau[dir] / l2;
+                for (int j = 0; j < nt_; ++j) G(phi(i), xModal + na_ + dir * nt_ + j) += ft * S[j];
             }
         }
-        // A = sum w (-3/2 eps^2 - eps): dA = w (-3 eps - 1) d eps.
+        // A = sum w (F - f (2 eps + 1)): dA = w (-f - f' (2 eps + 1)) d eps (linear law: -3/2 eps^2 - eps
+        // and -3 eps - 1).
         const int u = lengthDerivative();
-        d.value[u] += EA_ * w * (-1.5 * eps * eps - eps);
-        const double c = EA_ * w * (-3.0 * eps - 1.0);
+        d.value[u] += EA_ * w * (law_.F(eps) - f * (2.0 * eps + 1.0));
+        const double c = EA_ * w * (-f - fp * (2.0 * eps + 1.0));
         G(u, xChord) += c * lambda / l2;
         G(u, xLength) += c * (-(2.0 * eps + 1.0) / l);
         for (int j = 0; j < na_; ++j) G(u, xModal + j) += c * lambda * S[j] / l2;
@@ -206,6 +225,22 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
         G(phi(i), xLength) += -EA_ * Pi / l2 - rhoA_ * sinMean_[i] * gA[0];
         G(phi(i), xFrame) += -rhoA_ * sinMean_[i] * l;
         d.value[phi(i)] = EA_ * Pi / l - rhoA_ * sinMean_[i] * l * gA[0];
+    }
+    // Slack regularisation U_delta = (delta EA / 2) / (2 l) sum k_i^2 a_i^2 (k_i = i pi):
+    // Phi_i += mu_i a_i with mu_i = (delta EA / 2) k_i^2 / l; dU/dl -= U_delta / l.
+    if (slackStiffness_ > 0) {
+        const int u = lengthDerivative();
+        double Ud = 0;
+        for (int i = 0; i < na_; ++i) {
+            const double mu = slackStiffness_ * SpanModel<Dim>::axialModeWavenumberSquared(i) / l;
+            d.value[phi(i)] += mu * a[i];
+            G(phi(i), xModal + i) += mu;
+            G(phi(i), xLength) += -mu * a[i] / l;
+            Ud += 0.5 * mu * a[i] * a[i];
+            G(u, xModal + i) += -mu * a[i] / l;
+        }
+        d.value[u] += -Ud / l;
+        G(u, xLength) += 2.0 * Ud / l2;
     }
     // dU/dl: bending -3 U_b / l = -3/2 EI B / l^4 with B = sum f_i b_i^2; gravity -rhoA (g.r_mean + sum g.A_d ubar_d).
     {

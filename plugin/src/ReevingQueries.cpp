@@ -56,16 +56,23 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
     return {sv[span], sv[span + 1]};
 }
 
+namespace {
+// The span's axial law (the tension-only law of quasi-static spans is rounded near eps = 0).
+const AxialLaw& lawOf(const detail::RopeRecord& r, int span) {
+    return r.planar ? r.planarModel->span(span).axialLaw() : r.spatialModel->span(span).axialLaw();
+}
+}  // namespace
+
 double ReevingSubsystem::getAxialForce(const State& s, int rope, int span, double sMaterial) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const double eps = strainAt(s, rope, span, sMaterial);
-    return axialForce(r.spec.properties, eps);
+    return lawOf(r, span).force(eps);
 }
 
 double ReevingSubsystem::getTension(const State& s, int rope, int span, double sMaterial) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const double eps = strainAt(s, rope, span, sMaterial);
-    return axialForce(r.spec.properties, eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+    return lawOf(r, span).force(eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
 }
 
 int ReevingSubsystem::getNumEvaluationFailures() const { return getGuts().numEvaluationFailures(); }

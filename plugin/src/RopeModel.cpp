@@ -356,10 +356,32 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
     // far from the new solution (a report interpolated a long way from the last evaluation, the
     // rope having run metres over its sheaves) may lie outside Newton's basin.
     bool coldRetry = warm;
-    for (int iter = 0; iter <= 50; ++iter) {
-        if (iter == 50 && coldRetry) {
+    constexpr int kMaxIterations = 100;  // damped steps count as iterations
+    double previousMerit = std::numeric_limits<double>::infinity(), alpha = 0, alphaCap = 1.0;
+    int backtracks = 0;
+    // The dependent coordinates y = [q_condensed | s_sliding | nu]: newtonStart holds y before the
+    // current step, applyStep sets y = start + a * step.
+    auto saveStart = [&]() {
+        Eigen::VectorXd& y = data.newtonStart;
+        y.resize(nd);
+        y.head(nqc) = data.condensedAmplitudes;
+        for (int ki = 0; ki < numSliding_; ++ki) y[nqc + ki] = s[slidingNode_[ki]];
+        y.tail(numMultipliers_) = data.multipliers;
+    };
+    auto applyStep = [&](const Eigen::VectorXd& start, double a) {
+        const Eigen::VectorXd& step = data.newtonStep;
+        data.condensedAmplitudes = start.head(nqc) + a * step.head(nqc);
+        for (int ki = 0; ki < numSliding_; ++ki) s[slidingNode_[ki]] = start[nqc + ki] + a * step[nqc + ki];
+        data.multipliers = start.tail(numMultipliers_) + a * step.tail(numMultipliers_);
+    };
+    for (int iter = 0; iter <= kMaxIterations; ++iter) {
+        if (iter == kMaxIterations && coldRetry) {
             coldRetry = false;
             iter = 0;
+            previousMerit = std::numeric_limits<double>::infinity();
+            backtracks = 0;
+            alpha = 0;
+            alphaCap = 1.0;
             previous = std::numeric_limits<double>::infinity();
             s.resize(0);
             setKnownMaterialCoordinates(nodes, drivenS, data);
@@ -379,26 +401,40 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
             data.newtonIterations = iter;
             return;
         }
+        // Damping: if the last step did not reduce |C|_2 (Newton overshooting a sharp change of
+        // curvature, e.g. where a tension-only span's points go slack: undamped, Newton can cycle
+        // between two iterates), go back to where it started and take half of it (the Newton
+        // direction descends on |C|_2^2), up to 30 halvings. The next step then starts from twice
+        // the damping that worked, so the full step returns once the iterates are close.
+        const double merit = C.squaredNorm();
+        if (iter > 0 && merit >= previousMerit && backtracks < 30 && alpha > 0) {
+            ++backtracks;
+            alpha *= 0.5;
+            applyStep(data.newtonStart, alpha);
+            continue;
+        }
+        if (alpha > 0) alphaCap = std::min(1.0, 2.0 * alpha);
+        backtracks = 0;
         previous = err;
-        if (iter == 50 && !coldRetry) break;
-        if (iter == 50) continue;  // the cold retry starts at the top of the loop
+        previousMerit = merit;
+        if (iter == kMaxIterations && !coldRetry) break;
+        if (iter == kMaxIterations) continue;  // the cold retry starts at the top of the loop
         data.newtonLu.compute(data.Cd);
         Eigen::VectorXd& step = data.newtonStep;
         step = data.newtonLu.solve(C);
         step *= -1.0;
         // Halve the step until the material coordinates stay ordered (every span keeps l > 0).
-        auto stepped = [&](int k, double alpha) {
-            return slidingIndex_[k] >= 0 ? s[k] + alpha * step[nqc + slidingIndex_[k]] : s[k];
+        auto stepped = [&](int k, double a) {
+            return slidingIndex_[k] >= 0 ? s[k] + a * step[nqc + slidingIndex_[k]] : s[k];
         };
-        double alpha = 1.0;
+        alpha = alphaCap;
         for (int halve = 0; halve < 30; ++halve, alpha *= 0.5) {
             bool ok = true;
             for (int k = 1; k <= N && ok; ++k) ok = stepped(k, alpha) > stepped(k - 1, alpha);
             if (ok) break;
         }
-        for (int ki = 0; ki < numSliding_; ++ki) s[slidingNode_[ki]] += alpha * step[nqc + ki];
-        data.condensedAmplitudes += alpha * step.head(nqc);
-        data.multipliers += alpha * step.tail(numMultipliers_);
+        saveStart();
+        applyStep(data.newtonStart, alpha);
     }
     // Name the equation with the largest residual: rows [condensed amplitudes | tension equality
     // at sheaves 1..N-1 | (QuasiStatic) stationarity in s at sheaves 1..N-1].
@@ -421,7 +457,7 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
     }
     std::ostringstream msg;
     msg << "RopeModel: the dependent coordinates (sheave tension equality"
-        << (nqc > 0 ? ", quasi-static axial modes" : "") << ") did not converge in 50 Newton iterations "
+        << (nqc > 0 ? ", quasi-static axial modes" : "") << ") did not converge in " << kMaxIterations << " Newton iterations "
         << "(max residual " << C.cwiseAbs().maxCoeff() << " in strain units, at " << where.str()
         << "); the configuration may be infeasible (a span shorter than its chord allows, nodes crossing)";
     throw std::runtime_error(msg.str());

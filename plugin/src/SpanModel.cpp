@@ -66,10 +66,13 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     if (options_.quadraturePoints < 0 || options_.quadraturePoints > 200)
         throwInvalid("SpanModel", "SpanOptions::quadraturePoints", options_.quadraturePoints,
                      "is outside 0..200 (0 = automatic)");
-    if (options_.axialDynamics == AxialDynamics::QuasiStatic && options_.axialModes > 0 && properties_.tensionOnly)
-        throw std::invalid_argument(
-            "SpanModel: SpanOptions::axialDynamics = QuasiStatic with axial modes requires the linear axial law "
-            "(RopeProperties::tensionOnly = false): a slack span has no axial stiffness to condense against");
+    if (!(options_.quasiStaticSlackStiffness >= 1e-9 && options_.quasiStaticSlackStiffness <= 1.0))
+        throwInvalid("SpanModel", "SpanOptions::quasiStaticSlackStiffness (delta)", options_.quasiStaticSlackStiffness,
+                     "must be in [1e-9, 1]");
+    if (!(options_.quasiStaticSlackTransitionStrain >= 1e-12 && options_.quasiStaticSlackTransitionStrain <= 1e-3))
+        throwInvalid("SpanModel", "SpanOptions::quasiStaticSlackTransitionStrain (eps_s)",
+                     options_.quasiStaticSlackTransitionStrain, "must be in [1e-12, 1e-3]");
+    law_ = AxialLaw(properties_, slackRegularised() ? options_.quasiStaticSlackTransitionStrain : 0.0);
     if (properties_.tensionOnly && options_.elasticModel == ElasticEnergyModel::PaperLiteral)
         throw std::invalid_argument(
             "SpanModel: RopeProperties::tensionOnly requires elasticModel = Consistent (PaperLiteral's string "
@@ -188,7 +191,6 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     const bool literal = options_.elasticModel == ElasticEnergyModel::PaperLiteral;
     const double rhoA = properties_.massPerLength, EA = properties_.axialStiffness;
     const double EI = properties_.bendingStiffness;
-    const bool tensionOnly = properties_.tensionOnly;
 
     const Vec r1 = q.template segment<Dim>(0), r2 = q.template segment<Dim>(Dim);
     const Vec r1d = qdot.template segment<Dim>(0), r2d = qdot.template segment<Dim>(Dim);
@@ -299,15 +301,17 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         Mat Wp;  // d(A u')/de
         for (int m = 0; m < Dim; ++m) Wp.col(m) = F.dA[m] * up;
         const double t2 = t.squaredNorm();
+        const double eps = 0.5 * (t2 / (l * l) - 1.0);
         // Tension-only law: a slack point (eps <= 0) stores no energy and feels no axial force.
-        const double eps = tensionOnly && t2 <= l * l ? 0.0 : 0.5 * (t2 / (l * l) - 1.0);
-        d.axialEnergy += 0.5 * EA * l * w * eps * eps;
+        if (law_.slack(eps)) continue;
+        const double energyDensity = law_.F(eps);  // U_ax = EA l sum w F(eps), F' = f (AxialLaw)
+        d.axialEnergy += EA * l * w * energyDensity;
         // d eps/dr2 = (I + W')^T t / l^2, d eps/dq_m = S'^T A^T t / l^2, d eps/dl = -|t|^2 / l^3
         const Vec deps_de = (t + Wp.transpose() * t) / (l * l);
         const Vec At = A.transpose() * t / (l * l);
         const double deps_dl = -t2 / (l * l * l);
-        double coef = EA * l * w * eps;  // dU/deps at this point
-        double dU_dl = 0.5 * EA * w * eps * eps;
+        double coef = EA * l * w * law_.f(eps);  // dU/deps at this point
+        double dU_dl = EA * w * energyDensity;
         if (literal) {
             // U_str = EA/(2 l) w eps |u'_perp|^2
             double h = 0;
@@ -342,6 +346,22 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         gradU[iS1] -= dUb_dl;
         gradU[iS2] += dUb_dl;
     }
+
+    // ---- slack regularisation (tension-only, quasi-static axial modes):
+    //      U_delta = delta EA / (4 l) sum_i (i pi)^2 q_a,i^2, dU_delta/dl = -U_delta / l ---------------
+    d.slackRegularisationEnergy = 0;
+    if (slackRegularised()) {
+        const double c = options_.quasiStaticSlackStiffness * EA / (4.0 * l);
+        double sum = 0;
+        for (int i = 0; i < na; ++i) {
+            const double k2 = axialModeWavenumberSquared(i);
+            sum += k2 * qm[i] * qm[i];
+            gradU[iM + i] += 2.0 * c * k2 * qm[i];
+        }
+        d.slackRegularisationEnergy = c * sum;
+        gradU[iS1] += d.slackRegularisationEnergy / l;
+        gradU[iS2] -= d.slackRegularisationEnergy / l;
+    }
     d.elasticForces = -gradU;
 
     // ---- gravity, closed form: U_g = -rhoA l g . (r1 + r2)/2 + A ubar), ubar = int S q_m ----
@@ -359,7 +379,7 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     Qg[iS2] = rhoA * gr;
 
     // Finite inputs can still overflow (e.g. EA = 1e300 with a large strain): never return inf/NaN.
-    if (!(std::isfinite(d.kineticEnergy + d.axialEnergy + d.bendingEnergy + d.stringEnergy + d.gravityEnergy) &&
+    if (!(std::isfinite(d.kineticEnergy + d.strainEnergy() + d.gravityEnergy) &&
           d.massMatrix.allFinite() && d.velocityForces.allFinite() && d.elasticForces.allFinite() &&
           d.gravityForces.allFinite()))
         throw std::domain_error("SpanModel::evaluate: the result overflowed (non-finite energy, mass matrix or "

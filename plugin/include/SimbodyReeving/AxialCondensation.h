@@ -41,7 +41,15 @@ struct AxialCondensationData {
 ///     Phi_i   = (EA / l) int eps lambda S_i' dxi - rhoA l (g . i_e) m_i,
 ///     dU/dl   = EA int (-3/2 eps^2 - eps) dxi - 3 U_bend / l - rhoA g . (r_mean + A_e ubar),
 ///     d eps_E / da_i = lambda_E S_i'(xi_E) / l^2,   d eps_E / dl = -(2 eps_E + 1) / l,
-/// with m_i = int S_i dxi, ubar = int S q_m dxi and r_mean = (r1 + r2)/2. Everything depends on
+/// with m_i = int S_i dxi, ubar = int S q_m dxi and r_mean = (r1 + r2)/2. Under the span's axial
+/// law P = EA f(eps), U_ax = EA l int F(eps) dxi (AxialLaw; linear: f = eps, F = eps^2/2) these read
+///     Phi_i (axial part) = (EA / l) int f(eps) lambda S_i' dxi,
+///     dU_ax/dl = EA int (F(eps) - f(eps) (2 eps + 1)) dxi,
+/// so a tension-only rope's slack points drop out, and a span with SpanModel::slackRegularised()
+/// adds the derivatives of
+/// U_delta = delta EA / (4 l) sum_i (i pi)^2 a_i^2 (SpanOptions::quasiStaticSlackStiffness):
+/// Phi_i += delta EA (i pi)^2 a_i / (2 l), dU/dl -= U_delta / l. The end strains stay the unclamped
+/// eps (the sheave condition is strain equality). Everything depends on
 /// the configuration through |e|, g . A_e (the frame's columns projected on gravity), g . r_mean,
 /// l and the modal amplitudes; it is written once for a generic scalar and evaluated with
 /// second-order Taylor numbers, which gives gradients (one directional pass per independent input)
@@ -82,6 +90,8 @@ private:
 
     int na_ = 0, nt_ = 0, numModal_ = 0, numCoordinates_ = 0;
     double EA_ = 0, rhoA_ = 0, EI_ = 0;
+    AxialLaw law_;  // the span's axial law (SpanModel::axialLaw)
+    double slackStiffness_ = 0;  // delta EA / 2 when the span is slack-regularised, else 0
     Eigen::Matrix<double, Dim, 1> gravity_;
     Eigen::Matrix<double, Dim, Dim> referenceFrame_;
     // Strain quadrature: weights w_k and mode slopes S_i'(xi_k) (d/dxi), i = 1..max(n_a, n_t).

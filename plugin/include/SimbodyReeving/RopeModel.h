@@ -77,6 +77,7 @@ struct RopeData {
     Eigen::VectorXd cd;                   ///< dependent accelerations at wdot = 0
     Eigen::PartialPivLU<Eigen::MatrixXd> constraintLu;  ///< of C_d
     Eigen::VectorXd newtonResidual, newtonStep;         ///< dependent-coordinate Newton
+    Eigen::VectorXd newtonStart;                        ///< the iterate a damped step starts from
     Eigen::MatrixXd newtonJacobian;
     Eigen::PartialPivLU<Eigen::MatrixXd> newtonLu;
     Eigen::LDLT<Eigen::MatrixXd> modalMass;

@@ -4,6 +4,7 @@
 /// the extension of the modal approach in the axial direction", sections 2.1-2.2, eqs 1-22).
 /// Pure C++17/Eigen: no Simbody include.
 
+#include "SimbodyReeving/AxialLaw.h"
 #include "SimbodyReeving/ChordFrame.h"
 #include "SimbodyReeving/RopeProperties.h"
 
@@ -76,7 +77,10 @@ enum class AxialDynamics {
     /// 0.059 / 0.062 / 0.062 N of 9.8 kN; what is left out is the axial-wave part, 0.13 / 0.18 /
     /// 0.21 N. The slow difference grows about linearly in time (a small shift of the payload's
     /// bounce frequency), so compare over the horizon you need.
-    /// Requires ElasticEnergyModel::Consistent on every span of the rope.
+    /// Requires ElasticEnergyModel::Consistent on every span of the rope. With a tension-only rope
+    /// (RopeProperties::tensionOnly) the condensation uses the clamped law and a slack span's
+    /// amplitudes are held by SpanOptions::quasiStaticSlackStiffness (a fully slack span has no
+    /// axial stiffness of its own).
     QuasiStatic,
 };
 
@@ -97,6 +101,36 @@ struct SpanOptions {
     /// Axial amplitudes as states (Dynamic) or condensed (QuasiStatic); no effect when n_a = 0.
     AxialDynamics axialDynamics = AxialDynamics::Dynamic;
     ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
+    /// delta [-], finite, in [1e-9, 1]; used only by a tension-only rope's (RopeProperties::tensionOnly)
+    /// spans with AxialDynamics::QuasiStatic axial modes. A fully slack span has no axial
+    /// stiffness, so the quasi-static condition dU/dq_a = 0 alone would leave its axial amplitudes
+    /// undetermined (or, with gravity along the span, pile all its material at the lower end).
+    /// Such spans therefore carry the extra potential
+    ///     U_delta = 1/2 delta EA int (du_a/ds)^2 ds = delta EA / (4 l) sum_i (i pi)^2 q_a,i^2,
+    /// u_a the axial modal displacement, l the span's material length: a weak resistance to
+    /// redistributing material along the span. It acts on the axial amplitudes (and, through l,
+    /// on the material coordinates), not on the chord, so it transmits no force between the
+    /// span's ends: the axial force stays EA max(eps, 0) >= 0. In a taut span it stiffens the
+    /// axial modes by the factor 1 + delta, so the amplitudes (the strain's variation along the
+    /// span from its own weight and inertia) come out smaller by delta / (1 + delta) relative;
+    /// in a fully slack span it keeps the material near its uniform distribution (the default,
+    /// 1e-3: the Table 1 rope's 3 m span hanging slack shifts its material by about 0.5 mm). It is
+    /// part of the potential energy (SpanData::slackRegularisationEnergy), so T + U stays an
+    /// invariant.
+    double quasiStaticSlackStiffness = 1e-3;
+    /// eps_s [-], finite, in [1e-12, 1e-3]; used by the same spans as quasiStaticSlackStiffness:
+    /// their tension-only law is rounded over strains in (0, eps_s) by a quintic (see AxialLaw)
+    /// so that the force is C2 in the strain rather than only C0. The quasi-static amplitudes solve
+    /// dU/dq_a = 0; their rates (the Hessian of U) enter the rope's kinetic energy and their
+    /// acceleration bias (third derivatives of U) the equations of motion. With the plain clamp
+    /// max(eps, 0) the rates jump whenever a strain quadrature point goes slack or taut, and each
+    /// jump changes T at fixed velocities (measured: 2.8e-3 of the initial kinetic energy over a
+    /// drop test with 10 slack/taut transitions); with a C1 rounding the accelerations still
+    /// jump and adaptive steps collapse to 1e-15 s there. With the quintic T + U is an invariant
+    /// again. Outside (0, eps_s) the law is exact; inside, 0 <= P <= EA eps and P falls short of
+    /// EA eps by at most 0.1975 EA eps_s (3.3 N for the Table 1 rope, EA = 16.5 MN, at the
+    /// default 1e-6).
+    double quasiStaticSlackTransitionStrain = 1e-6;
     /// Gauss-Legendre points for the kinetic and strain integrals; 0 selects the automatic rule
     /// SpanModel::automaticQuadraturePoints (exact to round-off); otherwise 1..200.
     int quadraturePoints = 0;
@@ -126,8 +160,12 @@ struct SpanData {
     double bendingEnergy = 0;   ///< 1/2 int EI kappa^2 ds [J] (0 when EI = 0)
     double stringEnergy = 0;    ///< taut-string energy [J], PaperLiteral only
     double gravityEnergy = 0;   ///< U_g = -int rhoA g . r ds [J]
+    /// U_delta [J] of SpanOptions::quasiStaticSlackStiffness (tension-only rope, QuasiStatic axial
+    /// modes; 0 otherwise).
+    double slackRegularisationEnergy = 0;
 
-    double strainEnergy() const { return axialEnergy + bendingEnergy + stringEnergy; }
+    /// Elastic energy [J]: axial + bending + string + U_delta.
+    double strainEnergy() const { return axialEnergy + bendingEnergy + stringEnergy + slackRegularisationEnergy; }
     double potentialEnergy() const { return strainEnergy() + gravityEnergy; }
 
     ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
@@ -191,11 +229,27 @@ public:
     ///         mode counts outside 0..16, quadraturePoints outside 0..200, non-finite gravity, a
     ///         reference frame that is not orthonormal and right-handed, or AxialDynamics::QuasiStatic
     ///         with ElasticEnergyModel::PaperLiteral (its string energy makes the axial stiffness
-    ///         depend on the transverse slope twice; the condensation is defined for Consistent only).
+    ///         depend on the transverse slope twice; the condensation is defined for Consistent only),
+    ///         RopeProperties::tensionOnly with PaperLiteral, quasiStaticSlackStiffness outside
+    ///         [1e-9, 1] or quasiStaticSlackTransitionStrain outside [1e-12, 1e-3] (or not finite).
     SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
               const Mat& referenceFrame = Mat::Identity());
 
     int numCoordinates() const { return 2 * Dim + numModal_ + 2; }
+    /// true if the span carries U_delta (SpanOptions::quasiStaticSlackStiffness): a tension-only
+    /// rope with QuasiStatic axial modes (n_a > 0).
+    bool slackRegularised() const {
+        return properties_.tensionOnly && options_.axialDynamics == AxialDynamics::QuasiStatic &&
+               options_.axialModes > 0;
+    }
+    /// The span's axial law: linear, tension-only, or (slackRegularised()) tension-only rounded
+    /// over (0, quasiStaticSlackTransitionStrain).
+    const AxialLaw& axialLaw() const { return law_; }
+    /// (i pi)^2 of axial mode i = 0..n_a-1 (mode number i + 1).
+    static double axialModeWavenumberSquared(int i) {
+        const double k = (i + 1) * 3.14159265358979323846;
+        return k * k;
+    }
     int numModalCoordinates() const { return numModal_; }
     int axialModes() const { return options_.axialModes; }
     int transverseModes() const { return options_.transverseModes; }
@@ -240,10 +294,11 @@ public:
     /// Green strain eps(s) = 1/2 (|dr/ds|^2 - 1) at material point s in [s1, s2] [-].
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double strain(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
-    /// Axial force P(s) = EA eps(s) [N] (eq 21); EA max(eps(s), 0) under RopeProperties::tensionOnly.
+    /// Axial force P(s) = EA eps(s) [N] (eq 21); under RopeProperties::tensionOnly EA max(eps(s), 0),
+    /// rounded near 0 for slackRegularised() spans (axialLaw()).
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double axialForce(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
-        return SimbodyReeving::axialForce(properties_, strain(q, s));
+        return law_.force(strain(q, s));
     }
     /// Largest Green strain over the span [-]: the maximum over both ends and the strain quadrature
     /// points (the points where the strain energy is evaluated). Under RopeProperties::tensionOnly
@@ -256,7 +311,7 @@ public:
     /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
     double tension(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
         const double eps = strain(q, s);
-        return SimbodyReeving::axialForce(properties_, eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+        return law_.force(eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
     }
 
     /// Strain at a span end, its gradient d eps/dq, its rate and its acceleration bias (exact,
@@ -270,6 +325,7 @@ private:
     double checkMaterialPoint(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
 
     RopeProperties properties_;
+    AxialLaw law_;
     SpanOptions options_;
     Vec gravity_;
     Mat referenceFrame_;
