@@ -82,7 +82,7 @@ void runFreeSpan(VelocityModel velocityModel, int na, int nt, int stepsPerFastes
     SCOPED_TRACE(name);
     // Unit-length span; EI chosen so the first bending frequency is a few times below the highest
     // axial one (keeps the slowest/fastest ratio, and so the test's run time, moderate).
-    const RopeProperties rope{1.0, 100.0, 6.0};
+    const RopeProperties rope{1.0, 100.0, 6.0, false};  // the paper's linear law
     SpanOptions o;
     o.axialModes = na;
     o.transverseModes = nt;

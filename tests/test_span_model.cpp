@@ -21,7 +21,7 @@ using SimbodyReeving::test::relativeError;
 
 namespace {
 
-const RopeProperties kRope{0.8, 2.0e4, 3.0};  // rhoA [kg/m], EA [N], EI [N m^2]
+const RopeProperties kRope{0.8, 2.0e4, 3.0, false};  // rhoA [kg/m], EA [N], EI [N m^2], the paper's linear law
 
 template <int Dim>
 Eigen::Matrix<double, Dim, 1> someGravity() {

@@ -73,7 +73,8 @@ long allocationsPerEvaluation(int na, int nt, VelocityModel vm, ElasticEnergyMod
     o.velocityModel = vm;
     o.elasticModel = em;
     Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
-    const SpanModel<Dim> model({0.6, 1e6, 30}, o, Eigen::Matrix<double, Dim, 1>::Constant(-1.0), ref);
+    // Consistent: the tension-only law (the default); PaperLiteral requires the linear law.
+    const SpanModel<Dim> model({0.6, 1e6, 30, em == ElasticEnergyModel::Consistent}, o, Eigen::Matrix<double, Dim, 1>::Constant(-1.0), ref);
     std::mt19937 rng(5);
     const Eigen::VectorXd q = test::randomState(model, rng);
     const Eigen::VectorXd qd = test::randomVelocity(model, rng);

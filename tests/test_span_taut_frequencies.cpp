@@ -49,7 +49,7 @@ Eigen::VectorXd transverseFrequencies(const SpanModel<Dim>& model, const Eigen::
 
 template <int Dim>
 void checkTautSpan(ElasticEnergyModel energy, double expectedRatio, double tolerance) {
-    const RopeProperties rope{0.6205, 16.5e6, 0.0};  // Table 1 rope, EI = 0 (a pure string)
+    const RopeProperties rope{0.6205, 16.5e6, 0.0, false};  // Table 1 rope, EI = 0 (a pure string), linear law
     const double L = 20.0, P = 9810.0;                // span length [m], tension [N]
     SpanOptions o;
     o.axialModes = 2;

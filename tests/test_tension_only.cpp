@@ -52,7 +52,7 @@ TEST(TensionOnlySpan, EnergyAndForcesFollowTheClampedLaw) {
     SpanOptions o;
     o.axialModes = 2;
     o.transverseModes = 1;
-    RopeProperties linear{0.62, 16.5e6, 0.0};
+    RopeProperties linear{0.62, 16.5e6, 0.0, false};
     RopeProperties tensionOnly = linear;
     tensionOnly.tensionOnly = true;
     const PlanarSpanModel a(linear, o, Eigen::Vector2d(0, -kG)), b(tensionOnly, o, Eigen::Vector2d(0, -kG));

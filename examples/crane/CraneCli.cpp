@@ -84,6 +84,8 @@ lower 5 m (23.5-32.5 s), settle until 36 s.
   --transverse-modes N     n_t, 0..16 (default 1)
   --axial-dynamics KIND    quasi-static (default: axial modes condensed, no axial waves) or
                            dynamic (axial modes as states: axial waves, much slower)
+  --axial-law LAW          tension-only (default: a rope cannot push; slack spans carry no
+                           axial force) or linear (the paper's law: P = EA eps, may push)
   --lift M                 hook lift of the cycle [m] (default 5; lowered back by as much);
                            about 10.8 m or more two-blocks the hook (see exit status 3)
   --traverse M             trolley travel of the cycle [m] (default 10; 0 or negative allowed)
@@ -136,6 +138,14 @@ Options parseCommandLine(int argc, char** argv) {
             o.transverseModes = toInteger(opt, v);
             if (o.transverseModes < 0 || o.transverseModes > SimbodyReeving::kMaxModesPerDirection)
                 fail(opt, v, "must be in 0..16");
+        } else if (opt == "--axial-law") {
+            const std::string v = value();
+            if (v == "tension-only")
+                o.parameters.tensionOnly = true;
+            else if (v == "linear")
+                o.parameters.tensionOnly = false;
+            else
+                fail(opt, v, "expected tension-only or linear");
         } else if (opt == "--axial-dynamics") {
             const std::string v = value();
             if (v == "dynamic")

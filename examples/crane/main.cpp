@@ -211,6 +211,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
        << "  \"axial_modes\": " << o.axialModes << ",\n"
        << "  \"transverse_modes\": " << o.transverseModes << ",\n"
        << "  \"axial_dynamics\": \"" << axialDynamicsName(o.axialDynamics) << "\",\n"
+       << "  \"axial_law\": \"" << (o.parameters.tensionOnly ? "tension-only" : "linear") << "\",\n"
        << "  \"integrator\": \"" << o.integrator << "\",\n"
        << "  \"accuracy\": " << jsonNumber(o.accuracy) << ",\n"
        << "  \"fixed_step\": " << jsonNumber(o.step) << ",\n"

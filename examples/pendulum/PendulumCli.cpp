@@ -51,6 +51,8 @@ from static equilibrium with a horizontal payload velocity.
   --axial-dynamics KIND    quasi-static (default: axial modes condensed, no axial waves; same
                            swing and slow axial force as the paper's model, about 60x faster at
                            n_a = 3) or dynamic (the paper's model: axial modes as states)
+  --axial-law LAW          tension-only (default: a rope cannot push; slack spans carry no
+                           axial force) or linear (the paper's law: P = EA eps, may push)
   --t-end T                end time [s] (default 20)
   --vx0 V                  initial horizontal payload velocity [m/s] (default 1)
   --vy0 V                  initial vertical payload velocity [m/s] (default 0)
@@ -98,6 +100,14 @@ Options parseCommandLine(int argc, char** argv) {
             o.transverseModes = toInteger(opt, v);
             if (o.transverseModes < 0 || o.transverseModes > SimbodyReeving::kMaxModesPerDirection)
                 fail(opt, v, "must be in 0..16");
+        } else if (opt == "--axial-law") {
+            const std::string v = value();
+            if (v == "tension-only")
+                o.parameters.tensionOnly = true;
+            else if (v == "linear")
+                o.parameters.tensionOnly = false;
+            else
+                fail(opt, v, "expected tension-only or linear");
         } else if (opt == "--axial-dynamics") {
             const std::string v = value();
             if (v == "dynamic")

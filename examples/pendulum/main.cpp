@@ -166,6 +166,7 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
        << "  \"axial_modes\": " << r.axialModes << ",\n"
        << "  \"transverse_modes\": " << o.transverseModes << ",\n"
        << "  \"axial_dynamics\": \"" << axialDynamicsName(o.axialDynamics) << "\",\n"
+       << "  \"axial_law\": \"" << (o.parameters.tensionOnly ? "tension-only" : "linear") << "\",\n"
        << "  \"t_end\": " << jsonNumber(o.tEnd) << ",\n"
        << "  \"vx0\": " << jsonNumber(o.vx0) << ",\n"
        << "  \"vy0\": " << jsonNumber(o.vy0) << ",\n"

@@ -138,7 +138,7 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     deadEnd.body = nodeOnHook(n) ? static_cast<const MobilizedBody&>(*hook_) : static_cast<const MobilizedBody&>(*trolley_);
     deadEnd.station = stations_[n];
     rope.end = deadEnd;
-    rope.properties = {p.rhoA, p.EA, p.EI, false};
+    rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     // Unstretched length: the falls' lengths with the hook at its initial depth, shortened by the
     // stretch of the static tension (M g / n per fall).
     double geometric = 0;

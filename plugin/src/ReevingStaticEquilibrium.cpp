@@ -107,20 +107,54 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
             displace(sm, -dy);
             J.col(k) = (residual(sp, nullptr) - residual(sm, nullptr)) / (2 * h);
         }
-        const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
-        // Backtracking on the residual norm.
-        double alpha = 1.0;
-        State trial = state;
-        for (int ls = 0; ls < 20; ++ls, alpha *= 0.5) {
-            trial = state;
-            displace(trial, alpha * step);
-            const Eigen::VectorXd rt = residual(trial, nullptr);
-            if (rt.norm() < r.norm() || ls == 19) {
+        Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-r);
+        // Step limit: a tension-only rope that is slack has no stiffness, so the Newton step of a
+        // body hanging from it is (nearly) unbounded; each iteration moves a mobility by at most
+        // kMaxStep (m or rad) and a modal coordinate by as much, and the body falls until the
+        // rope takes it over a few iterations.
+        constexpr double kMaxStep = 0.5;
+        const double largest = step.cwiseAbs().maxCoeff();
+        if (largest > kMaxStep) step *= kMaxStep / largest;
+        // Backtracking; a trial state the rope cannot evaluate (its Newton fails, a span would lose
+        // its material) counts as worse. Merit: the residual norm (Newton steps), or the potential
+        // energy (steps along the net force). The last halving is accepted as it is when
+        // `acceptLast`.
+        auto potential = [&](State& st) {
+            mbs.realize(st, Stage::Dynamics);
+            return mbs.calcPotentialEnergy(st);
+        };
+        auto lineSearch = [&](const Eigen::VectorXd& direction, bool energyMerit, bool acceptLast) {
+            double alpha = 1.0;
+            const double m0 = energyMerit ? potential(state) : r.norm();
+            for (int ls = 0; ls < 20; ++ls, alpha *= 0.5) {
+                State trial = state;
+                try {
+                    displace(trial, alpha * direction);
+                    const double m = energyMerit ? potential(trial) : residual(trial, nullptr).norm();
+                    // Sufficient decrease (Armijo, 1e-3): a Newton step that barely changes
+                    // |r| (a body in free fall under slack ropes) is not progress.
+                    const double required = energyMerit ? m0 : (1.0 - 1e-3 * alpha) * m0;
+                    if (!(m < required) && !(acceptLast && ls == 19)) continue;
+                } catch (const std::exception&) {
+                    continue;
+                }
                 state = trial;
                 r = residual(state, &scale);
-                break;
+                return true;
             }
+            return false;
+        };
+        const double before = r.norm();
+        bool moved = lineSearch(step, false, false);
+        // Where the Jacobian is (nearly) singular, as for a body hanging from slack ropes, the
+        // Newton step may not move it: step along the net generalized force instead (downhill in
+        // potential energy), kMaxStep at most.
+        if (!moved || !(r.norm() < before)) {
+            const double rmax = r.cwiseAbs().maxCoeff();
+            if (rmax > 0) moved = lineSearch(Eigen::VectorXd(r * (kMaxStep / rmax)), true, false) || moved;
         }
+        if (!moved) moved = lineSearch(step, false, true);
+        if (!moved) break;  // no acceptable step: report the residual reached
     }
     const double rel = r.cwiseAbs().maxCoeff() / scale;
     if (rel <= relativeTolerance) return rel;

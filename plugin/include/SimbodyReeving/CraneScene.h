@@ -48,6 +48,7 @@ struct CraneParameters {
     double rhoA = 1.6;             ///< mass per unstretched length [kg/m], > 0
     double EA = 2.5e7;             ///< axial stiffness [N], > 0
     double EI = 0.0;               ///< bending stiffness [N m^2], >= 0 (0 skips the bending term)
+    bool tensionOnly = true;       ///< RopeProperties::tensionOnly (false: the linear law, ropes may push)
     double minimumSpanLength = 0.2;  ///< a span this short ends the run (two-blocking) [m], > 0
 
     /// @throws std::invalid_argument naming the first parameter out of range or not finite.

@@ -22,7 +22,7 @@ struct PendulumParameters {
     double EI = 30.9;       ///< bending stiffness [N m^2], >= 0
     double M = 1000.0;      ///< payload mass [kg], > 0
     double J = 36.0;        ///< payload moment of inertia about every axis through its centre [kg m^2], > 0
-    bool tensionOnly = false;  ///< RopeProperties::tensionOnly of the rope (the paper: false)
+    bool tensionOnly = true;  ///< RopeProperties::tensionOnly of the rope (the paper's linear law: false)
     /// @throws std::invalid_argument naming the first parameter out of range or not finite.
     void validate() const;
 };

@@ -287,7 +287,10 @@ public:
     /// rates set to zero): Newton's method on the accelerations, until the generalized force
     /// residual is <= relativeTolerance times the largest applied generalized force. Mobilities
     /// with prescribed motion (SimTK::Motion) keep it: they are neither unknowns nor residuals
-    /// (a drum held by its motion is a fixed drum here).
+    /// (a drum held by its motion is a fixed drum here). Each iteration moves a mobility or modal
+    /// coordinate by at most 0.5 (m or rad), so a body hanging from a slack tension-only rope
+    /// (no stiffness) falls until the rope takes it; trial states the rope cannot evaluate are
+    /// rejected by the line search.
     /// Returns the achieved relative residual.
     /// @throws std::runtime_error if it does not converge in maxIterations.
     double findStaticEquilibrium(SimTK::State& state, double relativeTolerance = 1e-10, int maxIterations = 50) const;

@@ -12,16 +12,18 @@ struct RopeProperties {
     double axialStiffness = 0.0;
     /// EI: bending stiffness [N m^2]; finite, >= 0. EI = 0 skips the bending term entirely.
     double bendingStiffness = 0.0;
-    /// Tension-only axial law: a wire rope cannot push. false (default): the paper's linear law
-    /// P = EA eps, U_ax = 1/2 EA int eps^2 ds, compression allowed. true: P = EA max(eps, 0),
+    /// Tension-only axial law: a wire rope cannot push. true (default): P = EA max(eps, 0),
     /// U_ax = 1/2 EA int max(eps, 0)^2 ds, which is C1 in the coordinates, so its forces are still
-    /// exact gradients and T + U stays an invariant. Where a span is slack (eps <= 0) it carries no
-    /// axial force and its transverse modes lose their taut-string stiffness (bending EI remains).
-    /// Sheaves keep the strains on their two sides equal (the tension equality when taut; between
-    /// two slack spans it selects equal slack strains), so the sheave coordinates stay determined.
-    /// Requires AxialDynamics::Dynamic on spans with axial modes (the quasi-static condensation
-    /// needs axial stiffness everywhere along the span).
-    bool tensionOnly = false;
+    /// exact gradients and T + U stays an invariant. false: the paper's linear law P = EA eps,
+    /// U_ax = 1/2 EA int eps^2 ds, compression allowed (reproduces the paper; no difference while
+    /// every span stays taut). Where a span is slack (eps <= 0) it carries no axial force and its
+    /// transverse modes lose their taut-string stiffness (bending EI remains). Sheaves keep the
+    /// strains on their two sides equal (the tension equality when taut; between two slack spans it
+    /// selects equal slack strains), so the sheave coordinates stay determined. With
+    /// AxialDynamics::QuasiStatic axial modes the law is rounded over strains (0, eps_s) and slack
+    /// spans carry a small regularising energy (SpanOptions::quasiStaticSlackTransitionStrain and
+    /// quasiStaticSlackStiffness). Brace initialisation {rhoA, EA, EI} keeps this default.
+    bool tensionOnly = true;
 };
 
 /// Axial force [N] for Green strain eps under `properties`' law: EA eps, or EA max(eps, 0) when
