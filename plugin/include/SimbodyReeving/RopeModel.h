@@ -167,8 +167,12 @@ public:
     /// Solves the constraints for the dependent coordinates, s_1..s_{N-1} and the condensed axial
     /// amplitudes, by Newton's method (starting from data if it holds an admissible guess, else
     /// from s split in proportion to the chord lengths and zero amplitudes) to a residual <= 1e-15
-    /// (strain units), or until it stagnates at round-off below 1e-12.
-    /// @throws std::runtime_error if Newton does not converge in 50 iterations or a span length
+    /// (strain units), or until it stagnates at round-off below 1e-12. Steps that do not reduce
+    /// |C|_2 are halved (damped Newton; the rounded tension-only law of quasi-static spans changes
+    /// curvature sharply where points go slack); a failed warm start is retried once from the
+    /// cold guess.
+    /// @throws std::runtime_error if Newton does not converge in 100 iterations (each damped
+    ///         halving counts as one), from the warm and the cold start, or a span length
     ///         would become non-positive (the rope cannot carry the configuration).
     /// @param drivenS material coordinates of the Driven nodes [m], in node order.
     /// @throws std::runtime_error also if the given material coordinates leave a span without
