@@ -1,6 +1,6 @@
 // One span evaluation (M, Q_elastic, Q_v, gravity, energies) for the demo's mode counts.
 // Reproduce: build/bench/bench-span-element --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
-#include <SimbodyReeving/SpanModel.h>
+#include <SimbodyReeving/element/SpanModel.h>
 
 #include <benchmark/benchmark.h>
 

@@ -5,8 +5,8 @@
 //
 //   hoist-over-sheave               headless, prints a table
 //   hoist-over-sheave --visualize   also shows it in the Simbody visualizer (if one can start)
-#include <SimbodyReeving/ReevingSubsystem.h>
-#include <SimbodyReeving/Visualization.h>
+#include <SimbodyReeving/simbody/ReevingSubsystem.h>
+#include <SimbodyReeving/simbody/Visualization.h>
 
 #include <Simbody.h>
 

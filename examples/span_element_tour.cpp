@@ -2,7 +2,7 @@
 //  1. the Table 1 vertical span hanging a 1000 kg payload: axial force along it;
 //  2. its transverse frequencies against the taut string;
 //  3. the difference the paper-literal energy makes.
-#include <SimbodyReeving/SpanModel.h>
+#include <SimbodyReeving/element/SpanModel.h>
 
 #include <Eigen/Eigenvalues>
 

@@ -10,9 +10,9 @@
 // figures DIR/axial_dynamics_na<N>.png.
 //
 // Reproduce: build/bench/bench-axial-dynamics --out out/axial-dynamics   (bench/RESULTS.md)
-#include <SimbodyReeving/Integrators.h>
-#include <SimbodyReeving/InterpolatingTimeStepper.h>
-#include <SimbodyReeving/PendulumScene.h>
+#include <SimbodyReeving/simbody/Integrators.h>
+#include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+#include <SimbodyReeving/scenes/PendulumScene.h>
 
 #include <algorithm>
 #include <chrono>

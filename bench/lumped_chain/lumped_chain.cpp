@@ -19,8 +19,8 @@
 //   analyze reads run files, a reference, writes errors, Pareto fronts, speed ratios.
 //   static  prints the static end force of both models against the continuum (no integration).
 
-#include "SimbodyReeving/Integrators.h"
-#include "SimbodyReeving/ReevingSubsystem.h"
+#include "SimbodyReeving/simbody/Integrators.h"
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
 
 #include <Simbody.h>
 

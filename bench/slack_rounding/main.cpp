@@ -7,7 +7,7 @@
 // 1e-10 for 1.5 s, the energy checked after every internal step.
 //
 // Usage: bench-slack-rounding [eps_s delta]...   (no arguments: the table's five rows)
-#include <SimbodyReeving/ReevingSubsystem.h>
+#include <SimbodyReeving/simbody/ReevingSubsystem.h>
 
 #include <Simbody.h>
 

@@ -1,7 +1,7 @@
 #include "WorkPrecisionCli.h"
 
-#include <SimbodyReeving/Integrators.h>
-#include <SimbodyReeving/SpanModel.h>
+#include <SimbodyReeving/simbody/Integrators.h>
+#include <SimbodyReeving/element/SpanModel.h>
 
 #include <algorithm>
 #include <cmath>

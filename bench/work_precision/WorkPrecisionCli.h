@@ -2,7 +2,7 @@
 // Command line of bench-work-precision (issue 5, "Work-precision study"): options, defaults,
 // validation. See usage() for the meaning of every option.
 
-#include <SimbodyReeving/SpanModel.h>
+#include <SimbodyReeving/element/SpanModel.h>
 
 #include <stdexcept>
 #include <string>

@@ -14,9 +14,9 @@
 // not the static equilibrium, not evaluating the observables at the reports).
 #include "WorkPrecisionCli.h"
 
-#include <SimbodyReeving/Integrators.h>
-#include <SimbodyReeving/InterpolatingTimeStepper.h>
-#include <SimbodyReeving/PendulumScene.h>
+#include <SimbodyReeving/simbody/Integrators.h>
+#include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+#include <SimbodyReeving/scenes/PendulumScene.h>
 
 #include <Simbody.h>
 

@@ -1,6 +1,6 @@
 #include "CraneCli.h"
 
-#include <SimbodyReeving/Integrators.h>
+#include <SimbodyReeving/simbody/Integrators.h>
 
 #include <algorithm>
 #include <cmath>

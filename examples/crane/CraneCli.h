@@ -1,7 +1,7 @@
 #pragma once
 // Command line of the reeving-crane demo: options, defaults and validation.
 
-#include <SimbodyReeving/CraneScene.h>
+#include <SimbodyReeving/scenes/CraneScene.h>
 
 #include <stdexcept>
 #include <string>

@@ -2,7 +2,7 @@
 // Figures of the reeving-crane demo: the machine drawn in the x-y plane at a state (rope-geometry
 // snapshots) and the gnuplot script of all figures.
 
-#include <SimbodyReeving/CraneScene.h>
+#include <SimbodyReeving/scenes/CraneScene.h>
 
 #include <filesystem>
 #include <ostream>

@@ -6,9 +6,9 @@
 #include "common/DemoOutput.h"
 #include "common/Interrupt.h"
 
-#include <SimbodyReeving/CraneScene.h>
-#include <SimbodyReeving/Integrators.h>
-#include <SimbodyReeving/InterpolatingTimeStepper.h>
+#include <SimbodyReeving/scenes/CraneScene.h>
+#include <SimbodyReeving/simbody/Integrators.h>
+#include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
 
 #include <algorithm>
 #include <chrono>

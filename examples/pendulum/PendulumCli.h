@@ -1,7 +1,7 @@
 #pragma once
 // Command line of the reeving-pendulum demo: options, defaults and validation.
 
-#include <SimbodyReeving/PendulumScene.h>
+#include <SimbodyReeving/scenes/PendulumScene.h>
 
 #include <stdexcept>
 #include <string>

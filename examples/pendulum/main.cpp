@@ -4,10 +4,10 @@
 #include "common/DemoOutput.h"
 #include "common/Interrupt.h"
 
-#include <SimbodyReeving/Integrators.h>
-#include <SimbodyReeving/InterpolatingTimeStepper.h>
-#include <SimbodyReeving/PendulumScene.h>
-#include <SimbodyReeving/Visualization.h>
+#include <SimbodyReeving/simbody/Integrators.h>
+#include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+#include <SimbodyReeving/scenes/PendulumScene.h>
+#include <SimbodyReeving/simbody/Visualization.h>
 
 #include <algorithm>
 #include <atomic>

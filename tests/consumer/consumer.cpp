@@ -1,7 +1,7 @@
 // Links against an installed SimbodyReeving: evaluates one span (pure element) and runs the
 // Table 1 pendulum (Simbody layer) for 0.1 s.
-#include <SimbodyReeving/PendulumScene.h>
-#include <SimbodyReeving/SpanModel.h>
+#include <SimbodyReeving/scenes/PendulumScene.h>
+#include <SimbodyReeving/element/SpanModel.h>
 
 #include <cstdio>
 

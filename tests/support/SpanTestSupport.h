@@ -1,7 +1,7 @@
 #pragma once
 // Shared helpers of the span-element tests: random states, finite differences, a fixed-step RK4.
 
-#include "SimbodyReeving/SpanModel.h"
+#include "SimbodyReeving/element/SpanModel.h"
 
 #include <Eigen/Core>
 

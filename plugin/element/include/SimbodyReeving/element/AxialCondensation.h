@@ -1,0 +1,105 @@
+#pragma once
+/// @file
+/// What the condensation of AxialDynamics::QuasiStatic axial modes needs from one span: the
+/// derivatives of its potential energy with respect to its axial amplitudes and its material length,
+/// and its end strains, each with gradient and exact second time derivative (pure C++17/Eigen, no
+/// Simbody include).
+
+#include "SimbodyReeving/element/ChordFrame.h"
+#include "SimbodyReeving/element/SpanModel.h"
+
+#include <Eigen/Core>
+
+namespace SimbodyReeving {
+
+/// Per-evaluation results of AxialCondensation (fixed maximum sizes: evaluating never allocates).
+/// Each quantity f (see AxialCondensation::Quantity) comes with its value, its gradient df/dq over
+/// the span coordinates (SpanModel layout), its rate df/dt = df/dq qdot and its acceleration bias
+/// qdot^T (d^2 f/dq^2) qdot (the second time derivative with qddot = 0).
+template <int Dim>
+struct AxialCondensationData {
+    static constexpr int kMaxQuantities = 3 * kMaxModesPerDirection + 5;
+    using Values = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxQuantities, 1>;
+    using Gradients = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxQuantities,
+                                    SpanData<Dim>::kMaxCoordinates>;
+    Values value, rate, accelerationBias;
+    Gradients gradient;
+    ChordFrame<Dim> frame;  ///< scratch
+};
+
+/// Derivatives of one span's potential energy U = U_ax + U_bend + U_g (ElasticEnergyModel::Consistent)
+/// and of its end strains, as needed by the quasi-static condensation of axial modes (RopeModel):
+/// - Phi_i = dU/da_i, i = 1..n_a (a = q_a, the axial amplitudes): zero when the axial modes are
+///   stationary at fixed material coordinates;
+/// - dU/dl at fixed nodes and modes, l = s2 - s1 the span's material length: the energy change when
+///   material enters the span over its second end (dU/ds2 = dU/dl = -dU/ds1);
+/// - the Green strain at both ends, eps_E, and its partial derivatives d eps_E / da_i and
+///   d eps_E / dl (the sheave tension equality's Jacobian on the dependent coordinates).
+///
+/// In the element frame the tangent is A_e^T r_xi = (lambda, tau) with lambda = |e| + sum S_i' a_i
+/// along the chord and tau the transverse slopes, eps = (lambda^2 + |tau|^2) / (2 l^2) - 1/2, so
+///     Phi_i   = (EA / l) int eps lambda S_i' dxi - rhoA l (g . i_e) m_i,
+///     dU/dl   = EA int (-3/2 eps^2 - eps) dxi - 3 U_bend / l - rhoA g . (r_mean + A_e ubar),
+///     d eps_E / da_i = lambda_E S_i'(xi_E) / l^2,   d eps_E / dl = -(2 eps_E + 1) / l,
+/// with m_i = int S_i dxi, ubar = int S q_m dxi and r_mean = (r1 + r2)/2. Under the span's axial
+/// law P = EA f(eps), U_ax = EA l int F(eps) dxi (AxialLaw; linear: f = eps, F = eps^2/2) these read
+///     Phi_i (axial part) = (EA / l) int f(eps) lambda S_i' dxi,
+///     dU_ax/dl = EA int (F(eps) - f(eps) (2 eps + 1)) dxi,
+/// so a tension-only rope's slack points drop out, and a span with SpanModel::slackRegularised()
+/// adds the derivatives of
+/// U_delta = delta EA / (4 l) sum_i (i pi)^2 a_i^2 (SpanOptions::quasiStaticSlackStiffness):
+/// Phi_i += delta EA (i pi)^2 a_i / (2 l), dU/dl -= U_delta / l. The end strains stay the unclamped
+/// eps (the sheave condition is strain equality). Everything depends on
+/// the configuration through |e|, g . A_e (the frame's columns projected on gravity), g . r_mean,
+/// l and the modal amplitudes; it is written once for a generic scalar and evaluated with
+/// second-order Taylor numbers, which gives gradients (one directional pass per independent input)
+/// and second time derivatives (one pass along qdot) exactly, without step sizes. Integrals use the
+/// span's automatic strain quadrature (exact to round-off), so they agree with SpanModel::evaluate.
+template <int Dim>
+class AxialCondensation {
+public:
+    using Data = AxialCondensationData<Dim>;
+
+    /// @throws std::invalid_argument if the span uses ElasticEnergyModel::PaperLiteral.
+    explicit AxialCondensation(const SpanModel<Dim>& span);
+
+    int numAxialModes() const { return na_; }
+    int numQuantities() const { return 3 * na_ + 5; }
+
+    /// Row indices of the quantities in Data.
+    int phi(int i) const { return i; }                      ///< dU/da_i [N]
+    int lengthDerivative() const { return na_; }             ///< dU/dl [N]
+    int endStrain(SpanEnd end) const { return na_ + 1 + (end == SpanEnd::Second); }  ///< eps_E [-]
+    int endStrainAxialSlope(SpanEnd end, int i) const {      ///< d eps_E / da_i [1/m]
+        return na_ + 3 + (end == SpanEnd::Second ? na_ : 0) + i;
+    }
+    int endStrainLengthSlope(SpanEnd end) const { return 3 * na_ + 3 + (end == SpanEnd::Second); }  ///< [1/m]
+
+    /// Values and gradients at q; with qdot (same size as q) also rates and acceleration biases
+    /// (pass an empty qdot to skip them). q must be a configuration SpanModel::evaluate accepts.
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                  Data& data) const;
+    /// Rates and acceleration biases only (values and gradients in data are left as they are).
+    void evaluateRates(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                       Data& data) const;
+
+private:
+    template <class Scalar>
+    void quantities(const Scalar& chordLength, const Scalar& spanLength, const Scalar* gravityOnFrame,
+                    const Scalar& gravityOnMean, const Scalar* modal, Scalar* out) const;
+
+    int na_ = 0, nt_ = 0, numModal_ = 0, numCoordinates_ = 0;
+    double EA_ = 0, rhoA_ = 0, EI_ = 0;
+    AxialLaw law_;  // the span's axial law (SpanModel::axialLaw)
+    double slackStiffness_ = 0;  // delta EA / 2 when the span is slack-regularised, else 0
+    Eigen::Matrix<double, Dim, 1> gravity_;
+    Eigen::Matrix<double, Dim, Dim> referenceFrame_;
+    // Strain quadrature: weights w_k and mode slopes S_i'(xi_k) (d/dxi), i = 1..max(n_a, n_t).
+    Eigen::VectorXd weights_;
+    Eigen::MatrixXd slopes_;
+    Eigen::VectorXd sinMean_;     // m_i = int_0^1 S_i dxi
+    Eigen::VectorXd bendFactor_;  // int_0^1 (S_i'')^2 dxi = (i pi)^4 / 2
+    Eigen::VectorXd endSlope_[2];  // S_i'(0) = i pi, S_i'(1) = i pi (-1)^i
+};
+
+}  // namespace SimbodyReeving

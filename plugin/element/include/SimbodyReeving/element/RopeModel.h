@@ -1,0 +1,291 @@
+#pragma once
+/// @file
+/// A rope made of ALE spans in series over frictionless deviation sheaves (pure C++/Eigen): the
+/// sheave tension-equality constraint (paper eq 32) by coordinate partitioning, and the rope's
+/// dynamics reduced to its node accelerations (for an exact coupling with rigid bodies).
+
+#include "SimbodyReeving/element/AxialCondensation.h"
+#include "SimbodyReeving/element/SpanModel.h"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace SimbodyReeving {
+
+/// How the material coordinate s_k of a rope node is determined: a closed set the RopeModel
+/// dispatches on (new node physics, e.g. wrap geometry or friction, become new kinds).
+enum class MaterialNode {
+    /// A constant: the rope's end is fastened there (start: s_0 = 0; end: s_N = L, the unstretched
+    /// length). End nodes only.
+    Fixed,
+    /// Dependent: a frictionless, massless point sheave; s_k is solved from the tension equality of
+    /// the two spans meeting there (paper eq 32). Interior nodes only.
+    Sliding,
+    /// An external coordinate, given with its rate at every evaluation like the node positions: the
+    /// rope is gripped there by something that moves it (a winch drum at an end, a drive or idler
+    /// sheave in the path, s_k = s_ref + R theta). The rope's generalized force on it (the axial
+    /// force difference across the node, or the force at an end) is part of the node reduction, so
+    /// a coupled solve with the body that drives it is exact. Any node.
+    Driven,
+};
+
+template <int Dim>
+class RopeModel;
+namespace detail {
+template <int Dim>
+struct RopeWorkspace;  // the scratch of an evaluation (plugin/element/src/RopeWorkspace.h)
+
+/// An owning pointer whose copies deep-copy the pointee, so a class holding one keeps value
+/// semantics while the pointee's type stays incomplete in public headers (its members are
+/// instantiated only where the type is complete).
+template <class T>
+class ClonedPtr {
+public:
+    ClonedPtr() = default;
+    explicit ClonedPtr(std::unique_ptr<T> p) : p_(std::move(p)) {}
+    ClonedPtr(const ClonedPtr& o) : p_(o.p_ ? std::make_unique<T>(*o.p_) : nullptr) {}
+    ClonedPtr& operator=(const ClonedPtr& o) {
+        if (this != &o) p_ = o.p_ ? std::make_unique<T>(*o.p_) : nullptr;
+        return *this;
+    }
+    ClonedPtr(ClonedPtr&&) noexcept = default;
+    ClonedPtr& operator=(ClonedPtr&&) noexcept = default;
+    ~ClonedPtr() = default;
+    T& operator*() const { return *p_; }
+
+private:
+    std::unique_ptr<T> p_;
+};
+}  // namespace detail
+
+/// The results of a RopeModel's evaluation ("Data" of a RopeModel, as Pinocchio's Model/Data): what
+/// changes every evaluation. Its scratch (span evaluations, the rope's mass and constraint
+/// Jacobians, factorizations, Newton iterates) is private to the element layer, sized on first use
+/// and reused, so repeated evaluations do not allocate.
+template <int Dim>
+struct RopeData {
+    // ---- position level
+    Eigen::VectorXd materialCoordinates;  ///< s_0..s_N at the nodes [m] (s_0 = 0, s_N = L)
+    /// Axial amplitudes of the AxialDynamics::QuasiStatic spans [m], span by span (also the warm
+    /// start of the next solve).
+    Eigen::VectorXd condensedAmplitudes;
+    /// Multipliers nu_k of the sheave constraints in the condensation's stationarity conditions
+    /// (only with condensed spans): dU/ds_k / EA + sum_m nu_m dC_m/ds_k = 0.
+    Eigen::VectorXd multipliers;
+    int newtonIterations = 0;             ///< of the last dependent-coordinate solve
+    // ---- dynamics (filled by RopeModel::computeDynamics)
+    Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s] (Driven nodes: as given)
+    Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
+    Eigen::VectorXd multiplierRates;
+    /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
+    /// (see RopeModel::recoverInertialStrain); valid once computed for the current accelerations.
+    Eigen::VectorXd inertialCorrection;
+    bool inertialCorrectionValid = false;
+    /// Effective mass of the rope at its external coordinates x = [r_0..r_N, s at the Driven nodes]
+    /// (RopeModel::numExternalCoordinates), S = Mbar_xx - Mbar_xm Mbar_mm^-1 Mbar_mx, and the
+    /// matching force h: the generalized force the supports must apply to the rope is
+    /// f = S xddot - h (for a Driven s_k: the force [N] that holds the rope's material there).
+    Eigen::MatrixXd nodeMass;
+    Eigen::VectorXd nodeForce;
+    double kineticEnergy = 0;    ///< T of all spans [J]
+    double strainEnergy = 0;     ///< [J]
+    double gravityEnergy = 0;    ///< [J]
+
+
+    /// Reduced mass Mbar = G^T M G of the last computeDynamics, on the independent velocities
+    /// w = [xdot, qdot_m] (external coordinates, then modal state coordinates).
+    const Eigen::MatrixXd& reducedMass() const;
+    /// Reduced force Qbar = G^T (Q - M c) of the last computeDynamics, on w [N].
+    const Eigen::VectorXd& reducedForce() const;
+    /// Coordinates q of span j (SpanModel layout) at the last evaluation.
+    const Eigen::VectorXd& spanCoordinates(int span) const;
+
+    RopeData();
+    ~RopeData();
+    RopeData(const RopeData& other);
+    RopeData& operator=(const RopeData& other);
+    RopeData(RopeData&& other) noexcept;
+    RopeData& operator=(RopeData&& other) noexcept;
+
+private:
+    friend class RopeModel<Dim>;
+    detail::RopeWorkspace<Dim>& ws() { return *workspace_; }
+    const detail::RopeWorkspace<Dim>& ws() const { return *workspace_; }
+    detail::ClonedPtr<detail::RopeWorkspace<Dim>> workspace_;
+};
+
+/// A rope of N spans between N + 1 nodes: node 0 is the rope's start, nodes 1..N-1 are sheaves
+/// (point contact: both spans meet at the node and share its material coordinate), node N is its
+/// end. Each node's material coordinate is Fixed, Sliding or Driven (MaterialNode; by default the
+/// ends are Fixed anchors and the sheaves Sliding, frictionless). Node positions are given from outside each evaluation
+/// (they are tied to bodies); the modal coordinates q_m of all spans are the rope's own
+/// independent coordinates ("modal state"), except the axial amplitudes of spans with
+/// AxialDynamics::QuasiStatic, which are dependent, solved from dU/dq_a = 0 (AxialCondensation);
+/// the material coordinates s_1..s_{N-1} at the sheaves are dependent, solved from the tension
+/// equality EA eps_{k-1}(s_k) = EA eps_k(s_k) (paper eq 32), with s_0 = 0 and s_N = L (unstretched
+/// rope length) fixed.
+///
+/// Rope coordinates z = [x | q_free | q_condensed, s_sliding, nu | s_fixed] with the external
+/// coordinates x = [r_0..r_N, s_driven]; independent velocities w = [xdot, qdot_free]; dependents
+/// d = [q_condensed, s_sliding, nu] (one multiplier per Sliding node, with condensed spans only) with
+/// constraints C(z) = 0; zdot = G w, zddot = G wdot + c. The reduced equations
+/// Mbar wdot = Qbar with Mbar = G^T M G, Qbar = G^T (Q - M c) keep T + U invariant (the constraints
+/// are holonomic and their reactions do no work along admissible motions).
+///
+/// **Quasi-static condensation.** The condensed amplitudes make U stationary on the manifold of the
+/// sheave constraints C_k = eps_{k-1}(s_k) - eps_k(s_k) = 0 (at fixed nodes and modal states), i.e.
+/// with multipliers nu_k (no inertia: zero rows in M):
+///     dU/da / EA + sum_k nu_k dC_k/da = 0,   dU/ds_k / EA + sum_m nu_m dC_m/ds_k = 0,   C = 0.
+/// This is exactly the condition d(U restricted to the sheave constraints)/da = 0 that the Dynamic
+/// model's static equilibrium satisfies, so both models share their static equilibria. (dU/ds_k
+/// is not zero at equal end strains: material moved over a sheave changes the spans' gravity
+/// energy through their mean positions.) Without condensed spans there are no multipliers and the
+/// rows are the paper's tension equalities alone.
+template <int Dim>
+class RopeModel {
+public:
+    using Vec = Eigen::Matrix<double, Dim, 1>;
+    using Mat = Eigen::Matrix<double, Dim, Dim>;
+    using NodeMatrix = Eigen::Matrix<double, Dim, Eigen::Dynamic>;
+
+    /// @param spans one SpanModel per span, in path order (all with the same RopeProperties).
+    /// @param unstretchedLength L [m] > 0: material coordinate of a Fixed end node.
+    /// @param nodeKinds one MaterialNode per node (N + 1); empty: Fixed ends, Sliding sheaves.
+    /// @throws std::invalid_argument for no spans, spans with different rope properties, L not
+    ///         finite and > 0, nodeKinds of the wrong size, a Fixed interior node or a Sliding end.
+    RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {});
+
+    int numSpans() const { return static_cast<int>(spans_.size()); }
+    int numNodes() const { return numSpans() + 1; }
+    MaterialNode nodeKind(int node) const { return nodeKind_[node]; }
+    /// Number of Driven nodes: the length of the drivenS vectors below.
+    int numDrivenNodes() const { return numDriven_; }
+    /// Index of node k's material coordinate among the Driven ones (drivenS), or -1.
+    int drivenIndex(int node) const { return drivenIndex_[node]; }
+    /// Number of external coordinates x = [r_0..r_N, s_driven]: Dim (N + 1) + numDrivenNodes().
+    int numExternalCoordinates() const { return Dim * numNodes() + numDriven_; }
+
+    /// Declares rope stored at a Driven end node (a winch drum): its length is
+    ///     l = lengthAtZero + s_0 (start node) or l = lengthAtZero - s_N (end node) [m]
+    /// (hauling material out of the spans stores it), held as a ring of radius R at the node
+    /// moving with it, so it has
+    ///     T_stored = 1/2 rhoA l (|rdot_k|^2 + sdot_k^2),   U_stored = -rhoA l g . r_k.
+    /// Without it the material would vanish from the model at the drum, carrying its potential
+    /// energy -rhoA g . r_k per metre out through the span's generalized force on s_k: a drum torque
+    /// that depends on the height datum. With it the torque is datum-free, the stored rope's weight
+    /// and inertia load the node's body, and T + U (spans + stored rope) keeps its invariance.
+    /// Added to nodeMass, nodeForce and the energies by computeDynamics.
+    /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
+    void setStoredRope(int node, double lengthAtZero);
+    /// Gravity energy of the stored rope at these node positions and material coordinates [J].
+    double storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
+    /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
+    /// QuasiStatic spans): the length of the qm vectors below.
+    int numModalCoordinates() const { return numModal_; }
+    /// First entry of span j's modal state coordinates in qm.
+    int modalOffset(int span) const { return modalOffset_[span]; }
+    /// Number of condensed axial amplitudes (QuasiStatic spans), the length of
+    /// RopeData::condensedAmplitudes.
+    int numCondensedCoordinates() const { return numCondensed_; }
+    /// True if span j's axial amplitudes are condensed (AxialDynamics::QuasiStatic and n_a > 0).
+    bool isCondensed(int span) const { return condensedOffset_[span] >= 0; }
+    double unstretchedLength() const { return length_; }
+    const SpanModel<Dim>& span(int j) const { return spans_[j]; }
+    const RopeProperties& properties() const { return spans_.front().properties(); }
+
+    /// Solves the constraints for the dependent coordinates, s_1..s_{N-1} and the condensed axial
+    /// amplitudes, by Newton's method (starting from data if it holds an admissible guess, else
+    /// from s split in proportion to the chord lengths and zero amplitudes) to a residual <= 1e-15
+    /// (strain units), or until it stagnates at round-off below 1e-12. Steps that do not reduce
+    /// |C|_2 are halved (damped Newton; the rounded tension-only law of quasi-static spans changes
+    /// curvature sharply where points go slack); a failed warm start is retried once from the
+    /// cold guess.
+    /// @throws std::runtime_error if Newton does not converge in 100 iterations (each damped
+    ///         halving counts as one), from the warm and the cold start, or a span length
+    ///         would become non-positive (the rope cannot carry the configuration).
+    /// @param drivenS material coordinates of the Driven nodes [m], in node order.
+    /// @throws std::runtime_error also if the given material coordinates leave a span without
+    ///         material (s_{k+1} <= s_k between Fixed/Driven nodes: a drum hauled the rope in).
+    void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
+                                   RopeData<Dim>& data) const;
+    /// As above for ropes without Driven nodes.
+    void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+
+    /// The coordinates q of span j (SpanModel layout) from node positions, modal state coordinates
+    /// and the dependent coordinates held by data (material coordinates, condensed amplitudes).
+    void spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
+                         Eigen::VectorXd& q) const;
+
+    /// Velocity and dynamics level: material rates, span evaluations, and the rope reduced to its
+    /// nodes (nodeMass, nodeForce), energies. Reuses the position-level work of the last
+    /// solveDependentCoordinates on data when it was done at these positions (nodes and qm compared
+    /// exactly), and calls solveDependentCoordinates first otherwise.
+    /// @throws std::runtime_error as solveDependentCoordinates, when it has to solve.
+    void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& drivenS,
+                         const Eigen::VectorXd& drivenSdot, const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
+                         RopeData<Dim>& data) const;
+    /// As above for ropes without Driven nodes.
+    void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& qm,
+                         const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
+
+    /// Modal accelerations for given accelerations of the external coordinates x (node positions,
+    /// then Driven material coordinates): qddot_m = Mbar_mm^-1 (Qbar_m - Mbar_mx xddot).
+    void modalAccelerations(const RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
+                            Eigen::VectorXd& qmddot) const;
+
+    /// Mode-acceleration recovery for ropes with condensed (QuasiStatic) spans. The condensation
+    /// makes U stationary, so the strain field it gives carries no share of the rope's own inertial
+    /// load (rhoA times the acceleration of each material point). Given the accelerations of the
+    /// coupled solve, this adds the quasi-static response to that load, to first order: with
+    /// z_ddot = G w_ddot + c and the inertial generalized force f = M z_ddot - Q_v,
+    ///     C_d delta_d = -[f_condensed / EA; 0; f_s / EA],
+    /// the same linear system as the condensation's Newton step (the stationarity rows gain f).
+    /// The result, data.inertialCorrection, feeds recoveredSpanCoordinates: strain and
+    /// force queries then agree with the Dynamic model's slow response up to O((omega_slow /
+    /// omega_axial)^2) instead of O(acceleration / g) (measured in bench/RESULTS.md). The dynamics
+    /// themselves are not changed (they stay conservative). No-op without condensed spans.
+    void recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
+                               const Eigen::VectorXd& qmddot) const;
+
+    /// As spanCoordinates, with the mode-acceleration correction added to the condensed amplitudes
+    /// and material coordinates when data holds one.
+    void recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
+                                  Eigen::VectorXd& q) const;
+
+    /// Axial force difference F_a - F_b at interior node k (1..N-1) [N]: the tension-equality
+    /// residual at a Sliding node; at a Driven node, the force the rope's grip there carries.
+    double constraintError(const RopeData<Dim>& data, int k) const;
+
+private:
+    void fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+    /// Evaluates the constraint functions at data.spanQ (and data.spanQdot when withRates): values
+    /// into data.newtonResidual, Jacobians into data.Cw / data.Cd, biases into data.bias.
+    void evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
+                             bool withRates) const;
+    bool positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
+                        const RopeData<Dim>& data) const;
+    int numDependent() const { return numCondensed_ + numSliding_ + numMultipliers_; }
+    /// Writes the Fixed and Driven material coordinates into data.materialCoordinates (keeping the
+    /// Sliding ones as a warm start when they stay ordered, else a chord-proportional guess).
+    void setKnownMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, RopeData<Dim>& data) const;
+
+    std::vector<SpanModel<Dim>> spans_;
+    std::vector<AxialCondensation<Dim>> kernels_;  // one per span when some span is condensed
+    std::vector<std::vector<int>> spanToRope_;  // span-local coordinate -> index in z
+    std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
+    std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
+    std::vector<MaterialNode> nodeKind_;
+    std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
+    std::vector<int> slidingNode_;                 // sliding index -> node
+    struct Storage {
+        int node = -1;
+        double lengthAtZero = 0, slope = 0;  // l = lengthAtZero + slope s_node
+    };
+    std::vector<Storage> storage_;                 // rope stored at Driven end nodes (drums)
+    int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0, numSliding_ = 0, numDriven_ = 0;
+    double length_ = 0;
+};
+
+}  // namespace SimbodyReeving

@@ -1,0 +1,351 @@
+#pragma once
+/// @file
+/// One ALE wire-rope span element (Mohammadi & Escalona, "Dynamic simulation of reeving systems with
+/// the extension of the modal approach in the axial direction", sections 2.1-2.2, eqs 1-22).
+/// Pure C++17/Eigen: no Simbody include.
+
+#include "SimbodyReeving/element/AxialLaw.h"
+#include "SimbodyReeving/element/ChordFrame.h"
+#include "SimbodyReeving/element/RopeProperties.h"
+
+#include <Eigen/Core>
+
+#include <cmath>
+
+namespace SimbodyReeving {
+
+/// Largest number of sine modes per direction (axial or transverse) a span may carry.
+inline constexpr int kMaxModesPerDirection = 16;
+
+/// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
+enum class VelocityModel {
+    /// Paper eq 13 (default): rdot = Ndot q_a + N qdot_a + A_e S qdot_m. Drops the frame-rotation
+    /// term Adot_e S q_m and the mode-convection term A_e Sdot q_m of eq 12. Measured consequence
+    /// (bench/LUMPED_CHAIN.md, 20 m hanging rope swinging at 1 m/s): with axial modes the force the
+    /// rope puts on the payload carries an inertial model error of 0.13-0.20 N (2e-5 of the
+    /// tension); Complete removes it at the same step count. Prefer Complete for body loads.
+    Simplified,
+    /// Paper eq 12 with no term dropped: the exact material velocity of the discretised rope.
+    Complete,
+};
+
+/// Which strain energy the span uses (eq 19-20).
+enum class ElasticEnergyModel {
+    /// Default. U = 1/2 int EA eps^2 ds + 1/2 int EI kappa^2 ds with the Green strain
+    /// eps = 1/2 (|dr/ds|^2 - 1) of the *full* position r (axial and transverse modes), and the
+    /// bending curvature of the transverse displacement, kappa = |d^2 u_perp / ds^2| (linear in the
+    /// modes). The taut-string energy of eq 19 is *not* added: expanding EA eps^2/2 about a
+    /// tension P already contains P (du_t/ds)^2 / 2, so the small-vibration transverse frequencies
+    /// of a taut span are the string's, n/(2L) sqrt(P/rhoA).
+    Consistent,
+    /// Eq 19-20 literally, to reproduce the paper: the Consistent energy plus
+    /// U_str = 1/2 int P (du_perp/ds)^2 ds with P = EA eps (signed, so U stays differentiable), and
+    /// kappa = |d^2 r/ds^2| including the axial modes. U_str counts the geometric stiffness twice:
+    /// taut-string transverse frequencies come out sqrt(2) too high.
+    PaperLiteral,
+};
+
+/// How a span's axial modal amplitudes q_a (the paper's axial part of q_m, eq 3 and 10) evolve.
+enum class AxialDynamics {
+    /// Default; the paper's model: the axial amplitudes are generalized coordinates with their own
+    /// inertia, so the span carries axial waves. Their frequencies, i pi / l sqrt(EA / rhoA) for a
+    /// span of length l (5 400 rad/s per mode number for the Table 1 rope on a 3 m span), limit
+    /// the step of every explicit integrator.
+    Dynamic,
+    /// The axial amplitudes are not states: at every configuration they take the values that make
+    /// the rope's potential energy (axial strain + bending + gravity) stationary with respect to
+    /// them, for the current nodes and transverse modes, on the manifold of the sheave
+    /// tension-equality constraints (the material coordinates at the sheaves follow the amplitudes;
+    /// see RopeModel). The condition is a holonomic constraint, solved by Newton's method together
+    /// with the sheave coordinates (coordinate partitioning): the amplitudes' rates and
+    /// accelerations follow exactly from the implicit function theorem, and the kinetic energy
+    /// keeps the rope mass carried along by the quasi-static axial displacement field (the axial
+    /// inertia of the slow motion). So:
+    /// - T + U stays an exact invariant (measured: 4.6e-13 of the initial kinetic energy over 20 s
+    ///   of the Table 1 pendulum, n_a = 3, RK-Merson 1e-10);
+    /// - static equilibria equal the Dynamic model's (measured: axial force within 2e-12 relative,
+    ///   n_a = 1, 3, 8);
+    /// - the axial waves are gone, and with them the explicit-step limit: the integrator steps at
+    ///   the pace of the slow motion (Table 1 pendulum, n_a = 3, RK-Merson 1e-6: 1 127 steps instead
+    ///   of 76 790).
+    /// Force queries at Stage::Dynamics or later add the mode-acceleration correction, the strain
+    /// of the rope's own inertial load (RopeModel::recoverInertialStrain); with it the slow part of
+    /// the axial force agrees with the Dynamic model's to O((omega_slow / omega_axial)^2) of the
+    /// inertial load. Measured on the Table 1 pendulum (1 m/s push, 20 s, both models converged;
+    /// bench/RESULTS.md, "Quasi-static axial modes"), n_a = 1 / 3 / 8: payload position within
+    /// 6.9e-8 / 7.2e-8 / 7.2e-8 m, slow part (below 43 Hz) of the payload-end axial force within
+    /// 0.059 / 0.062 / 0.062 N of 9.8 kN; what is left out is the axial-wave part, 0.13 / 0.18 /
+    /// 0.21 N. The slow difference grows about linearly in time (a small shift of the payload's
+    /// bounce frequency), so compare over the horizon you need.
+    /// Requires ElasticEnergyModel::Consistent on every span of the rope. With a tension-only rope
+    /// (RopeProperties::tensionOnly) the condensation uses the clamped law and a slack span's
+    /// amplitudes are held by SpanOptions::quasiStaticSlackStiffness (a fully slack span has no
+    /// axial stiffness of its own).
+    QuasiStatic,
+};
+
+/// Which integrals of a span a quadrature rule serves.
+enum class Integrand {
+    Kinetic,  ///< M, Q_v and T
+    Strain,   ///< axial (and PaperLiteral string) strain energy and its gradient
+};
+
+/// Mode counts and numerical options of one span.
+struct SpanOptions {
+    /// n_a: number of axial sine modes, 0..16.
+    int axialModes = 0;
+    /// n_t: number of transverse sine modes per transverse direction, 0..16 (one direction in a
+    /// planar span, two in a spatial one).
+    int transverseModes = 1;
+    VelocityModel velocityModel = VelocityModel::Simplified;
+    /// Axial amplitudes as states (Dynamic) or condensed (QuasiStatic); no effect when n_a = 0.
+    AxialDynamics axialDynamics = AxialDynamics::Dynamic;
+    ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
+    /// delta [-], finite, in [1e-9, 1]; used only by a tension-only rope's (RopeProperties::tensionOnly)
+    /// spans with AxialDynamics::QuasiStatic axial modes. A fully slack span has no axial
+    /// stiffness, so the quasi-static condition dU/dq_a = 0 alone would leave its axial amplitudes
+    /// undetermined (or, with gravity along the span, pile all its material at the lower end).
+    /// Such spans therefore carry the extra potential
+    ///     U_delta = 1/2 delta EA int (du_a/ds)^2 ds = delta EA / (4 l) sum_i (i pi)^2 q_a,i^2,
+    /// u_a the axial modal displacement, l the span's material length: a weak resistance to
+    /// redistributing material along the span. It acts on the axial amplitudes (and, through l,
+    /// on the material coordinates), not on the chord, so it transmits no force between the
+    /// span's ends: the axial force stays EA max(eps, 0) >= 0. In a taut span it stiffens the
+    /// axial modes by the factor 1 + delta, so the amplitudes (the strain's variation along the
+    /// span from its own weight and inertia) come out smaller by delta / (1 + delta) relative;
+    /// in a fully slack span it keeps the material near its uniform distribution (the default,
+    /// 1e-3: the Table 1 rope's 3 m span hanging slack shifts its material by about 0.5 mm). It is
+    /// part of the potential energy (SpanData::slackRegularisationEnergy), so T + U stays an
+    /// invariant.
+    double quasiStaticSlackStiffness = 1e-3;
+    /// eps_s [-], finite, in [1e-12, 1e-3]; used by the same spans as quasiStaticSlackStiffness:
+    /// their tension-only law is rounded over strains in (0, eps_s) by a quintic (see AxialLaw)
+    /// so that the force is C2 in the strain rather than only C0. The quasi-static amplitudes solve
+    /// dU/dq_a = 0; their rates (the Hessian of U) enter the rope's kinetic energy and their
+    /// acceleration bias (third derivatives of U) the equations of motion. With the plain clamp
+    /// max(eps, 0) the rates jump whenever a strain quadrature point goes slack or taut, and each
+    /// jump changes T at fixed velocities (measured: 2.8e-3 of the initial kinetic energy over a
+    /// drop test with 10 slack/taut transitions); with a C1 rounding the accelerations still
+    /// jump and adaptive steps collapse to 1e-15 s there. With the quintic T + U is an invariant
+    /// again, provided the integrator resolves the rounding: a step that carries a span's strain
+    /// across (0, eps_s) at once can fool its error estimate (Table 1 rope dropped 20 m, n_a = 2,
+    /// RK-Merson 1e-10: energy error 7.7e-5 of the initial kinetic energy at eps_s = 1e-6, one
+    /// step; 2.2e-8 at 1e-5; 1.7e-8 at 1e-4). Outside (0, eps_s) the law is exact; inside,
+    /// 0 <= P <= EA eps and P falls short of EA eps by at most 0.1975 EA eps_s (33 N for the
+    /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
+    /// EA eps_s = 165 N is rounded down by up to a fifth of that).
+    double quasiStaticSlackTransitionStrain = 1e-5;
+    /// Gauss-Legendre points for the kinetic and strain integrals; 0 selects the automatic rule
+    /// SpanModel::automaticQuadraturePoints (exact to round-off); otherwise 1..200.
+    int quadraturePoints = 0;
+};
+
+/// Generalized forces, mass matrix and energies of one span at one state: the per-evaluation
+/// workspace ("Data") of a SpanModel. Fixed maximum sizes: evaluating never allocates.
+template <int Dim>
+struct SpanData {
+    static constexpr int kMaxModal = Dim * kMaxModesPerDirection;
+    static constexpr int kMaxCoordinates = 2 * Dim + kMaxModal + 2;
+    using CoordVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCoordinates, 1>;
+    using CoordMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxCoordinates>;
+    using Jacobian = Eigen::Matrix<double, Dim, Eigen::Dynamic, 0, Dim, kMaxCoordinates>;
+
+    /// M(q) = int rhoA B^T B ds with rdot = B(q) qdot; symmetric positive definite [kg, kg m, ...].
+    CoordMatrix massMatrix;
+    /// Q_v = -Mdot qdot + dT/dq (eq 17), so that M qddot = Q_v + Q_elastic + Q_gravity + Q_other.
+    CoordVector velocityForces;
+    /// Q_elas = -dU/dq (eq 22) [N for positions and material coordinates, N m for modes].
+    CoordVector elasticForces;
+    /// Q_g = -dU_g/dq with U_g = -int rhoA g . r ds.
+    CoordVector gravityForces;
+
+    double kineticEnergy = 0;   ///< T [J]
+    double axialEnergy = 0;     ///< 1/2 int EA eps^2 ds [J]
+    double bendingEnergy = 0;   ///< 1/2 int EI kappa^2 ds [J] (0 when EI = 0)
+    double stringEnergy = 0;    ///< taut-string energy [J], PaperLiteral only
+    double gravityEnergy = 0;   ///< U_g = -int rhoA g . r ds [J]
+    /// U_delta [J] of SpanOptions::quasiStaticSlackStiffness (tension-only rope, QuasiStatic axial
+    /// modes; 0 otherwise).
+    double slackRegularisationEnergy = 0;
+
+    /// Elastic energy [J]: axial + bending + string + U_delta.
+    double strainEnergy() const { return axialEnergy + bendingEnergy + stringEnergy + slackRegularisationEnergy; }
+    double potentialEnergy() const { return strainEnergy() + gravityEnergy; }
+
+    ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
+    Jacobian velocityJacobian;  ///< scratch: B at the current quadrature point
+};
+
+/// The two ends of a span: node 1 at s1 (xi = 0) and node 2 at s2 (xi = 1).
+enum class SpanEnd { First, Second };
+
+/// Green strain at a span end with its first and second time derivatives, for constraints on the
+/// axial force there (the sheave tension equality).
+template <int Dim>
+struct EndStrain {
+    double strain = 0;          ///< eps at the end [-]
+    double rate = 0;            ///< d eps/dt = gradient . qdot [1/s]
+    double accelerationBias = 0;  ///< d^2 eps/dt^2 with qddot = 0, i.e. qdot^T (d^2 eps/dq^2) qdot [1/s^2]
+    typename SpanData<Dim>::CoordVector gradient;  ///< d eps/dq [1/m]
+};
+
+/// One ALE wire-rope span: the fixed part of the element ("Model": parameters, mode layout,
+/// quadrature tables). Evaluation results go into a SpanData.
+///
+/// **Coordinates** (eq 1-3), in this order, n = 2 Dim + n_a + (Dim-1) n_t + 2 of them:
+/// - q_a = [r1; r2]: absolute positions of the end nodes [m] (Dim each);
+/// - q_m = [a_1..a_na, b_1..b_nt, (c_1..c_nt)]: modal amplitudes [m] of the axial displacement
+///   (along i_e), and of the transverse displacements along j_e (and k_e in 3D);
+/// - q_s = [s1, s2]: material (unstretched arc-length) coordinates of the end nodes [m], s2 > s1.
+///
+/// **Kinematics** (eq 4-11). With xi = (s - s1)/(s2 - s1) in [0, 1] and l = s2 - s1,
+///     r(s, q) = (1 - xi) r1 + xi r2 + A_e(r2 - r1) S(xi) q_m,
+/// N = [(1-xi) I, xi I] the linear shape functions (eq 6-8), A_e the element frame (ChordFrame),
+/// and S the sine modes S_i(xi) = sin(i pi xi) (eq 11) arranged as in eq 10.
+///
+/// **Dynamics** (eq 14-18). T = 1/2 int_0^1 rhoA l |v|^2 dxi with the material velocity
+/// v = B(xi, q) qdot of the chosen VelocityModel (the s-dependence of xi through s1, s2 included,
+/// so the span may gain or lose material over its ends). M and Q_v are derived from this same T,
+/// with the same quadrature, so T + U is an exact invariant of M qddot = Q_v + Q_elastic +
+/// Q_gravity for either velocity model.
+///
+/// **Elastic energy** (eq 19-22): see ElasticEnergyModel. Axial and string energies are integrated
+/// by Gauss-Legendre quadrature; the bending energy (quadratic in q_m with constant coefficients)
+/// and the gravity energy are integrated in closed form.
+///
+/// **Axial force** (eq 21): P(s) = EA eps(s), eps = 1/2 (|dr/ds|^2 - 1).
+///
+/// @tparam Dim 2 for a planar span (x-y plane, one transverse direction: no out-of-plane work at
+///             all), 3 for a spatial span.
+template <int Dim>
+class SpanModel {
+public:
+    using Vec = Eigen::Matrix<double, Dim, 1>;
+    using Mat = Eigen::Matrix<double, Dim, Dim>;
+    using Data = SpanData<Dim>;
+
+    /// @param properties rope properties (see RopeProperties for units and ranges).
+    /// @param options    mode counts and numerical options.
+    /// @param gravity    gravitational acceleration [m/s^2], finite (may be zero).
+    /// @param referenceFrame (Dim = 3 only) orthonormal right-handed [i0 j0 k0], typically
+    ///        makeReferenceFrame(initial chord, plane normal); ignored for Dim = 2.
+    /// @throws std::invalid_argument for rhoA or EA not finite and > 0, EI not finite and >= 0,
+    ///         mode counts outside 0..16, quadraturePoints outside 0..200, non-finite gravity, a
+    ///         reference frame that is not orthonormal and right-handed, or AxialDynamics::QuasiStatic
+    ///         with ElasticEnergyModel::PaperLiteral (its string energy makes the axial stiffness
+    ///         depend on the transverse slope twice; the condensation is defined for Consistent only),
+    ///         RopeProperties::tensionOnly with PaperLiteral, quasiStaticSlackStiffness outside
+    ///         [1e-9, 1] or quasiStaticSlackTransitionStrain outside [1e-12, 1e-3] (or not finite).
+    SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
+              const Mat& referenceFrame = Mat::Identity());
+
+    int numCoordinates() const { return 2 * Dim + numModal_ + 2; }
+    /// true if the span carries U_delta (SpanOptions::quasiStaticSlackStiffness): a tension-only
+    /// rope with QuasiStatic axial modes (n_a > 0).
+    bool slackRegularised() const {
+        return properties_.tensionOnly && options_.axialDynamics == AxialDynamics::QuasiStatic &&
+               options_.axialModes > 0;
+    }
+    /// The span's axial law: linear, tension-only, or (slackRegularised()) tension-only rounded
+    /// over (0, quasiStaticSlackTransitionStrain).
+    const AxialLaw& axialLaw() const { return law_; }
+    /// (i pi)^2 of axial mode i = 0..n_a-1 (mode number i + 1).
+    static double axialModeWavenumberSquared(int i) {
+        const double k = (i + 1) * 3.14159265358979323846;
+        return k * k;
+    }
+    int numModalCoordinates() const { return numModal_; }
+    int axialModes() const { return options_.axialModes; }
+    int transverseModes() const { return options_.transverseModes; }
+    /// Gauss-Legendre points used for the kinetic (M, Q_v, T) or strain (U_ax, U_str) integrals.
+    int quadraturePoints(Integrand integrand) const {
+        return static_cast<int>((integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).xi.size());
+    }
+    const RopeProperties& properties() const { return properties_; }
+    const SpanOptions& options() const { return options_; }
+    const Vec& gravity() const { return gravity_; }
+    const Mat& referenceFrame() const { return referenceFrame_; }
+
+    /// Index of r1 (first of Dim), r2, of axial mode i (0-based), of transverse mode i in direction
+    /// dir (0: j_e, 1: k_e), and of s1, s2 in the coordinate vector.
+    static constexpr int r1Index() { return 0; }
+    static constexpr int r2Index() { return Dim; }
+    int axialModeIndex(int i) const { return 2 * Dim + i; }
+    int transverseModeIndex(int dir, int i) const {
+        return 2 * Dim + options_.axialModes + dir * options_.transverseModes + i;
+    }
+    int s1Index() const { return 2 * Dim + numModal_; }
+    int s2Index() const { return 2 * Dim + numModal_ + 1; }
+
+    /// The automatic quadrature rule, exact to round-off for the span's integrands (tested against
+    /// 150 points): with n_max = max(n_a, n_t) and k the integrand's largest number of half-waves
+    /// on [0, 1] (k = 2 n_max for kinetic, 4 n_max for strain integrals), N = ceil(1.15 k) + 12;
+    /// without modes N = 2 (kinetic) and 1 (strain).
+    static int automaticQuadraturePoints(int axialModes, int transverseModes, Integrand integrand);
+
+    /// Evaluates M, Q_v, Q_elastic, Q_gravity and all energies at (q, qdot).
+    /// @throws std::invalid_argument if q or qdot has the wrong size or a non-finite entry, if
+    ///         s2 <= s1 (span length l = s2 - s1 must be > 0), or if the end nodes coincide.
+    /// @throws std::domain_error (Dim = 3) if the chord is reversed against the reference frame, or
+    ///         if the result overflows (non-finite) although the inputs are finite.
+    void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                  Data& data) const;
+
+    /// Position r(s) of material point s in [s1, s2] [m] (points within 1e-12 l outside an end,
+    /// round-off of s1 + (s2 - s1) k / n, are taken at that end).
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    Vec position(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
+    /// Green strain eps(s) = 1/2 (|dr/ds|^2 - 1) at material point s in [s1, s2] [-].
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    double strain(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
+    /// Axial force P(s) = EA eps(s) [N] (eq 21); under RopeProperties::tensionOnly EA max(eps(s), 0),
+    /// rounded near 0 for slackRegularised() spans (axialLaw()).
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    double axialForce(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
+        return law_.force(strain(q, s));
+    }
+    /// Largest Green strain over the span [-]: the maximum over both ends and the strain quadrature
+    /// points (the points where the strain energy is evaluated). Under RopeProperties::tensionOnly
+    /// the span is slack (carries no axial force anywhere the energy sees) when this is <= 0.
+    /// @throws std::invalid_argument for bad q (as evaluate).
+    double maxStrain(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+    /// Physical tension T(s) = EA eps |dr/ds| [N]: the magnitude of the internal force vector
+    /// EA eps dr/ds that balances the loads (a hanging rope has T = weight below). It exceeds the
+    /// paper's axial force P = EA eps by the stretch factor |dr/ds| = sqrt(1 + 2 eps).
+    /// @throws std::invalid_argument for bad q (as evaluate) or s outside [s1, s2].
+    double tension(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const {
+        const double eps = strain(q, s);
+        return law_.force(eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+    }
+
+    /// Strain at a span end, its gradient d eps/dq, its rate and its acceleration bias (exact,
+    /// analytic). Does not allocate.
+    /// @throws as evaluate().
+    void endStrain(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                   SpanEnd end, EndStrain<Dim>& out) const;
+
+private:
+    void checkState(const Eigen::Ref<const Eigen::VectorXd>& q, const char* name) const;
+    double checkMaterialPoint(const Eigen::Ref<const Eigen::VectorXd>& q, double s) const;
+
+    RopeProperties properties_;
+    AxialLaw law_;
+    SpanOptions options_;
+    Vec gravity_;
+    Mat referenceFrame_;
+    int numModal_ = 0;
+    int maxMode_ = 0;  // max(n_a, n_t)
+    // Quadrature table: xi_k, w_k and, per point, S_i(xi_k) and dS_i/dxi (xi_k), i = 1..maxMode_.
+    struct QuadratureTable {
+        Eigen::VectorXd xi, w;
+        Eigen::MatrixXd sin, dsin;
+    };
+    QuadratureTable kineticTable_, strainTable_;
+    // Closed-form integrals int_0^1 S_i dxi and (i pi)^4 / 2 (bending), i = 1..maxMode_.
+    Eigen::VectorXd sinMean_, bendFactor_;
+};
+
+using PlanarSpanModel = SpanModel<2>;
+using SpatialSpanModel = SpanModel<3>;
+
+}  // namespace SimbodyReeving

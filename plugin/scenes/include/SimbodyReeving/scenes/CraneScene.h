@@ -1,0 +1,168 @@
+#pragma once
+/// @file
+/// An overhead (gantry) crane as a ready Simbody scene: a trolley with a prescribed traverse, a
+/// winch drum with a prescribed hoist profile, n falls of wire rope between trolley sheaves and a
+/// hook block, and a payload slung under the hook block.
+
+#include "SimbodyReeving/scenes/MotionProfile.h"
+#include "SimbodyReeving/simbody/MotionWorkMeter.h"
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
+
+#include <Simbody.h>
+
+#include <memory>
+#include <vector>
+
+namespace SimbodyReeving {
+
+/// Physical parameters of the crane (SI units). The defaults describe a 5 t overhead crane with a
+/// 20 mm wire rope reeved in 4 falls, the hook 11 m below the trolley.
+struct CraneParameters {
+    int falls = 4;                 ///< n: rope parts between trolley and hook block, 1..12
+    double g = 9.81;               ///< gravitational acceleration [m/s^2], >= 0
+    // ---- trolley and its sheaves
+    double railHeight = 15.0;      ///< height of the trolley's sheave centres above the ground (y = 0) [m], > 0
+    double trolleyX0 = 0.0;        ///< trolley position at t = 0 [m], finite
+    double trolleyMass = 2000.0;   ///< [kg], > 0 (prescribed: enters the traverse force only)
+    double sheavePitch = 0.2;      ///< horizontal distance between neighbouring rope nodes [m], > 0
+    double sheaveRadius = 0.09;    ///< radius of every sheave (validation and drawing) [m], > 0
+    // ---- winch drum (a Pin on the trolley, axis z)
+    double drumRadius = 0.3;       ///< [m], > 0
+    double drumHeight = 0.8;       ///< drum axis above the trolley's sheave centres [m], finite
+    double drumMass = 400.0;       ///< [kg], > 0
+    double drumInertia = 40.0;     ///< moment of inertia about the drum axis [kg m^2], > 0
+    double ropeOnDrum = 40.0;      ///< rope stored on the drum at t = 0 [m], > 0
+    // ---- hook block (a Planar body: x, y, rotation about z)
+    double hookMass = 200.0;       ///< [kg], > 0
+    double hookInertia = 15.0;     ///< about z through its centre of mass [kg m^2], > 0
+    double hookComBelow = 0.3;     ///< centre of mass below the hook sheave centres [m], >= 0
+    double hookPinBelow = 0.5;     ///< sling pin below the hook sheave centres [m], >= 0
+    double initialHookDepth = 11.0;  ///< hook sheave centres below the trolley's at t = 0 [m], > 0
+    // ---- payload (a Pin on the hook block, axis z)
+    double payloadMass = 5000.0;   ///< [kg], > 0
+    double payloadInertia = 2600.0;  ///< about z through its centre of mass [kg m^2], > 0 (2 m x 1.5 m block)
+    double slingLength = 2.0;      ///< sling pin to payload centre of mass [m], > 0
+    double payloadWidth = 2.0;     ///< drawing only [m], > 0
+    double payloadHeight = 1.5;    ///< drawing only [m], > 0
+    // ---- rope (d = 20 mm steel wire rope)
+    double rhoA = 1.6;             ///< mass per unstretched length [kg/m], > 0
+    double EA = 2.5e7;             ///< axial stiffness [N], > 0
+    double EI = 0.0;               ///< bending stiffness [N m^2], >= 0 (0 skips the bending term)
+    bool tensionOnly = true;       ///< RopeProperties::tensionOnly (false: the linear law, ropes may push)
+    double minimumSpanLength = 0.2;  ///< a span this short ends the run (two-blocking) [m], > 0
+
+    /// @throws std::invalid_argument naming the first parameter out of range or not finite.
+    void validate() const;
+};
+
+/// The machine's program: what the hoist and the trolley do over time.
+struct CraneCycle {
+    /// Hook lift above its initial height [m] (up positive): the drum hauls in falls x this rope
+    /// (drum angle theta = -falls / drumRadius x lift, rope paid out for positive theta), so the
+    /// hook's actual height differs from it by the rope's change of stretch and the sway.
+    MotionProfile hoist;
+    /// Trolley displacement along x from CraneParameters::trolleyX0 [m].
+    MotionProfile traverse;
+    /// End of the cycle [s], > 0.
+    double duration = 36.0;
+
+    /// The default lift-traverse-lower cycle: at rest until 1 s; lift `lift` [m] in 9 s (2 s
+    /// speed ramps); traverse `traverse` [m] from 10.5 s in 12 s (3 s ramps); lower `lift` from
+    /// 23.5 s in 9 s (2 s ramps); settle until 36 s. Defaults: 5 m and 10 m, hook speed
+    /// 0.71 m/s, trolley speed 1.11 m/s, trolley acceleration at most 0.69 m/s^2.
+    static CraneCycle liftTraverseLower(double lift = 5.0, double traverse = 10.0);
+    /// @throws std::invalid_argument for an invalid move or a non-positive duration.
+    void validate() const;
+};
+
+/// The crane in the x-y plane (y up, gravity -y); every rope node and body moves in that plane.
+///
+/// Bodies: the trolley, a MobilizedBody::Slider along x from Ground at railHeight, prescribed by
+/// CraneCycle::traverse; the winch drum, a MobilizedBody::Pin (axis z) on the trolley at
+/// drumHeight above the first rope node, prescribed by CraneCycle::hoist; the hook block, a
+/// MobilizedBody::Planar from Ground (x, y, rotation about z), frame origin at its sheave centres;
+/// the payload, a MobilizedBody::Pin (axis z) hanging slingLength below the hook block's sling pin.
+///
+/// Reeving: one planar rope of n = falls spans (falls). Rope nodes k = 0..n sit at horizontal
+/// offsets (k - n/2) sheavePitch: node 0 is the WinchDrum (start), odd nodes are DeviationSheaves
+/// on the hook block, even ones on the trolley, and node n is the dead end (RopeAnchor) on the
+/// trolley for even n, on the hook block for odd n. Span k (fall k + 1) joins nodes k and k + 1;
+/// its top is node k for even k, node k + 1 for odd k. The hook block's nodes are shifted so that
+/// their load centroid (2 per sheave, 1 for a dead end) is its frame origin: with vertical falls
+/// it hangs level. The rope's unstretched length is chosen so that the hook hangs about
+/// initialHookDepth below the trolley sheaves when loaded.
+///
+/// A MotionWorkMeter integrates the work of the two prescribed motions, so
+///     energy residual = E_mech(t) - E_mech(0) - W_motion(t)
+/// checks the simulation (ReevingSubsystem::calcMechanicalEnergy).
+class CraneScene {
+public:
+    /// @throws std::invalid_argument for bad parameters, cycle or span options.
+    CraneScene(const CraneParameters& parameters, const CraneCycle& cycle, const SpanOptions& spans);
+
+    SimTK::MultibodySystem& system() { return *system_; }
+    const SimTK::MultibodySystem& system() const { return *system_; }
+    const SimTK::SimbodyMatterSubsystem& matter() const { return *matter_; }
+    const ReevingSubsystem& reeving() const { return *reeving_; }
+    const MotionWorkMeter& workMeter() const { return *workMeter_; }
+    const CraneParameters& parameters() const { return parameters_; }
+    const CraneCycle& cycle() const { return cycle_; }
+    const SimTK::MobilizedBody::Slider& trolley() const { return *trolley_; }
+    const SimTK::MobilizedBody::Pin& drum() const { return *drum_; }
+    const SimTK::MobilizedBody::Planar& hookBlock() const { return *hook_; }
+    const SimTK::MobilizedBody::Pin& payload() const { return *payload_; }
+    int falls() const { return parameters_.falls; }
+
+    /// The state at t = 0: prescribed motions applied, hook block, payload and rope at static
+    /// equilibrium (ReevingSubsystem::findStaticEquilibrium, relative residual <= 1e-9), motion work
+    /// 0, realized to Stage::Velocity.
+    /// @throws std::runtime_error if the equilibrium is not found.
+    SimTK::State makeInitialState() const;
+
+    // ---- observables (Stage::Position unless said otherwise)
+    double trolleyX(const SimTK::State& s) const;        ///< trolley position [m]
+    SimTK::Vec3 hookPosition(const SimTK::State& s) const;  ///< hook block frame origin (its sheave centres) [m]
+    /// Angle of the falls from the vertical [rad]: of the line from the trolley to the hook block,
+    /// measured from the hook's rest offset below the trolley; positive when the hook is on the +x
+    /// side (0 at rest up to O(sheavePitch^2 / depth)).
+    double swayAngle(const SimTK::State& s) const;
+    /// Angle of the sling (hook block's pin to payload centre of mass) from the vertical [rad],
+    /// positive when the payload is on the +x side of the pin.
+    double payloadAngle(const SimTK::State& s) const;
+    /// Axial force at the top (trolley end) of fall `fall` = 0..n-1 [N] (Stage::Dynamics for the
+    /// QuasiStatic mode-acceleration correction, see ReevingSubsystem::getAxialForce).
+    double fallTopForce(const SimTK::State& s, int fall) const;
+    double drumSpeed(const SimTK::State& s) const;       ///< theta dot [rad/s] (Stage::Velocity)
+    double ropeOnDrum(const SimTK::State& s) const;      ///< [m] (ReevingSubsystem::getRopeOnDrum)
+    /// Torque the hoist motor applies to the drum about its axis [N m] (Stage::Acceleration): the
+    /// generalized force that enforces the hoist profile.
+    double motorTorque(const SimTK::State& s) const;
+    /// Force the traverse drive applies to the trolley along x [N] (Stage::Acceleration).
+    double trolleyForce(const SimTK::State& s) const;
+    /// Ground positions of the rope's nodes 0..n (drum axis, sheave centres, dead end) [m].
+    std::vector<SimTK::Vec3> nodePositions(const SimTK::State& s) const;
+    /// Node k's location in its body's frame [m] (k = 0: the drum axis, drum frame).
+    SimTK::Vec3 nodeStation(int k) const { return stations_.at(k); }
+    /// true if node k is on the hook block, false if on the trolley or the drum.
+    bool nodeOnHook(int k) const { return k % 2 == 1; }
+    /// Horizontal offset of the hook block below the trolley at rest, in the trolley frame [m].
+    double hookRestOffset() const { return hookRestOffset_; }
+
+private:
+    CraneParameters parameters_;
+    CraneCycle cycle_;
+    std::vector<SimTK::Vec3> stations_;
+    double hookRestOffset_ = 0;
+    std::unique_ptr<SimTK::MultibodySystem> system_;
+    std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter_;
+    std::unique_ptr<SimTK::GeneralForceSubsystem> forces_;
+    std::unique_ptr<SimTK::Force::Gravity> gravity_;
+    std::unique_ptr<ReevingSubsystem> reeving_;
+    std::unique_ptr<MotionWorkMeter> workMeter_;
+    std::unique_ptr<SimTK::MobilizedBody::Slider> trolley_;
+    std::unique_ptr<SimTK::MobilizedBody::Pin> drum_;
+    std::unique_ptr<SimTK::MobilizedBody::Planar> hook_;
+    std::unique_ptr<SimTK::MobilizedBody::Pin> payload_;
+};
+
+}  // namespace SimbodyReeving

@@ -1,0 +1,313 @@
+#pragma once
+/// @file
+/// The Simbody side of SimbodyReeving: ropes of ALE spans over frictionless sheaves, attached to
+/// Simbody bodies, inside an ordinary SimTK::MultibodySystem and integrated by any Simbody
+/// integrator.
+
+#include "SimbodyReeving/element/RopeModel.h"
+#include "SimbodyReeving/element/SpanModel.h"
+
+#include <Simbody.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace SimbodyReeving {
+
+/// The kinds of rope node: a closed set the ReevingSubsystem dispatches on (wrap geometry or
+/// friction would be new kinds). Each kind fixes how the node's position and its material
+/// coordinate s are determined (RopeModel's MaterialNode in brackets):
+///   - Anchor: a rope end fastened to a station of a body [Fixed: s_0 = 0, s_N = L].
+///   - DeviationSheave: a frictionless, massless sheave in the path [Sliding: the axial forces of
+///     both spans are equal there, paper eq 32].
+///   - WinchDrum: a rope end wound on a drum that turns with a MobilizedBody::Pin [Driven]:
+///     at the rope's end node s_N = L + sense R theta, at its start node s_0 = -sense R theta, with
+///     theta the pin angle (its q) and sense = +1 when a positive theta pays rope out.
+///   - TurningSheave: a sheave in the path on a MobilizedBody::Pin that the rope turns without slip,
+///     a drive sheave (motor on the pin) or an idler with inertia [Driven]:
+///     s_k = s_ref + sense R theta. With sense = +1 a positive theta raises s_k: material that was
+///     on the end side of the sheave passes to the start side (the rope moves from the end side
+///     towards the start); sense = -1 reverses that.
+/// Driven nodes: the material coordinate tracks R theta exactly (a holonomic tie), i.e. the rope
+/// on the drum or sheave is taken as inextensible. Rope leaves a span at the strain it has there;
+/// its strain energy leaves the model with it, through the rope's generalized force on s, so the
+/// energy balance stays exact: the work of whatever drives the pin equals the change of the
+/// system's mechanical energy (MotionWorkMeter, getDrivenNodePower). Tracking R theta / stretch
+/// instead (rope wound at its strain) would make s depend on the strain: not holonomic, and
+/// different only by the strain (~1e-3) in the hoisting speed. The rope stored on a WinchDrum keeps
+/// its mass: a ring of rhoA (ropeOnDrum - sense R theta) at radius R on the node, whose weight and
+/// inertia load the drum's body and whose kinetic and gravity energy are part of the rope's
+/// (RopeModel::setStoredRope; without it the drum torque would depend on the height datum). Do not
+/// add that rope to the drum body's mass as well. The node's position is the point on the pin axis;
+/// the wrap arc is not modelled (point sheaves, as the paper).
+enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave };
+
+/// One node of a rope's path (see RopeNodeKind). Build it with the kind's struct below (RopeAnchor,
+/// DeviationSheave, WinchDrum, TurningSheave), which converts to a RopeNode; the two-argument
+/// {body, station} and three-argument {body, centre, radius} forms make an Anchor and a
+/// DeviationSheave, as RopeSpec's fields accepted before the other kinds existed.
+struct RopeNode {
+    RopeNodeKind kind = RopeNodeKind::Anchor;
+    SimTK::MobilizedBody body;  ///< Ground allowed for Anchor and DeviationSheave; a Pin for the others
+    SimTK::Vec3 point{0};       ///< station (Anchor) or centre, in the body frame [m]
+    double radius = 0;          ///< sheaves and drums [m], > 0
+    int sense = 1;              ///< WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind)
+    double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
+    double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave: s_ref [m]
+
+    RopeNode() = default;
+    /// An Anchor at `station` of `body`.
+    RopeNode(const SimTK::MobilizedBody& anchorBody, const SimTK::Vec3& station) : body(anchorBody), point(station) {}
+    /// A DeviationSheave of radius `sheaveRadius` centred at `centre` of `body`.
+    RopeNode(const SimTK::MobilizedBody& sheaveBody, const SimTK::Vec3& centre, double sheaveRadius)
+        : kind(RopeNodeKind::DeviationSheave), body(sheaveBody), point(centre), radius(sheaveRadius) {}
+};
+
+/// A station (point fixed on a body) where a rope end is fastened: a MobilizedBody (Ground allowed)
+/// and the point's location in that body's frame [m].
+struct RopeAnchor {
+    SimTK::MobilizedBody body;
+    SimTK::Vec3 station{0};
+    operator RopeNode() const { return RopeNode(body, station); }
+};
+
+/// A frictionless deviation sheave: its centre on a body (Ground allowed) [m] and its radius [m].
+/// Point-sheave idealisation, as in the paper (eq 30: both spans share the node at the sheave): the
+/// two spans meet at the sheave centre and share the material coordinate there; the wrap arc and
+/// the motion of the tangent points are neglected (an O(radius/span length) geometric
+/// approximation). The radius is used for validation and drawing.
+struct DeviationSheave {
+    SimTK::MobilizedBody body;
+    SimTK::Vec3 centre{0};
+    double radius = 0;
+    operator RopeNode() const { return RopeNode(body, centre, radius); }
+};
+
+/// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
+/// its radius R [m] > 0, the rope stored on it at pin angle 0 [m] >= 0 (the stored rope is
+/// ropeOnDrum - sense R theta; the run ends when it reaches 0), the payout sense (+1: a positive
+/// pin angle pays rope out) and the point on the pin axis where the rope node sits (drum body
+/// frame, default its origin).
+struct WinchDrum {
+    SimTK::MobilizedBody body;
+    double radius = 0;
+    double ropeOnDrum = 0;
+    int payoutSense = 1;
+    SimTK::Vec3 centre{0};
+    operator RopeNode() const {
+        RopeNode n(body, centre, radius);
+        n.kind = RopeNodeKind::WinchDrum;
+        n.sense = payoutSense;
+        n.ropeOnDrum = ropeOnDrum;
+        return n;
+    }
+};
+
+/// A sheave the rope turns without slip (drive sheave, idler with inertia): a MobilizedBody::Pin,
+/// its radius R [m] > 0, the material coordinate at the sheave at pin angle 0 [m] (sets how the
+/// rope is distributed on both sides: with no slip, that is history, not equilibrium), the sense
+/// (s = s_ref + sense R theta: with +1 a positive pin angle moves rope from the end side of the
+/// sheave to its start side, i.e. towards the rope's start) and the point on the pin axis
+/// (body frame, default origin).
+struct TurningSheave {
+    SimTK::MobilizedBody body;
+    double radius = 0;
+    double materialCoordinateAtZeroAngle = 0;
+    int sense = 1;
+    SimTK::Vec3 centre{0};
+    operator RopeNode() const {
+        RopeNode n(body, centre, radius);
+        n.kind = RopeNodeKind::TurningSheave;
+        n.sense = sense;
+        n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
+        return n;
+    }
+};
+
+/// Everything that describes one rope. SI units.
+struct RopeSpec {
+    std::string name = "rope";
+    RopeNode start;                  ///< Anchor or WinchDrum
+    std::vector<RopeNode> sheaves;   ///< DeviationSheave or TurningSheave, in path order
+    RopeNode end;                    ///< Anchor or WinchDrum
+    RopeProperties properties;       ///< rhoA, EA, EI (see RopeProperties)
+    /// Unstretched length L of the rope between its start and end nodes at pin angles 0 [m], > 0
+    /// (material coordinates: s = 0 at an anchored start, s = L at an anchored end).
+    double unstretchedLength = 0;
+    /// Shortest unstretched span length the run accepts [m], > 0: a span whose material length
+    /// reaches it (two-blocking: the hook block at the trolley sheaves; a drum hauling the last
+    /// span in) ends the run cleanly, as does a drum running out of rope: the subsystem's event
+    /// handler requests termination (Integrator::EventHandlerRequestedTermination) and
+    /// getLimitReached() names the rope, span or drum and the time.
+    double minimumSpanLength = 0.2;
+    SpanOptions spanDefaults;               ///< mode counts and options of every span...
+    std::vector<std::pair<int, SpanOptions>> spanOverrides;  ///< ...except these (span index, options)
+    /// Non-zero: the rope is planar, all its nodes stay in the plane through the start anchor with
+    /// this normal (gravity must lie in it); spans are then planar (no out-of-plane modes or work).
+    /// Zero: spatial spans.
+    SimTK::Vec3 planeNormal{0};
+};
+
+/// A SimTK::ForceSubsystem holding every rope of a MultibodySystem.
+///
+/// Rope state: the modal coordinates q_m of all spans and their rates live in Z (two entries per
+/// modal coordinate: value, rate). Node positions come from the bodies each evaluation; the
+/// material coordinates at sheaves are dependent, solved from the tension equality (RopeModel).
+///
+/// Coupling: in realizeDynamics the subsystem reads the rigid-body and mobility forces already
+/// applied by earlier force subsystems, asks SimbodyMatterSubsystem::calcAcceleration for the
+/// bodies' free accelerations and their response to unit forces at the rope nodes, and solves the
+/// rope's reduced equations together with those (a Schur complement on the node forces f):
+///     (I + S Lambda) f = S a0 - h,
+/// S, h the rope reduced to its external coordinates (node positions on bodies other than Ground,
+/// and the material coordinates of WinchDrum / TurningSheave nodes, s = s_ref + sense R theta), a0
+/// their free accelerations, Lambda the bodies' mobility at them (for a driven s: the pin's, scaled
+/// by (sense R)^2). -f is applied to the bodies (forces at the stations, torques sense R f_s on the
+/// pins) and the rope's modal accelerations follow. The solve honours Simbody's constraints and
+/// prescribed motion (a drum on a speed profile) because calcAcceleration does.
+///
+/// Must be constructed after every other force subsystem of the system that applies forces
+/// (GeneralForceSubsystem included; a MotionWorkMeter may come later): realizeTopology throws
+/// std::logic_error otherwise.
+///
+/// Energy: the rope's strain and gravity energy are this subsystem's potential energy (so
+/// MultibodySystem::calcPotentialEnergy includes them); its kinetic energy is calcRopeKineticEnergy;
+/// calcMechanicalEnergy returns the whole system's T + U.
+class ReevingSubsystem : public SimTK::ForceSubsystem {
+public:
+    /// @param gravity the gravitational acceleration acting on the ropes [m/s^2] (give the same
+    ///        vector as the system's Force::Gravity).
+    /// @throws std::invalid_argument for non-finite gravity.
+    ReevingSubsystem(SimTK::MultibodySystem& system, const SimTK::Vec3& gravity);
+
+    /// Adds a rope; returns its index. Must be called before realizeTopology.
+    /// @throws std::invalid_argument naming the problem: empty node body, a body of another
+    ///         system, non-finite station, a sheave kind at an end or an end kind in the path, a
+    ///         WinchDrum or TurningSheave whose body is not a MobilizedBody::Pin or whose point is
+    ///         off the pin axis, sense not +-1, negative ropeOnDrum, non-positive or non-finite
+    ///         radius, rope length or minimumSpanLength, bad rope properties or mode counts, a span
+    ///         override index out of range, non-finite plane normal, gravity out of the rope plane.
+    int addRope(const RopeSpec& spec);
+
+    int getNumRopes() const;
+    const RopeSpec& getRopeSpec(int rope) const;
+    int getNumSpans(int rope) const;
+    bool isPlanar(int rope) const;
+    /// Number of modal coordinates of a rope (its Z holds these and as many rates).
+    int getNumModalCoordinates(int rope) const;
+
+    /// Modal coordinates of a rope [m] and their rates [m/s] (Stage::Model or later).
+    SimTK::Vector getModalCoordinates(const SimTK::State& state, int rope) const;
+    void setModalCoordinates(SimTK::State& state, int rope, const SimTK::Vector& q) const;
+    SimTK::Vector getModalRates(const SimTK::State& state, int rope) const;
+    void setModalRates(SimTK::State& state, int rope, const SimTK::Vector& qdot) const;
+
+    // ---- queries (Stage::Position unless said otherwise) ------------------------------------
+    /// Axial force P = EA eps at material point s of a span [N] (EA max(eps, 0) for a tension-only
+    /// rope, RopeProperties::tensionOnly).
+    /// For spans with AxialDynamics::QuasiStatic, at Stage::Dynamics or later the strain includes the
+    /// mode-acceleration correction (the quasi-static response to the rope's inertial load, see
+    /// RopeModel::recoverInertialStrain; the point is taken at the same relative position of the
+    /// corrected span); below Stage::Dynamics it is the condensed (stationary) strain.
+    /// @throws std::invalid_argument if rope, span or s is out of range.
+    double getAxialForce(const SimTK::State& state, int rope, int span, double s) const;
+    /// Physical tension T = EA eps |dr/ds| at material point s of a span [N] (see SpanModel::tension).
+    /// @throws std::invalid_argument if rope, span or s is out of range.
+    double getTension(const SimTK::State& state, int rope, int span, double s) const;
+    /// Largest Green strain of a span [-] (SpanModel::maxStrain: both ends and the strain
+    /// quadrature points), from the position-level span coordinates.
+    /// @throws std::invalid_argument if rope or span is out of range.
+    double getSpanMaxStrain(const SimTK::State& state, int rope, int span) const;
+    /// true if the rope is tension-only (RopeProperties::tensionOnly) and the span is slack
+    /// everywhere: getSpanMaxStrain <= 0, so the span carries no axial force. SlackMonitor records
+    /// when spans go slack and taut during a simulation.
+    /// @throws std::invalid_argument if rope or span is out of range.
+    bool isSpanSlack(const SimTK::State& state, int rope, int span) const;
+    /// Force the rope exerts on the body at node k, in Ground [N] (Stage::Dynamics): the reaction
+    /// of the coupled solve, F_k = h_k - sum_b S_kb a_b, with S, h the rope reduced to its nodes
+    /// (the modal and sheave coordinates eliminated) and a_b the node accelerations (zero on Ground).
+    /// k = 0 is the start anchor, 1..N-1 the sheaves (there F_k is the bearing load, the resultant of
+    /// both spans), N the end anchor. Unlike getAxialForce at a span end, which carries the sine
+    /// series' O(1/n_a) truncation bias of the strain, F_k is the force the bodies actually receive:
+    /// at static equilibrium it balances the attached body exactly (payload: F_N = -M g), and it
+    /// includes the rope's inertia and weight lumped consistently at the node.
+    /// @throws std::invalid_argument if rope or node is out of range.
+    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
+    SimTK::Vec3 getNodeForce(const SimTK::State& state, int rope, int node) const;
+    /// Torque about the pin axis that the rope applies to the body of a WinchDrum or TurningSheave
+    /// node [N m] (Stage::Dynamics): sense R times the rope's pull on its material at the node (at a
+    /// drum, about the axial force of the span there; at a turning sheave, the difference of both
+    /// spans' forces), from the coupled solve (inertia included).
+    /// @throws std::invalid_argument if rope or node is out of range or the node is not driven.
+    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
+    double getDrivenNodeTorque(const SimTK::State& state, int rope, int node) const;
+    /// Power the rope delivers to the body of a WinchDrum or TurningSheave node [W]
+    /// (Stage::Dynamics): getDrivenNodeTorque times the pin rate. Summed over the nodes and with the
+    /// bodies' own work it closes the energy balance of a driven machine.
+    /// @throws as getDrivenNodeTorque.
+    double getDrivenNodePower(const SimTK::State& state, int rope, int node) const;
+    /// Rope stored on a WinchDrum node [m]: ropeOnDrum - sense R theta.
+    /// @throws std::invalid_argument if rope or node is out of range or the node is not a WinchDrum.
+    double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;
+    /// The rope limit that ended the last run ("" if none): a span reaching
+    /// RopeSpec::minimumSpanLength or a drum running out of rope, with rope, span or node, and time.
+    /// Cleared when a state is realized to Stage::Instance afresh (an integrator's initialize).
+    const std::string& getLimitReached() const;
+
+    /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m].
+    double getMaterialCoordinate(const SimTK::State& state, int rope, int node) const;
+    /// Material coordinate range [s1, s2] of a span [m].
+    std::pair<double, double> getSpanMaterialRange(const SimTK::State& state, int rope, int span) const;
+    /// F_a - F_b at sheave k (1..N-1) [N]: the tension-equality residual at a DeviationSheave; at a
+    /// TurningSheave the force its grip carries (not a residual).
+    double getConstraintError(const SimTK::State& state, int rope, int sheave) const;
+    /// Largest |F_a - F_b| over all DeviationSheaves of all ropes [N].
+    double getMaxConstraintError(const SimTK::State& state) const;
+    /// Positions in Ground of numPoints >= 2 equally spaced material points of a span [m].
+    std::vector<SimTK::Vec3> sampleSpan(const SimTK::State& state, int rope, int span, int numPoints) const;
+    /// Rope kinetic energy [J] (Stage::Velocity).
+    double calcRopeKineticEnergy(const SimTK::State& state) const;
+    /// Rope strain + gravity energy [J].
+    double calcRopePotentialEnergy(const SimTK::State& state) const;
+    /// Whole-system mechanical energy: bodies' kinetic energy + every force subsystem's potential
+    /// energy (this one's included) + rope kinetic energy [J] (Stage::Velocity).
+    double calcMechanicalEnergy(const SimTK::State& state) const;
+
+    /// Evaluation failures since construction: realizations at which a rope's dependent coordinates
+    /// (sheave material coordinates, quasi-static axial amplitudes) could not be solved, each thrown
+    /// as std::runtime_error naming the rope, the time and the equation (sheave or span). They
+    /// happen at integrator trial states that extrapolate too far; Simbody 3.7's integrators catch
+    /// the exception, reject the step and retry with a smaller one, so most never end a run. When
+    /// one does, the integrator's own message may not carry the cause (CPodes: "CPodes::step()
+    /// returned an error"): getLastEvaluationFailure has it.
+    int getNumEvaluationFailures() const;
+    /// The message of the last evaluation failure ("" if none).
+    const std::string& getLastEvaluationFailure() const;
+
+    /// Moves `state` to static equilibrium of bodies and ropes together (velocities and modal
+    /// rates set to zero): Newton's method on the accelerations, until the generalized force
+    /// residual is <= relativeTolerance times the largest applied generalized force. Mobilities
+    /// with prescribed motion (SimTK::Motion) keep it: they are neither unknowns nor residuals
+    /// (a drum held by its motion is a fixed drum here). Each iteration moves a mobility or modal
+    /// coordinate by at most 0.5 (m or rad), so a body hanging from a slack tension-only rope
+    /// (no stiffness) falls until the rope takes it; trial states the rope cannot evaluate are
+    /// rejected by the line search.
+    /// Returns the achieved relative residual.
+    /// @throws std::runtime_error if it does not converge in maxIterations.
+    double findStaticEquilibrium(SimTK::State& state, double relativeTolerance = 1e-10, int maxIterations = 50) const;
+
+    /// Number of rope node pairs drawn per span by the decorations (default 20).
+    void setDecorationResolution(int pointsPerSpan);
+
+    class Guts;
+private:
+    double strainAt(const SimTK::State& state, int rope, int span, double s) const;
+
+public:
+    SimTK_PIMPL_DOWNCAST(ReevingSubsystem, SimTK::ForceSubsystem);
+    Guts& updGuts();
+    const Guts& getGuts() const;
+};
+
+}  // namespace SimbodyReeving

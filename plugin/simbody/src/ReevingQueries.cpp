@@ -1,0 +1,189 @@
+// ReevingSubsystem: the public queries (forces, strains, material coordinates, constraint errors,
+// sampling, energies, evaluation failures).
+
+#include "ReevingSubsystemGuts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+using SimTK::MultibodySystem;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::Vec3;
+
+namespace SimbodyReeving {
+
+using namespace detail;
+
+std::vector<Vec3> ReevingSubsystem::Guts::sample(const State& s, int rope, int span, int numPoints) const {
+    const RopeRecord& r = ropes.at(rope);
+    const RopeCache& c = positionCache(s).ropes.at(rope);
+    std::vector<Vec3> out;
+    Eigen::VectorXd q;
+    const Eigen::VectorXd qm = modal(getZ(s), r, false);
+    if (r.planar) {
+        const Eigen::Matrix2Xd n2 = planarNodes(r, c.nodes3);
+        r.planarModel->spanCoordinates(span, n2, qm, c.planar, q);
+        const auto& sp = r.planarModel->span(span);
+        const double offset = r.normal.dot(c.nodes3.col(0));
+        for (int k = 0; k < numPoints; ++k) {
+            const double sk = q[sp.s1Index()] + (q[sp.s2Index()] - q[sp.s1Index()]) * k / (numPoints - 1);
+            const Eigen::Vector2d p = sp.position(q, std::min(sk, q[sp.s2Index()]));
+            out.push_back(toSimTK(r.e1 * p[0] + r.e2 * p[1] + r.normal * offset));
+        }
+    } else {
+        r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
+        const auto& sp = r.spatialModel->span(span);
+        for (int k = 0; k < numPoints; ++k) {
+            const double sk = q[sp.s1Index()] + (q[sp.s2Index()] - q[sp.s1Index()]) * k / (numPoints - 1);
+            out.push_back(toSimTK(Eigen::Vector3d(sp.position(q, std::min(sk, q[sp.s2Index()])))));
+        }
+    }
+    return out;
+}
+
+std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s, int rope, int span) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (span < 0 || span >= r.numSpans())
+        invalid("span index = " + std::to_string(span) + " is outside 0.." + std::to_string(r.numSpans() - 1));
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    const Eigen::VectorXd& sv = r.planar ? c.planar.materialCoordinates : c.spatial.materialCoordinates;
+    return {sv[span], sv[span + 1]};
+}
+
+namespace {
+// The span's axial law (the tension-only law of quasi-static spans is rounded near eps = 0).
+const AxialLaw& lawOf(const detail::RopeRecord& r, int span) {
+    return r.planar ? r.planarModel->span(span).axialLaw() : r.spatialModel->span(span).axialLaw();
+}
+}  // namespace
+
+double ReevingSubsystem::getAxialForce(const State& s, int rope, int span, double sMaterial) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const double eps = strainAt(s, rope, span, sMaterial);
+    return lawOf(r, span).force(eps);
+}
+
+double ReevingSubsystem::getTension(const State& s, int rope, int span, double sMaterial) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const double eps = strainAt(s, rope, span, sMaterial);
+    return lawOf(r, span).force(eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+}
+
+int ReevingSubsystem::getNumEvaluationFailures() const { return getGuts().numEvaluationFailures(); }
+const std::string& ReevingSubsystem::getLastEvaluationFailure() const { return getGuts().lastEvaluationFailure(); }
+
+double ReevingSubsystem::getSpanMaxStrain(const State& s, int rope, int span) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    getSpanMaterialRange(s, rope, span);  // validates span
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    return r.planar ? r.planarModel->span(span).maxStrain(c.planar.spanCoordinates(span))
+                    : r.spatialModel->span(span).maxStrain(c.spatial.spanCoordinates(span));
+}
+
+bool ReevingSubsystem::isSpanSlack(const State& s, int rope, int span) const {
+    return getRopeSpec(rope).properties.tensionOnly && getSpanMaxStrain(s, rope, span) <= 0.0;
+}
+
+double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMaterial) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    getSpanMaterialRange(s, rope, span);  // validates span
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    Eigen::VectorXd q;
+    const Eigen::VectorXd qm = g.modal(g.getZ(s), r, false);
+    // QuasiStatic spans: once the accelerations are known (Stage::Dynamics), the strain includes the
+    // mode-acceleration correction (RopeModel::recoverInertialStrain), which also moves the material
+    // coordinates at the sheaves slightly; the point is taken at the same relative position
+    // xi = (s - s1) / (s2 - s1) of the corrected span, so span ends stay span ends.
+    const bool recovered = s.getSystemStage() >= Stage::Dynamics;
+    auto strainOf = [&](const auto& model, const auto& nodes, const auto& data) {
+        model.spanCoordinates(span, nodes, qm, data, q);
+        if (!recovered) return model.span(span).strain(q, sMaterial);
+        const auto& sp = model.span(span);
+        const double s1 = q[sp.s1Index()], s2 = q[sp.s2Index()];
+        const double xi = std::clamp((sMaterial - s1) / (s2 - s1), 0.0, 1.0);
+        model.span(span).strain(q, sMaterial);  // validates sMaterial against the span's range
+        model.recoveredSpanCoordinates(span, nodes, qm, data, q);
+        const double r1 = q[sp.s1Index()], r2 = q[sp.s2Index()];
+        return sp.strain(q, xi >= 1.0 ? r2 : r1 + xi * (r2 - r1));
+    };
+    if (r.planar) return strainOf(*r.planarModel, g.planarNodes(r, c.nodes3), c.planar);
+    return strainOf(*r.spatialModel, c.nodes3, c.spatial);
+}
+
+Vec3 ReevingSubsystem::getNodeForce(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    if (s.getSystemStage() < Stage::Dynamics)
+        throw std::logic_error("ReevingSubsystem::getNodeForce: realize the state to Stage::Dynamics first");
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    // The rope's equation at its external coordinates is S xdd - h = f (f: force on the rope); the
+    // body receives -f = h - S xdd.
+    const Eigen::VectorXd reaction = g.ropeReaction(r, c);
+    if (r.planar) return toSimTK(r.planeBasis * reaction.segment<2>(2 * node));
+    return toSimTK(Eigen::Vector3d(reaction.segment<3>(3 * node)));
+}
+
+double ReevingSubsystem::getMaterialCoordinate(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    const RopeCache& c = getGuts().positionCache(s).ropes[rope];
+    return (r.planar ? c.planar.materialCoordinates : c.spatial.materialCoordinates)[node];
+}
+
+double ReevingSubsystem::getConstraintError(const State& s, int rope, int sheave) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    if (sheave < 1 || sheave >= r.numNodes() - 1)
+        invalid("sheave node index = " + std::to_string(sheave) + " is outside 1.." + std::to_string(r.numNodes() - 2));
+    const RopeCache& c = getGuts().positionCache(s).ropes[rope];
+    return r.planar ? r.planarModel->constraintError(c.planar, sheave)
+                    : r.spatialModel->constraintError(c.spatial, sheave);
+}
+
+double ReevingSubsystem::getMaxConstraintError(const State& s) const {
+    double worst = 0;
+    for (int i = 0; i < getNumRopes(); ++i)
+        for (int k = 1; k + 1 < getGuts().ropes[i].numNodes(); ++k)
+            if (getGuts().ropes[i].nodeSpec(k).kind == RopeNodeKind::DeviationSheave)
+                worst = std::max(worst, std::abs(getConstraintError(s, i, k)));
+    return worst;
+}
+
+std::vector<Vec3> ReevingSubsystem::sampleSpan(const State& s, int rope, int span, int numPoints) const {
+    getSpanMaterialRange(s, rope, span);  // validates
+    if (numPoints < 2) invalid("sampleSpan: numPoints = " + std::to_string(numPoints) + " must be >= 2");
+    return getGuts().sample(s, rope, span, numPoints);
+}
+
+double ReevingSubsystem::calcRopeKineticEnergy(const State& s) const {
+    const Guts& g = getGuts();
+    // The velocity-level rope data live beside the position-level data and are refreshed by every
+    // realize(Velocity): reading them below that stage would return stale numbers.
+    if (s.getSystemStage() < Stage::Velocity)
+        throw std::logic_error("ReevingSubsystem::calcRopeKineticEnergy: realize the state to Stage::Velocity first");
+    double t = 0;
+    for (size_t i = 0; i < g.ropes.size(); ++i) {
+        const RopeCache& c = g.positionCache(s).ropes[i];
+        t += g.ropes[i].planar ? c.planar.kineticEnergy : c.spatial.kineticEnergy;
+    }
+    return t;
+}
+
+double ReevingSubsystem::calcRopePotentialEnergy(const State& s) const { return getGuts().calcPotentialEnergy(s); }
+
+double ReevingSubsystem::calcMechanicalEnergy(const State& s) const {
+    const MultibodySystem& mbs = getGuts().mbs();
+    return mbs.calcKineticEnergy(s) + mbs.calcPotentialEnergy(s) + calcRopeKineticEnergy(s);
+}
+
+}  // namespace SimbodyReeving

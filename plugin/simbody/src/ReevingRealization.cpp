@@ -1,0 +1,330 @@
+// ReevingSubsystem::Guts: realization (topology to velocity), the per-rope position and velocity
+// caches, the potential energy and the decorations.
+
+#include "ReevingSubsystemGuts.h"
+
+#include "ForceFreeSubsystem.h"
+
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+using SimTK::Array_;
+using SimTK::DecorativeGeometry;
+using SimTK::DecorativeLine;
+using SimTK::ForceSubsystem;
+using SimTK::MobilizedBody;
+using SimTK::Real;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::SubsystemIndex;
+using SimTK::System;
+using SimTK::Value;
+using SimTK::Vec3;
+using SimTK::Vector;
+
+namespace SimbodyReeving {
+
+using namespace detail;
+
+// ---- realization -----------------------------------------------------------------------
+int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
+    const System& sys = getSystem();
+    const SubsystemIndex me = getMySubsystemIndex();
+    for (SubsystemIndex i(me + 1); i < sys.getNumSubsystems(); ++i)
+        if (dynamic_cast<const ForceSubsystem::Guts*>(&sys.getSubsystem(i).getSubsystemGuts()) &&
+            !dynamic_cast<const ForceFreeSubsystemGuts*>(&sys.getSubsystem(i).getSubsystemGuts()))
+            throw std::logic_error(
+                "ReevingSubsystem: force subsystem '" + sys.getSubsystem(i).getName() +
+                "' was added after the ReevingSubsystem; construct the ReevingSubsystem after every other "
+                "force subsystem (GeneralForceSubsystem included) so it sees all forces in its coupled solve");
+    system_ = nullptr;
+    matter_ = nullptr;
+    int z = 0;
+    auto& self = const_cast<Guts&>(*this);
+    for (RopeRecord& r : self.ropes) {
+        for (int k = 0; k < r.numNodes(); ++k) {
+            const MobilizedBody& b = *r.node(k).first;
+            if (&b.getMatterSubsystem() != &matter())
+                throw std::logic_error("ReevingSubsystem: rope '" + r.spec.name + "' node " + std::to_string(k) +
+                                       " is on a body of another system's matter subsystem");
+        }
+        r.zOffset = z;
+        z += 2 * r.numModal;
+        r.spatialModel.reset();
+    }
+    // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
+    // coordinate (1 row each); each rope records which of its external coordinates each row is.
+    self.mobileNodes_.clear();
+    self.mobileAngles_.clear();
+    self.mobileBodies_.clear();
+    self.mobileStations_.clear();
+    self.ropeCoupling_.assign(ropes.size(), RopeCoupling{});
+    for (size_t i = 0; i < ropes.size(); ++i)
+        for (int k = 0; k < ropes[i].numNodes(); ++k) {
+            const auto [body, station] = ropes[i].node(k);
+            if (body->isGround()) continue;
+            MobileNode mn{static_cast<int>(i), k, body, station};
+            mn.dims = ropes[i].dim();
+            if (ropes[i].planar) {
+                mn.directions.setZero();
+                mn.directions.leftCols<2>() = ropes[i].planeBasis;
+            }
+            self.mobileNodes_.push_back(mn);
+            self.mobileBodies_.push_back(body->getMobilizedBodyIndex());
+            self.mobileStations_.push_back(station);
+        }
+    self.rowOwner_.clear();
+    for (size_t a = 0; a < mobileNodes_.size(); ++a) {
+        self.mobileNodes_[a].row = static_cast<int>(rowOwner_.size());
+        for (int d = 0; d < mobileNodes_[a].dims; ++d) self.rowOwner_.push_back({static_cast<int>(a), d});
+    }
+    self.numStationRows_ = static_cast<int>(rowOwner_.size());
+    for (size_t i = 0; i < ropes.size(); ++i)
+        for (size_t d = 0; d < ropes[i].driven.size(); ++d) {
+            const RopeRecord::DrivenNode& dn = ropes[i].driven[d];
+            self.mobileAngles_.push_back({static_cast<int>(i), static_cast<int>(d),
+                                          &ropes[i].nodeSpec(dn.node).body, dn.dsdTheta});
+        }
+    const int numMobile = static_cast<int>(mobileNodes_.size());
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeRecord& r = ropes[i];
+        RopeCoupling& rc = self.ropeCoupling_[i];
+        std::vector<std::pair<int, int>> entries;  // (first row in y, node)
+        for (int a = 0; a < numMobile; ++a)
+            if (mobileNodes_[a].rope == static_cast<int>(i)) entries.push_back({mobileNodes_[a].row, mobileNodes_[a].node});
+        int angleRow = numStationRows_;
+        std::vector<std::pair<int, int>> angles;
+        for (const MobileAngle& ma : mobileAngles_) {
+            if (ma.rope == static_cast<int>(i)) angles.push_back({angleRow, ma.driven});
+            ++angleRow;
+        }
+        // A node's rows are its rope's own node coordinates (the plane basis for planar ropes).
+        const int dim = r.dim();
+        for (const auto& [yRow, node] : entries)
+            for (int d = 0; d < dim; ++d) {
+                rc.rows.push_back(yRow + d);
+                rc.external.push_back(dim * node + d);
+            }
+        for (const auto& [yRow, d] : angles) {
+            rc.rows.push_back(yRow);
+            rc.external.push_back(dim * r.numNodes() + d);
+        }
+    }
+    if (z > 0) allocateZ(s, Vector(z, 0.0));
+    positionCache_ = allocateCacheEntry(s, Stage::Position, new Value<PositionCache>());
+    return 0;
+}
+
+// Integrator error weights of the rope's Z entries. Transverse amplitudes are lengths like body
+// positions (weight 1/m). An axial amplitude error da changes the strain by i pi da / l, i.e. the
+// axial force by EA i pi da / l: weight w = i pi / (l eps_ref) with eps_ref = 1e-3, so an
+// accuracy of 1e-6 holds the axial force to about EA 1e-9 (0.02 N for the Table 1 rope);
+// l = L / (number of spans), the mean span length. Rates: w / omega_i with omega_i the span's
+// i-th axial frequency i pi / l sqrt(EA / rhoA).
+int ReevingSubsystem::Guts::realizeSubsystemInstanceImpl(const State& s) const {
+    // A new run (an integrator's initialize realizes Stage::Instance afresh) has reached no limit
+    // yet; a limit ends a run, so this never clears the message of the current one.
+    recordLimit("");
+    if (getZ(s).size() == 0) return 0;
+    Vector& w = const_cast<State&>(s).updZWeights(getMySubsystemIndex());
+    const double pi = std::acos(-1.0);
+    for (const RopeRecord& r : ropes) {
+        const double l = r.spec.unstretchedLength / r.numSpans();
+        const double wave = std::sqrt(r.spec.properties.axialStiffness / r.spec.properties.massPerLength);
+        int k = 0;
+        for (int j = 0; j < r.numSpans(); ++j) {
+            const SpanOptions& o = r.spanOptions[j];
+            const int dynamicAxialModes = o.axialDynamics == AxialDynamics::Dynamic ? o.axialModes : 0;
+            for (int i = 1; i <= dynamicAxialModes; ++i, ++k) {
+                const double weight = i * pi / (l * 1e-3);
+                w[r.zOffset + k] = weight;
+                w[r.zOffset + r.numModal + k] = weight / (i * pi / l * wave);
+            }
+            for (int i = 0; i < (r.planar ? 1 : 2) * o.transverseModes; ++i, ++k) {
+                w[r.zOffset + k] = 1.0;
+                w[r.zOffset + r.numModal + k] = 1.0;
+            }
+        }
+    }
+    return 0;
+}
+
+// The modal coordinates q_m and rates live in Z, and Simbody invalidates only Stage::Dynamics when Z
+// alone changes (Verlet refines z at fixed q, for one). So every stage checks that the rope's cached
+// position- and velocity-level quantities were computed from the current Z and refreshes them if not.
+int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
+    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    pc.ropes.resize(ropes.size());
+    for (size_t i = 0; i < ropes.size(); ++i) updatePositionPart(s, ropes[i], pc.ropes[i]);
+    markCacheValueRealized(s, positionCache_);
+    return 0;
+}
+
+int ReevingSubsystem::Guts::realizeSubsystemVelocityImpl(const State& s) const {
+    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        if (!matchesZ(s, ropes[i], pc.ropes[i].modalCoordinates, false))
+            updatePositionPart(s, ropes[i], pc.ropes[i]);
+        updateVelocityPart(s, ropes[i], pc.ropes[i]);
+    }
+    return 0;
+}
+
+void ReevingSubsystem::Guts::refreshFromZ(const State& s, PositionCache& pc, bool velocityLevel) const {
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        RopeCache& c = pc.ropes[i];
+        const bool positionsCurrent = matchesZ(s, ropes[i], c.modalCoordinates, false);
+        if (!positionsCurrent) updatePositionPart(s, ropes[i], c);
+        if (velocityLevel && (!positionsCurrent || !matchesZ(s, ropes[i], c.modalRates, true)))
+            updateVelocityPart(s, ropes[i], c);
+    }
+}
+
+bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const Eigen::VectorXd& cached,
+                                      bool rates) const {
+    if (cached.size() != r.numModal) return false;
+    const Vector& z = getZ(s);
+    const int offset = r.zOffset + (rates ? r.numModal : 0);
+    for (int j = 0; j < r.numModal; ++j)
+        if (cached[j] != z[offset + j]) return false;
+    return true;
+}
+
+void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+    c.nodes3.resize(3, r.numNodes());
+    for (int k = 0; k < r.numNodes(); ++k) {
+        const auto [body, station] = r.node(k);
+        c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
+    }
+    modal(getZ(s), r, false, c.modalCoordinates);
+    drivenCoordinates(s, r, c.drivenS, nullptr);
+    // A failure here is usually a trial state of an integrator step (an extrapolation too far).
+    // What Simbody 3.7 does with the exception (its sources, confirmed in
+    // tests/simbody/test_step_failures.cpp): the Runge-Kutta family (AbstractIntegratorRep::
+    // attemptDAEStep) catches it, rejects the step and retries at 0.1 h, with no retry limit
+    // (counted as a convergence-test failure); CPodes receives a recoverable right-hand-side
+    // error and retries at 0.25 h, at most 10 times per step; a fixed-step integrator, the
+    // realization of an accepted or interpolated state, and (RK) the realization inside a
+    // constraint projection cannot retry and end the run. Every final message drops the cause,
+    // so it is recorded here (getLastEvaluationFailure) with the rope, the time and the equation.
+    try {
+        if (r.planar) {
+            c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
+            r.planarModel->solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
+        } else {
+            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
+        }
+    } catch (const std::exception& e) {
+        failEvaluation(s, r, e);
+    }
+}
+
+void ReevingSubsystem::Guts::failEvaluation(const State& s, const RopeRecord& r,
+                                            const std::exception& e) const {
+    std::ostringstream msg;
+    msg << "ReevingSubsystem: rope '" << r.spec.name << "' at t = " << std::setprecision(17) << s.getTime()
+        << " s: " << e.what();
+    recordEvaluationFailure(msg.str());
+    throw std::runtime_error(msg.str());
+}
+
+void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+    c.nodeVelocities3.resize(3, r.numNodes());
+    for (int k = 0; k < r.numNodes(); ++k) {
+        const auto [body, station] = r.node(k);
+        c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
+    }
+    modal(getZ(s), r, true, c.modalRates);
+    drivenCoordinates(s, r, c.drivenS, &c.drivenSdot);
+    try {
+        if (r.planar) {
+            c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
+            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.drivenS, c.drivenSdot, c.modalCoordinates,
+                                           c.modalRates, c.planar);
+        } else {
+            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot,
+                                                      c.modalCoordinates, c.modalRates, c.spatial);
+        }
+    } catch (const std::exception& e) {
+        failEvaluation(s, r, e);
+    }
+}
+
+template <int Dim>
+double ReevingSubsystem::Guts::potential(const RopeModel<Dim>& model, const RopeData<Dim>& data,
+                                         const Eigen::Matrix<double, Dim, Eigen::Dynamic>& nodes,
+                                         const Eigen::VectorXd& qm) const {
+    double u = 0;
+    Eigen::VectorXd q;
+    for (int j = 0; j < model.numSpans(); ++j) {
+        model.spanCoordinates(j, nodes, qm, data, q);
+        SpanData<Dim> d;
+        model.span(j).evaluate(q, Eigen::VectorXd::Zero(q.size()), d);
+        u += d.potentialEnergy();
+    }
+    return u + model.storedRopeGravityEnergy(nodes, data);
+}
+
+Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {
+    const PositionCache& pc = positionCache(s);
+    Real u = 0;
+    // From Stage::Velocity on, the velocity-level rope data (refreshed by positionCache) hold the
+    // energies of these positions: no second span evaluation.
+    const bool velocityCurrent = s.getSystemStage() >= Stage::Velocity;
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeRecord& r = ropes[i];
+        const RopeCache& c = pc.ropes[i];
+        if (velocityCurrent) {
+            u += r.planar ? c.planar.strainEnergy + c.planar.gravityEnergy
+                          : c.spatial.strainEnergy + c.spatial.gravityEnergy;
+        } else if (r.planar) {
+            u += potential(*r.planarModel, c.planar, planarNodes(r, c.nodes3), modal(getZ(s), r, false));
+        } else {
+            u += potential(*r.spatialModel, c.spatial, c.nodes3, modal(getZ(s), r, false));
+        }
+    }
+    return u;
+}
+
+int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, Stage stage,
+                                                                Array_<DecorativeGeometry>& geometry) const {
+    if (stage != Stage::Position) return 0;
+    for (size_t i = 0; i < ropes.size(); ++i)
+        for (int j = 0; j < ropes[i].numSpans(); ++j) {
+            const std::vector<Vec3> p = sample(s, static_cast<int>(i), j, decorationPoints);
+            for (size_t k = 0; k + 1 < p.size(); ++k)
+                geometry.push_back(DecorativeLine(p[k], p[k + 1]).setColor(Vec3(0.55, 0.35, 0.1)).setLineThickness(3));
+        }
+    return 0;
+}
+
+const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const RopeRecord& r,
+                                                         const Eigen::Matrix3Xd& nodes) const {
+    if (!r.spatialModel) {
+        std::vector<SpanModel<3>> spans;
+        for (int j = 0; j < r.numSpans(); ++j)
+            spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_),
+                               makeReferenceFrame(nodes.col(j + 1) - nodes.col(j)));
+        auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
+        r.addStoredRope(*model);
+        r.spatialModel = std::move(model);
+    }
+    return *r.spatialModel;
+}
+
+void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord& r, Eigen::VectorXd& sDriven,
+                                               Eigen::VectorXd* sDrivenDot) const {
+    const int n = static_cast<int>(r.driven.size());
+    sDriven.resize(n);
+    if (sDrivenDot) sDrivenDot->resize(n);
+    for (int d = 0; d < n; ++d) {
+        const MobilizedBody& pin = r.nodeSpec(r.driven[d].node).body;
+        sDriven[d] = r.driven[d].sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
+        if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * pin.getOneU(s, 0);
+    }
+}
+
+}  // namespace SimbodyReeving

@@ -1,0 +1,324 @@
+#pragma once
+/// @file
+/// Internal to the plugin (not installed): the implementation of ReevingSubsystem, shared by
+/// ReevingSubsystem.cpp (construction, validation, state accessors), ReevingRealization.cpp
+/// (realization, rope caches, energy, decorations), ReevingCoupling.cpp (the coupled rope/body
+/// solve), ReevingQueries.cpp (public queries) and ReevingStaticEquilibrium.cpp.
+
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace SimbodyReeving {
+namespace detail {
+
+/// Helper: SimTK::Vec3 to Eigen.
+inline Eigen::Vector3d toEigen(const SimTK::Vec3& v) { return {v[0], v[1], v[2]}; }
+/// Helper: Eigen to SimTK::Vec3.
+inline SimTK::Vec3 toSimTK(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
+
+/// Helper: true if every component is finite.
+inline bool finite(const SimTK::Vec3& v) {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+/// Helper: throws std::invalid_argument("ReevingSubsystem: " + what).
+[[noreturn]] inline void invalid(const std::string& what) {
+    throw std::invalid_argument("ReevingSubsystem: " + what);
+}
+
+/// Helper: "(x, y, z)" for messages.
+inline std::string str(const SimTK::Vec3& v) {
+    std::ostringstream o;
+    o << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+    return o.str();
+}
+
+/// Model (fixed for a simulation; the spatial model is built once, lazily):
+/// One rope: its spec, its model (planar or spatial) and where its state lives.
+struct RopeRecord {
+    RopeSpec spec;
+    bool planar = false;
+    Eigen::Vector3d e1, e2, normal;  // plane basis (planar ropes)
+    Eigen::Matrix<double, 3, 2> planeBasis = Eigen::Matrix<double, 3, 2>::Zero();  // [e1 e2]
+    std::vector<SpanOptions> spanOptions;
+    std::shared_ptr<const RopeModel<2>> planarModel;
+    // Spatial spans take their reference frames from the first configuration the rope is
+    // evaluated in (after realizeTopology); built lazily, then fixed.
+    mutable std::shared_ptr<const RopeModel<3>> spatialModel;
+    int numModal = 0;
+    int zOffset = 0;  // first Z entry (modal coordinates), rates follow
+
+    /// The nodes whose material coordinate turns with a pin (WinchDrum, TurningSheave), in node
+    /// order: s_k = sRef + dsdTheta theta (RopeModel's Driven nodes).
+    struct DrivenNode {
+        int node = 0;
+        double sRef = 0, dsdTheta = 0;
+        bool drum = false;
+        double ropeOnDrum = 0, payout = 0;  // drums: rope stored = ropeOnDrum - payout theta
+    };
+    std::vector<DrivenNode> driven;
+    std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
+
+    int numSpans() const { return static_cast<int>(spec.sheaves.size()) + 1; }
+    int numNodes() const { return numSpans() + 1; }
+    const RopeNode& nodeSpec(int k) const {
+        if (k == 0) return spec.start;
+        if (k == numNodes() - 1) return spec.end;
+        return spec.sheaves[k - 1];
+    }
+    // Node k: (body, station)
+    std::pair<const SimTK::MobilizedBody*, SimTK::Vec3> node(int k) const {
+        const RopeNode& n = nodeSpec(k);
+        return {&n.body, n.point};
+    }
+    /// Index of node k among the driven nodes, or -1.
+    int drivenIndex(int k) const {
+        for (size_t d = 0; d < driven.size(); ++d)
+            if (driven[d].node == k) return static_cast<int>(d);
+        return -1;
+    }
+    int dim() const { return planar ? 2 : 3; }
+    /// Declares the rope stored on each WinchDrum to the model (RopeModel::setStoredRope): at a
+    /// start drum l = ropeOnDrum + s_0, at an end drum l = ropeOnDrum + L - s_N.
+    template <int Dim>
+    void addStoredRope(RopeModel<Dim>& model) const {
+        for (const DrivenNode& d : driven)
+            if (d.drum) model.setStoredRope(d.node, d.node == 0 ? d.ropeOnDrum : d.ropeOnDrum + spec.unstretchedLength);
+    }
+    /// Number of the rope's external coordinates (RopeModel::numExternalCoordinates).
+    int numExternal() const { return dim() * numNodes() + static_cast<int>(driven.size()); }
+};
+
+/// Cache (per evaluation) of one rope:
+/// Per-rope evaluation cache, allocated at Stage::Position. realizeVelocity refreshes its
+/// velocity-level part (material rates, span evaluations, the rope reduced to its nodes) every time
+/// velocities are realized; velocity-level queries check the stage.
+struct RopeCache {
+    Eigen::Matrix3Xd nodes3, nodeVelocities3;
+    Eigen::Matrix2Xd nodes2, nodeVelocities2;  // planar ropes: in the plane basis
+    Eigen::VectorXd modalCoordinates, modalRates;
+    RopeData<2> planar;
+    RopeData<3> spatial;
+    Eigen::VectorXd drivenS, drivenSdot;  // material coordinates and rates of the driven nodes
+    // dynamics
+    Eigen::VectorXd externalAccelerations;  // xddot of RopeModel's external coordinates (node positions
+                                            // in the plane basis for planar ropes, driven s)
+    Eigen::Matrix3Xd nodeAccelerations3;    // in Ground
+    Eigen::VectorXd modalAccelerations;
+};
+
+/// Cache (per evaluation, scratch of realizeSubsystemDynamicsImpl):
+/// Workspace of the coupled rope/body solve (sized once, reused every evaluation).
+struct CouplingWorkspace {
+    Eigen::MatrixXd S, Lambda, lhs, J;
+    Eigen::VectorXd h, f, rdd, a0, aUnit, rhs;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
+    SimTK::Matrix stationJacobian;
+    SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit;
+};
+
+/// Cache (per evaluation): the subsystem's cache entry (Stage::Position), every rope's RopeCache
+/// and the coupling workspace.
+struct PositionCache {
+    std::vector<RopeCache> ropes;
+    CouplingWorkspace coupling;
+};
+
+/// Model (fixed at realizeTopology):
+/// A rope node on a body other than Ground: it takes part in the coupled solve with one row per
+/// direction its rope can pull in (3 for a spatial rope; 2, the plane's, for a planar one).
+struct MobileNode {
+    int rope = 0, node = 0;
+    const SimTK::MobilizedBody* body = nullptr;
+    SimTK::Vec3 station{0};
+    int row = 0, dims = 3;                                    // rows row..row+dims-1 of y
+    Eigen::Matrix3d directions = Eigen::Matrix3d::Identity();  // column d: row d's direction in Ground
+};
+
+/// Model (fixed at realizeTopology): a driven material coordinate in the coupled solve (1 row):
+/// s = sRef + dsdTheta theta, theta the pin's coordinate.
+struct MobileAngle {
+    int rope = 0, driven = 0;
+    const SimTK::MobilizedBody* body = nullptr;
+    double dsdTheta = 0;
+};
+
+/// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
+/// coupled vector y = [2 or 3 per MobileNode | 1 per MobileAngle] and, for each, the rope's
+/// external coordinate it is (a node's rows are its rope's own node coordinates, in the plane basis
+/// for planar ropes): y[rows[a]] = x[external[a]]; Ground nodes have no rows. So
+/// S_y(rows[a], rows[b]) = S_x(external[a], external[b]) and h_y likewise.
+struct RopeCoupling {
+    std::vector<int> rows;      // coupled rows of this rope, in y order
+    std::vector<int> external;  // the rope's external coordinate of each row
+};
+
+}  // namespace detail
+
+/// Model (the ropes, fixed for a simulation) and evaluation (realization into the PositionCache
+/// cache entry) of a ReevingSubsystem: the SimTK::ForceSubsystem::Guts behind the handle.
+class ReevingSubsystem::Guts : public SimTK::ForceSubsystem::Guts {
+public:
+    explicit Guts(const SimTK::Vec3& gravity)
+        : SimTK::ForceSubsystem::Guts("ReevingSubsystem", "0.1"), gravity_(gravity) {}
+    Guts* cloneImpl() const override {
+        Guts* copy = new Guts(*this);
+        copy->system_ = nullptr;  // a clone belongs to another System
+        copy->matter_ = nullptr;
+        return copy;
+    }
+
+    std::vector<detail::RopeRecord> ropes;
+    int decorationPoints = 20;
+
+    // Cached at realizeTopology (MultibodySystem::downcast is a dynamic_cast: not per evaluation).
+    const SimTK::MultibodySystem& mbs() const {
+        if (!system_) system_ = &SimTK::MultibodySystem::downcast(getSystem());
+        return *system_;
+    }
+    const SimTK::SimbodyMatterSubsystem& matter() const {
+        if (!matter_) matter_ = &mbs().getMatterSubsystem();
+        return *matter_;
+    }
+    const SimTK::Vec3& gravity() const { return gravity_; }
+
+    // ---- realization (ReevingRealization.cpp) ----------------------------------------------
+    int realizeSubsystemTopologyImpl(SimTK::State& s) const override;
+    int realizeSubsystemInstanceImpl(const SimTK::State& s) const override;
+    int realizeSubsystemPositionImpl(const SimTK::State& s) const override;
+    int realizeSubsystemVelocityImpl(const SimTK::State& s) const override;
+
+    /// Refreshes rope i's cache if Z changed after it was computed (see realizeSubsystemPositionImpl).
+    void refreshFromZ(const SimTK::State& s, detail::PositionCache& pc, bool velocityLevel) const;
+    bool matchesZ(const SimTK::State& s, const detail::RopeRecord& r, const Eigen::VectorXd& cached,
+                  bool rates) const;
+    void updatePositionPart(const SimTK::State& s, const detail::RopeRecord& r, detail::RopeCache& c) const;
+    /// Records an evaluation failure of rope r and rethrows it as std::runtime_error naming the
+    /// rope and the time.
+    [[noreturn]] void failEvaluation(const SimTK::State& s, const detail::RopeRecord& r,
+                                     const std::exception& e) const;
+    void updateVelocityPart(const SimTK::State& s, const detail::RopeRecord& r, detail::RopeCache& c) const;
+
+    SimTK::Real calcPotentialEnergy(const SimTK::State& s) const override;
+    int calcDecorativeGeometryAndAppendImpl(const SimTK::State& s, SimTK::Stage stage,
+                                            SimTK::Array_<SimTK::DecorativeGeometry>& geometry) const override;
+
+    const RopeModel<3>& spatialModel(const detail::RopeRecord& r, const Eigen::Matrix3Xd& nodes) const;
+
+    // Defined in ReevingRealization.cpp, its only user (calcPotentialEnergy).
+    template <int Dim>
+    double potential(const RopeModel<Dim>& model, const RopeData<Dim>& data,
+                     const Eigen::Matrix<double, Dim, Eigen::Dynamic>& nodes, const Eigen::VectorXd& qm) const;
+
+    // ---- coupled rope/body solve (ReevingCoupling.cpp) -------------------------------------
+    int realizeSubsystemDynamicsImpl(const SimTK::State& s) const override;
+
+    bool anyConstraintEnabled(const SimTK::State& s) const;
+
+    /// The generalized force the rope exerts on its supports at its external coordinates,
+    /// h - S xddot (the reaction of the coupled solve; Stage::Dynamics): rows Dim k.. for node k
+    /// (plane basis for planar ropes), Dim (N + 1) + d for driven node d.
+    Eigen::VectorXd ropeReaction(const detail::RopeRecord& r, const detail::RopeCache& c) const;
+
+    /// Accelerations of the coupled vector y (mobile nodes in Ground, then driven material
+    /// coordinates) from the bodies' spatial accelerations and the mobilities' udot.
+    void couplingAccelerations(const SimTK::State& s, const SimTK::Vector_<SimTK::SpatialVec>& A_GB,
+                               const SimTK::Vector& udot, Eigen::VectorXd& a) const;
+
+    /// Material coordinates (and rates) of rope r's driven nodes in state s.
+    void drivenCoordinates(const SimTK::State& s, const detail::RopeRecord& r, Eigen::VectorXd& sDriven,
+                           Eigen::VectorXd* sDrivenDot) const;
+
+    // ---- rope limits (ReevingLimits.cpp) ----------------------------------------------------
+    /// Smallest margin to a rope limit over all ropes [m] (Stage::Position): span material length
+    /// minus RopeSpec::minimumSpanLength, rope left on each drum; and a description of the
+    /// limiting one.
+    double limitMargin(const SimTK::State& s, std::string* which) const;
+    void recordLimit(const std::string& message) const { limitReached_ = message; }
+    const std::string& limitReached() const { return limitReached_; }
+
+    // ---- sampling (ReevingQueries.cpp) -----------------------------------------------------
+    std::vector<SimTK::Vec3> sample(const SimTK::State& s, int rope, int span, int numPoints) const;
+
+    // ---- helpers -------------------------------------------------------------------------
+    /// The rope cache, valid for the current Z (see realizeSubsystemPositionImpl); velocity-level parts
+    /// are refreshed too when the state is realized to Stage::Velocity.
+    const detail::PositionCache& positionCache(const SimTK::State& s) const {
+        getCacheEntry(s, positionCache_);  // throws unless realized to Stage::Position
+        detail::PositionCache& pc =
+            SimTK::Value<detail::PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+        refreshFromZ(s, pc, s.getSystemStage() >= SimTK::Stage::Velocity);
+        return pc;
+    }
+
+    void modal(const SimTK::Vector& z, const detail::RopeRecord& r, bool rates, Eigen::VectorXd& q) const {
+        q.resize(r.numModal);
+        for (int j = 0; j < r.numModal; ++j) q[j] = z[r.zOffset + (rates ? r.numModal : 0) + j];
+    }
+    Eigen::VectorXd modal(const SimTK::Vector& z, const detail::RopeRecord& r, bool rates) const {
+        Eigen::VectorXd q;
+        modal(z, r, rates, q);
+        return q;
+    }
+
+    Eigen::Matrix2Xd planarNodes(const detail::RopeRecord& r, const Eigen::Matrix3Xd& p) const {
+        Eigen::Matrix2Xd out(2, p.cols());
+        out.row(0) = r.e1.transpose() * p;
+        out.row(1) = r.e2.transpose() * p;
+        return out;
+    }
+
+    /// Evaluation failures (a rope's dependent coordinates not found at a trial state): how many,
+    /// and the message of the last one. Integrators usually recover from them (smaller step).
+    void recordEvaluationFailure(const std::string& message) const {
+        lastEvaluationFailure_ = message;
+        ++numEvaluationFailures_;
+    }
+    int numEvaluationFailures() const { return numEvaluationFailures_; }
+    const std::string& lastEvaluationFailure() const { return lastEvaluationFailure_; }
+
+private:
+    SimTK::Vec3 gravity_;
+    // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order, then the
+    // driven material coordinates, and each rope's place in the coupled vector.
+    std::vector<detail::MobileNode> mobileNodes_;
+    int numStationRows_ = 0;                 // rows of y taken by the mobile nodes
+    std::vector<std::pair<int, int>> rowOwner_;  // y row -> (mobile node, direction), station rows
+    std::vector<detail::MobileAngle> mobileAngles_;
+    std::vector<detail::RopeCoupling> ropeCoupling_;
+    SimTK::Array_<SimTK::MobilizedBodyIndex> mobileBodies_;
+    SimTK::Array_<SimTK::Vec3> mobileStations_;
+    mutable std::string limitReached_;
+    mutable std::string lastEvaluationFailure_;
+    mutable int numEvaluationFailures_ = 0;
+
+    mutable SimTK::CacheEntryIndex positionCache_;
+    mutable const SimTK::MultibodySystem* system_ = nullptr;
+    mutable const SimTK::SimbodyMatterSubsystem* matter_ = nullptr;
+};
+
+namespace detail {
+
+/// Adds to `system` the event handler that ends a run at a rope limit (span at its minimum
+/// length, drum out of rope) of the ReevingSubsystem with index `reeving` (ReevingLimits.cpp).
+void installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving);
+
+/// Helper: rope `rope` of g; throws std::invalid_argument if the index is out of range.
+inline const RopeRecord& ropeAt(const ReevingSubsystem::Guts& g, int rope) {
+    if (rope < 0 || rope >= static_cast<int>(g.ropes.size()))
+        invalid("rope index = " + std::to_string(rope) + " is outside 0.." + std::to_string(g.ropes.size() - 1));
+    return g.ropes[rope];
+}
+
+}  // namespace detail
+}  // namespace SimbodyReeving

@@ -1,0 +1,174 @@
+// Acceptance 8 (the "how you know" part): one span evaluation performs no heap allocation.
+// This test binary replaces the global operator new/delete with counting versions; the count over
+// repeated evaluate() calls must stay zero for planar and spatial spans, both velocity models and
+// both energy models, at the largest mode counts. The same holds for a whole rope's evaluation
+// (tension-equality Newton, reduction to the nodes, modal accelerations) once its workspace is sized.
+#include "SimbodyReeving/element/RopeModel.h"
+#include "SimbodyReeving/element/SpanModel.h"
+#include "support/SpanTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+// Eigen's dynamic storage comes from std::malloc, not operator new, so the count is taken at malloc
+// itself: glibc lets the executable interpose malloc and friends and forwards to its __libc_*
+// entry points.
+namespace {
+std::atomic<long> gAllocations{0};
+}
+
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
+void __libc_free(void*);
+
+void* malloc(std::size_t size) {
+    ++gAllocations;
+    return __libc_malloc(size);
+}
+void* calloc(std::size_t n, std::size_t size) {
+    ++gAllocations;
+    return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t size) {
+    ++gAllocations;
+    return __libc_realloc(p, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) {
+    ++gAllocations;
+    return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
+    ++gAllocations;
+    *out = __libc_memalign(alignment, size);
+    return *out ? 0 : 12;  // ENOMEM
+}
+void free(void* p) { __libc_free(p); }
+}
+
+void* operator new(std::size_t size) {
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace SimbodyReeving;
+
+namespace {
+
+template <int Dim>
+long allocationsPerEvaluation(int na, int nt, VelocityModel vm, ElasticEnergyModel em) {
+    SpanOptions o;
+    o.axialModes = na;
+    o.transverseModes = nt;
+    o.velocityModel = vm;
+    o.elasticModel = em;
+    Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
+    // Consistent: the tension-only law (the default); PaperLiteral requires the linear law.
+    const SpanModel<Dim> model({0.6, 1e6, 30, em == ElasticEnergyModel::Consistent}, o, Eigen::Matrix<double, Dim, 1>::Constant(-1.0), ref);
+    std::mt19937 rng(5);
+    const Eigen::VectorXd q = test::randomState(model, rng);
+    const Eigen::VectorXd qd = test::randomVelocity(model, rng);
+    SpanData<Dim> data;
+    model.evaluate(q, qd, data);  // warm-up
+    const long before = gAllocations.load();
+    for (int k = 0; k < 10; ++k) model.evaluate(q, qd, data);
+    return gAllocations.load() - before;
+}
+
+/// Allocations over repeated evaluations of a rope of `numSpans` spans (numSpans - 1 sheaves),
+/// after one warm-up evaluation at the same mode counts.
+template <int Dim>
+long allocationsPerRopeEvaluation(int numSpans, int na, int nt,
+                                  AxialDynamics axial = AxialDynamics::Dynamic) {
+    SpanOptions o;
+    o.axialModes = na;
+    o.transverseModes = nt;
+    o.axialDynamics = axial;
+    using Vec = Eigen::Matrix<double, Dim, 1>;
+    Vec g = Vec::Zero();
+    g[1] = -9.81;
+    std::vector<SpanModel<Dim>> spans;
+    Eigen::Matrix<double, Dim, Eigen::Dynamic> nodes = Eigen::Matrix<double, Dim, Eigen::Dynamic>::Zero(Dim, numSpans + 1);
+    for (int k = 1; k <= numSpans; ++k) {
+        nodes(0, k) = 3.0 * k;  // a zig-zag over the sheaves
+        nodes(1, k) = (k % 2 == 1) ? -4.0 : 0.0;
+    }
+    for (int j = 0; j < numSpans; ++j) {
+        Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
+        spans.emplace_back(RopeProperties{0.6205, 16.5e6, 30.9}, o, g, ref);
+    }
+    double length = 0;
+    for (int j = 0; j < numSpans; ++j) length += (nodes.col(j + 1) - nodes.col(j)).norm();
+    const RopeModel<Dim> rope(std::move(spans), 0.999 * length);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1e-3, 1e-3);
+    Eigen::VectorXd qm(rope.numModalCoordinates()), qmd(rope.numModalCoordinates());
+    for (int i = 0; i < qm.size(); ++i) {
+        qm[i] = u(rng);
+        qmd[i] = u(rng);
+    }
+    Eigen::Matrix<double, Dim, Eigen::Dynamic> velocities = Eigen::Matrix<double, Dim, Eigen::Dynamic>::Zero(Dim, numSpans + 1);
+    velocities(0, numSpans) = 1.0;
+    Eigen::VectorXd nodeAcc = Eigen::VectorXd::Zero(Dim * (numSpans + 1)), qmdd;
+    RopeData<Dim> data;
+    auto evaluate = [&] {
+        rope.solveDependentCoordinates(nodes, qm, data);
+        rope.computeDynamics(nodes, velocities, qm, qmd, data);
+        rope.modalAccelerations(data, nodeAcc, qmdd);
+        rope.recoverInertialStrain(data, nodeAcc, qmdd);
+    };
+    evaluate();  // warm-up: sizes the workspace
+    const long before = gAllocations.load();
+    for (int k = 0; k < 10; ++k) {
+        nodes(0, numSpans) += 1e-4;  // a new configuration every time (Newton iterates)
+        evaluate();
+    }
+    return gAllocations.load() - before;
+}
+
+}  // namespace
+
+TEST(SpanNoAllocation, CounterSeesAllocations) {
+    const long before = gAllocations.load();
+    {
+        Eigen::VectorXd v(100);  // Eigen's heap storage (std::malloc)
+        v.setZero();
+        EXPECT_GE(gAllocations.load() - before, 1);  // the counter sees Eigen's allocations
+    }
+    const long mid = gAllocations.load();
+    auto* p = new int(3);
+    delete p;
+    EXPECT_GE(gAllocations.load() - mid, 1);  // and operator new
+}
+
+TEST(SpanNoAllocation, EvaluateNeverAllocates) {
+    for (auto vm : {VelocityModel::Simplified, VelocityModel::Complete})
+        for (auto em : {ElasticEnergyModel::Consistent, ElasticEnergyModel::PaperLiteral}) {
+            EXPECT_EQ(allocationsPerEvaluation<2>(3, 1, vm, em), 0);
+            EXPECT_EQ(allocationsPerEvaluation<3>(3, 1, vm, em), 0);
+            EXPECT_EQ(allocationsPerEvaluation<2>(16, 16, vm, em), 0);
+            EXPECT_EQ(allocationsPerEvaluation<3>(16, 16, vm, em), 0);
+        }
+}
+
+TEST(RopeNoAllocation, RopeEvaluationNeverAllocates) {
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(1, 3, 1), 0);  // no sheave
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(2, 3, 1), 0);  // the paper's pendulum rope
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(4, 2, 2), 0);  // three sheaves
+    EXPECT_EQ(allocationsPerRopeEvaluation<3>(3, 3, 2), 0);
+    // Quasi-static axial modes: the condensation kernel, its Newton and the recovery.
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(1, 3, 1, AxialDynamics::QuasiStatic), 0);
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(2, 3, 1, AxialDynamics::QuasiStatic), 0);
+    EXPECT_EQ(allocationsPerRopeEvaluation<2>(4, 2, 2, AxialDynamics::QuasiStatic), 0);
+    EXPECT_EQ(allocationsPerRopeEvaluation<3>(3, 3, 2, AxialDynamics::QuasiStatic), 0);
+}

@@ -1,0 +1,144 @@
+// CraneScene (issue 13, item 4): the gantry crane builds for every number of falls, hangs in static
+// equilibrium with each fall carrying (M g)/n, stays in its plane, and its energy balance against
+// the prescribed drives closes. Also the SmoothMove / MotionProfile kinematics it is driven by.
+#include <SimbodyReeving/scenes/CraneScene.h>
+#include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace SimbodyReeving;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::Vec3;
+
+namespace {
+
+SpanOptions spans(int na) {
+    SpanOptions o;
+    o.axialModes = na;
+    o.transverseModes = 1;
+    o.axialDynamics = AxialDynamics::QuasiStatic;
+    return o;
+}
+
+}  // namespace
+
+TEST(SmoothMove, RestToRestWithContinuousDerivatives) {
+    const SmoothMove m{1.0, 9.0, 2.0, 5.0};
+    EXPECT_EQ(m.position(0.5), 0.0);
+    EXPECT_EQ(m.position(11.0), 5.0);
+    EXPECT_NEAR(m.position(5.5), 2.5, 1e-12);  // symmetric
+    EXPECT_NEAR(m.velocity(5.0), 5.0 / 7.0, 1e-12);
+    for (double t : {1.0, 3.0, 8.0, 10.0}) {  // phase boundaries: continuous
+        EXPECT_NEAR(m.position(t - 1e-9), m.position(t + 1e-9), 1e-8) << t;
+        EXPECT_NEAR(m.velocity(t - 1e-9), m.velocity(t + 1e-9), 1e-8) << t;
+        EXPECT_NEAR(m.acceleration(t - 1e-9), m.acceleration(t + 1e-9), 1e-7) << t;
+    }
+    // Derivatives are the exact derivatives (central differences).
+    for (double t : {1.3, 2.7, 4.0, 8.4, 9.9}) {
+        const double h = 1e-5;
+        EXPECT_NEAR((m.position(t + h) - m.position(t - h)) / (2 * h), m.velocity(t), 1e-8) << t;
+        EXPECT_NEAR((m.velocity(t + h) - m.velocity(t - h)) / (2 * h), m.acceleration(t), 1e-7) << t;
+    }
+    double peak = 0;
+    for (int i = 0; i <= 10000; ++i) peak = std::max(peak, std::abs(m.acceleration(1.0 + 9.0 * i / 10000)));
+    EXPECT_NEAR(peak, m.peakAcceleration(), 1e-6);
+    EXPECT_THROW((SmoothMove{0, 1, 0.6, 1}.validate()), std::invalid_argument);
+    EXPECT_THROW((SmoothMove{0, 0, 0, 1}.validate()), std::invalid_argument);
+}
+
+TEST(CraneScene, RejectsBadParameters) {
+    CraneParameters p;
+    p.falls = 13;
+    EXPECT_THROW(CraneScene(p, CraneCycle::liftTraverseLower(), spans(0)), std::invalid_argument);
+    p = CraneParameters();
+    p.EA = -1;
+    EXPECT_THROW(CraneScene(p, CraneCycle::liftTraverseLower(), spans(0)), std::invalid_argument);
+    p = CraneParameters();
+    CraneCycle c = CraneCycle::liftTraverseLower();
+    c.duration = 0;
+    EXPECT_THROW(CraneScene(p, c, spans(0)), std::invalid_argument);
+}
+
+// Static equilibrium for n = 1..12 falls (odd: dead end on the hook block, even: on the trolley):
+// every fall's top carries (M + m_hook) g / n plus the rope below it (within 0.5 %), the hook hangs
+// level at about the requested depth and the whole machine lies in the x-y plane.
+TEST(CraneScene, StaticEquilibriumSharesTheLoadEquallyAmongTheFalls) {
+    for (int n : {1, 2, 3, 4, 7, 12}) {
+        CraneParameters p;
+        p.falls = n;
+        CraneScene scene(p, CraneCycle::liftTraverseLower(), spans(1));
+        const State s = scene.makeInitialState();
+        scene.system().realize(s, Stage::Acceleration);
+        const double share = (p.payloadMass + p.hookMass) * p.g / n;
+        for (int k = 0; k < n; ++k) {
+            const double ropeBelow = p.rhoA * p.g * p.initialHookDepth;  // at most one fall's own weight
+            EXPECT_NEAR(scene.fallTopForce(s, k), share + 0.5 * ropeBelow, 0.005 * share + ropeBelow) << n << " " << k;
+        }
+        const Vec3 hook = scene.hookPosition(s);
+        EXPECT_NEAR(p.railHeight - hook[1], p.initialHookDepth, 0.02) << n;
+        EXPECT_NEAR(scene.swayAngle(s), 0.0, 1e-3) << n;
+        EXPECT_NEAR(scene.payloadAngle(s), 0.0, 1e-3) << n;
+        EXPECT_NEAR(scene.hookBlock().getBodyRotation(s).x()[1], 0.0, 1e-3) << n;  // level
+        for (const Vec3& q : scene.nodePositions(s)) EXPECT_EQ(q[2], 0.0);
+        for (int k = 0; k < n; ++k)
+            for (const Vec3& q : scene.reeving().sampleSpan(s, 0, k, 5)) EXPECT_NEAR(q[2], 0.0, 1e-12);
+        EXPECT_NEAR(scene.ropeOnDrum(s), p.ropeOnDrum, 1e-12);
+        // The drum motor holds the load against the rope's torque (the payout sense is +1: the rope
+        // turns the drum the positive way).
+        const double ropeTorque = scene.reeving().getDrivenNodeTorque(s, 0, 0);
+        EXPECT_GT(ropeTorque, 0.9 * p.drumRadius * share) << n;
+        EXPECT_NEAR(scene.motorTorque(s), -ropeTorque, 1e-6 * ropeTorque) << n;
+    }
+}
+
+// The first seconds of the lift with 4 falls: the hook rises, the drives' power equals the motion
+// work meter's, and the energy balance E - E0 - W closes to a small fraction of the work.
+TEST(CraneScene, LiftClosesTheEnergyBalance) {
+    CraneParameters p;
+    CraneScene scene(p, CraneCycle::liftTraverseLower(), spans(1));
+    State s = scene.makeInitialState();
+    const double e0 = scene.reeving().calcMechanicalEnergy(s);
+    const double y0 = scene.hookPosition(s)[1];
+    const double rope0 = scene.reeving().calcRopePotentialEnergy(s);
+    SimTK::RungeKuttaMersonIntegrator integ(scene.system());
+    integ.setAccuracy(1e-7);
+    InterpolatingTimeStepper ts(scene.system(), integ);
+    ts.initialize(s);
+    ts.stepTo(4.0);
+    const State& st = ts.getState();
+    scene.system().realize(st, Stage::Acceleration);
+    const double lift = scene.cycle().hoist.position(4.0);
+    EXPECT_NEAR(scene.hookPosition(st)[1] - y0, lift, 0.02);
+    const double w = scene.workMeter().getWork(st);
+    // The work lifted hook block and payload, raised the rope (the hauled rope to the drum, where
+    // it is stored with its weight) and set the machine moving.
+    const double kinetic = scene.system().calcKineticEnergy(st) + scene.reeving().calcRopeKineticEnergy(st);
+    const double rope = scene.reeving().calcRopePotentialEnergy(st) - rope0;
+    EXPECT_GT(rope, 0.005 * w);  // the stored rope's potential energy: about 1.4 kJ here
+    EXPECT_NEAR(w - kinetic - rope, (p.payloadMass + p.hookMass) * p.g * (scene.hookPosition(st)[1] - y0), 0.01 * w);
+    const double power = scene.motorTorque(st) * scene.drumSpeed(st) + scene.trolleyForce(st) * scene.trolley().getOneU(st, 0);
+    EXPECT_NEAR(power, scene.workMeter().getPower(st), 1e-9 * std::abs(power) + 1e-6);
+    EXPECT_NEAR(scene.reeving().calcMechanicalEnergy(st) - e0 - w, 0.0, 1e-5 * w);
+    EXPECT_NEAR(scene.ropeOnDrum(st), p.ropeOnDrum + p.falls * lift, 0.01 * p.falls * lift);
+}
+
+// The torque the rope puts on a WinchDrum must not depend on where y = 0 is: the rope stored on the
+// drum keeps its weight at the drum (RopeModel::setStoredRope), so the holding torque is R times the
+// pull there whatever the datum. Moving the whole crane up by 15 m (same depths) leaves the motor
+// torque unchanged. (Before the stored rope kept its mass, the torque dropped by
+// R rhoA g 15 m = 71 N m here.)
+TEST(CraneScene, MotorTorqueDoesNotDependOnTheHeightDatum) {
+    double torque[2];
+    for (int i = 0; i < 2; ++i) {
+        CraneParameters p;
+        p.railHeight = 15.0 + 15.0 * i;
+        CraneScene scene(p, CraneCycle::liftTraverseLower(), spans(0));
+        const State s = scene.makeInitialState();
+        scene.system().realize(s, Stage::Acceleration);
+        torque[i] = scene.motorTorque(s);
+    }
+    EXPECT_NEAR(torque[0], torque[1], 1e-6 * std::abs(torque[0]));
+}

@@ -1,0 +1,164 @@
+// InterpolatingTimeStepper: the step count does not depend on the report interval, and the
+// interpolated reports agree with SimTK::TimeStepper's (which stops at every report).
+#include "SimbodyReeving/simbody/Integrators.h"
+#include "SimbodyReeving/simbody/InterpolatingTimeStepper.h"
+#include "SimbodyReeving/scenes/PendulumScene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+using namespace SimbodyReeving;
+
+namespace {
+
+struct RunRecord {
+    int steps = 0;
+    std::vector<SimTK::Vec3> positions;  // payload centre every 0.5 s
+};
+
+template <class Stepper>
+RunRecord run(double reportInterval, double tEnd = 5.0) {
+    SpanOptions o;
+    o.axialModes = 0;
+    o.transverseModes = 1;
+    const PendulumScene scene(PendulumParameters{}, o);
+    auto integ = makeIntegrator("rk-merson", scene.system());
+    integ->setAccuracy(1e-6);
+    Stepper ts(scene.system(), *integ);
+    ts.initialize(scene.makeInitialState(1.0, 0.0));
+    RunRecord r;
+    const int n = static_cast<int>(std::lround(tEnd / reportInterval));
+    const int every = static_cast<int>(std::lround(0.5 / reportInterval));
+    for (int k = 1; k <= n; ++k) {
+        ts.stepTo(k * reportInterval);
+        if (k % every == 0) {
+            scene.system().realize(ts.getState(), SimTK::Stage::Position);
+            r.positions.push_back(scene.payloadPosition(ts.getState()));
+        }
+    }
+    EXPECT_NEAR(ts.getState().getTime(), tEnd, 1e-12);
+    r.steps = integ->getNumStepsTaken();
+    return r;
+}
+
+}  // namespace
+
+TEST(InterpolatingTimeStepper, StepCountIndependentOfReportInterval) {
+    const RunRecord fine = run<InterpolatingTimeStepper>(0.01), coarse = run<InterpolatingTimeStepper>(0.5);
+    const RunRecord stopping = run<SimTK::TimeStepper>(0.01);
+    std::printf("steps: interpolating 0.01 s reports %d, 0.5 s reports %d; SimTK::TimeStepper 0.01 s reports %d\n",
+                fine.steps, coarse.steps, stopping.steps);
+    EXPECT_EQ(fine.steps, coarse.steps);
+    EXPECT_LT(fine.steps, stopping.steps);  // TimeStepper ends a step at every report
+    double worst = 0;
+    for (size_t k = 0; k < fine.positions.size(); ++k)
+        worst = std::max(worst, (fine.positions[k] - stopping.positions[k]).norm());
+    std::printf("max |payload position difference| interpolated vs stopping: %.2e m\n", worst);
+    EXPECT_LT(worst, 1e-5);  // both within the 1e-6 accuracy setting of the true path
+}
+
+namespace {
+
+/// Adds a horizontal velocity kick to the payload at a scheduled time (an event that changes u).
+class Kick : public SimTK::ScheduledEventHandler {
+public:
+    Kick(const PendulumScene& scene, double when) : scene_(scene), when_(when) {}
+    SimTK::Real getNextEventTime(const SimTK::State&, bool includeCurrent) const override {
+        return includeCurrent || !fired_ ? when_ : SimTK::Infinity;
+    }
+    void handleEvent(SimTK::State& s, SimTK::Real, bool&) const override {
+        fired_ = true;
+        scene_.system().realize(s, SimTK::Stage::Velocity);
+        const SimTK::MobilizedBody& body = scene_.payload();
+        body.setUToFitLinearVelocity(s, body.getBodyOriginVelocity(s) + SimTK::Vec3(0.5, 0, 0));
+    }
+
+    bool fired() const { return fired_; }
+
+private:
+    const PendulumScene& scene_;
+    double when_;
+    mutable bool fired_ = false;
+};
+
+/// Counts the scheduled reports the system delivers.
+class CountingReporter : public SimTK::PeriodicEventReporter {
+public:
+    explicit CountingReporter(double interval) : SimTK::PeriodicEventReporter(interval) {}
+    void handleEvent(const SimTK::State& s) const override { times.push_back(s.getTime()); }
+    mutable std::vector<double> times;
+};
+
+}  // namespace
+
+// A scheduled event inside a report interval, a periodic reporter, and both Simbody integrator
+// families: the interpolating stepper reproduces SimTK::TimeStepper's trajectory through the event.
+TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper) {
+    for (const char* name : {"rk-merson", "cpodes"}) {
+        SimTK::Vec3 finals[2];
+        std::vector<double> reportTimes[2];
+        for (int which = 0; which < 2; ++which) {
+            SpanOptions o;
+            o.axialModes = 1;
+            o.axialDynamics = AxialDynamics::QuasiStatic;
+            PendulumScene scene(PendulumParameters{}, o);
+            auto* kick = new Kick(scene, 0.737);  // the system takes ownership
+            auto* reporter = new CountingReporter(0.25);
+            scene.system().addEventHandler(kick);
+            scene.system().addEventReporter(reporter);
+            scene.system().realizeTopology();
+            auto integ = makeIntegrator(name, scene.system());
+            integ->setAccuracy(1e-8);
+            const SimTK::State s0 = scene.makeInitialState(1.0, 0.0);
+            SimTK::Vec3 before, after;
+            if (which == 0) {
+                InterpolatingTimeStepper ts(scene.system(), *integ);
+                ts.initialize(s0);
+                for (int k = 1; k <= 20; ++k) {
+                    ts.stepTo(0.1 * k);
+                    EXPECT_NEAR(ts.getState().getTime(), 0.1 * k, 1e-12);
+                    scene.system().realize(ts.getState(), SimTK::Stage::Velocity);
+                }
+                finals[which] = scene.payloadPosition(ts.getState());
+            } else {
+                SimTK::TimeStepper ts(scene.system(), *integ);
+                ts.initialize(s0);
+                for (int k = 1; k <= 20; ++k) ts.stepTo(0.1 * k);
+                scene.system().realize(ts.getState(), SimTK::Stage::Position);
+                finals[which] = scene.payloadPosition(ts.getState());
+            }
+            reportTimes[which] = reporter->times;
+            EXPECT_TRUE(kick->fired()) << name;
+        }
+        std::printf("%s: final payload position difference %.2e m; reports %zu / %zu\n", name,
+                    (finals[0] - finals[1]).norm(), reportTimes[0].size(), reportTimes[1].size());
+        EXPECT_LT((finals[0] - finals[1]).norm(), 1e-5) << name;
+        ASSERT_EQ(reportTimes[0].size(), reportTimes[1].size()) << name;
+        for (size_t k = 0; k < reportTimes[0].size(); ++k) {
+            EXPECT_NEAR(reportTimes[0][k], 0.25 * static_cast<double>(k), 1e-12) << name;
+            EXPECT_NEAR(reportTimes[1][k], 0.25 * static_cast<double>(k), 1e-12) << name;
+        }
+    }
+}
+
+TEST(InterpolatingTimeStepper, StepLimitReturnsEarlyAndRejectsNegative) {
+    SpanOptions o;
+    o.axialModes = 0;
+    const PendulumScene scene(PendulumParameters{}, o);
+    auto integ = makeIntegrator("rk-merson", scene.system());
+    integ->setAccuracy(1e-8);
+    InterpolatingTimeStepper ts(scene.system(), *integ);
+    EXPECT_THROW(ts.setStepLimit(-1), std::invalid_argument);
+    ts.setStepLimit(3);
+    ts.initialize(scene.makeInitialState(1.0, 0.0));
+    EXPECT_EQ(ts.stepTo(1.0), SimTK::Integrator::ReachedStepLimit);
+    EXPECT_EQ(integ->getNumStepsTaken(), 3);
+    EXPECT_LT(ts.getState().getTime(), 1.0);
+    while (ts.stepTo(1.0) == SimTK::Integrator::ReachedStepLimit) {
+    }
+    EXPECT_NEAR(ts.getState().getTime(), 1.0, 1e-12);
+    EXPECT_GT(ts.getNumRealizations(), integ->getNumStepsTaken());
+}

@@ -1,0 +1,110 @@
+// AxialDynamics::QuasiStatic in the Simbody layer (issue 12, acceptance 1 and 2): the static
+// equilibrium equals the Dynamic model's, and the conservative pendulum keeps its energy.
+#include "SimbodyReeving/simbody/Integrators.h"
+#include "SimbodyReeving/scenes/PendulumScene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+using SimTK::Stage;
+using SimTK::State;
+using namespace SimbodyReeving;
+
+namespace {
+
+SpanOptions spans(int na, AxialDynamics dynamics) {
+    SpanOptions o;
+    o.axialModes = na;
+    o.transverseModes = 1;
+    o.axialDynamics = dynamics;
+    return o;
+}
+
+/// Axial force at 41 points along each span of the pendulum's rope.
+std::vector<double> axialForceProfile(const PendulumScene& scene, const State& s) {
+    std::vector<double> out;
+    const ReevingSubsystem& rv = scene.reeving();
+    for (int span = 0; span < 2; ++span) {
+        const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, span);
+        for (int k = 0; k <= 40; ++k) out.push_back(rv.getAxialForce(s, 0, span, std::min(s2, s1 + (s2 - s1) * k / 40)));
+    }
+    return out;
+}
+
+/// The paper's linear law: the quasi-static model's equivalences below are exact for it (the
+/// tension-only law adds U_delta to quasi-static spans, checked separately).
+PendulumParameters paperLaw() {
+    PendulumParameters p;
+    p.tensionOnly = false;
+    return p;
+}
+
+}  // namespace
+
+TEST(QuasiStaticAxial, StaticEquilibriumEqualsDynamic) {
+    for (int na : {1, 3, 8}) {
+        const PendulumScene dynamic(paperLaw(), spans(na, AxialDynamics::Dynamic));
+        const PendulumScene quasi(paperLaw(), spans(na, AxialDynamics::QuasiStatic));
+        EXPECT_EQ(quasi.reeving().getNumModalCoordinates(0), 2);  // only the transverse modes are states
+        const State sd = dynamic.makeInitialState(0, 0);
+        const State sq = quasi.makeInitialState(0, 0);
+        const std::vector<double> pd = axialForceProfile(dynamic, sd), pq = axialForceProfile(quasi, sq);
+        double worst = 0, scale = 0;
+        for (size_t k = 0; k < pd.size(); ++k) {
+            worst = std::max(worst, std::abs(pd[k] - pq[k]));
+            scale = std::max(scale, std::abs(pd[k]));
+        }
+        std::printf("n_a = %d: max |P_quasi-static - P_dynamic| = %.3e N of %.1f N (%.2e relative)\n", na, worst,
+                    scale, worst / scale);
+        EXPECT_LT(worst / scale, 1e-9) << "n_a = " << na;
+        const double dy = (quasi.payloadPosition(sq) - dynamic.payloadPosition(sd)).norm();
+        EXPECT_LT(dy, 1e-9) << "n_a = " << na;
+        // Tension-only (the default): the slack regularisation U_delta stiffens the quasi-static
+        // amplitudes by 1 + delta, which shifts the axial force profile by O(delta) of its
+        // variation along the span (the rope's own weight).
+        const PendulumScene quasiTO(PendulumParameters{}, spans(na, AxialDynamics::QuasiStatic));
+        const State st = quasiTO.makeInitialState(0, 0);
+        const std::vector<double> pt = axialForceProfile(quasiTO, st);
+        double worstTO = 0;
+        for (size_t k = 0; k < pd.size(); ++k) worstTO = std::max(worstTO, std::abs(pd[k] - pt[k]));
+        const double dyTO = (quasiTO.payloadPosition(st) - dynamic.payloadPosition(sd)).norm();
+        std::printf("n_a = %d, tension-only quasi-static (delta = 1e-3): max |P - P_dynamic| = %.3e N (%.2e "
+                    "relative), payload %.2e m\n", na, worstTO, worstTO / scale, dyTO);
+        EXPECT_LT(worstTO / scale, 1e-5) << "n_a = " << na;
+        EXPECT_LT(dyTO, 1e-8) << "n_a = " << na;
+    }
+}
+
+// Acceptance 2: the conservative pendulum, n_a = 3 condensed, RK-Merson 1e-10, 20 s: energy drift
+// <= 1e-6 of the initial kinetic energy; the sheave constraint holds.
+TEST(QuasiStaticAxial, ConservativePendulumConservesEnergy) {
+    const PendulumScene scene(paperLaw(), spans(3, AxialDynamics::QuasiStatic));
+    State s = scene.makeInitialState(1.0, 0.0);
+    const ReevingSubsystem& rv = scene.reeving();
+    const double ke0 = scene.system().calcKineticEnergy(s) + rv.calcRopeKineticEnergy(s);
+    const double e0 = rv.calcMechanicalEnergy(s);
+    auto integ = makeIntegrator("rk-merson", scene.system());
+    integ->setAccuracy(1e-10);
+    SimTK::TimeStepper ts(scene.system(), *integ);
+    ts.initialize(s);
+    double drift = 0, constraint = 0, minX = 1e9, maxX = -1e9;
+    for (int n = 1; n <= 200; ++n) {
+        ts.stepTo(0.1 * n);
+        const State& st = integ->getState();
+        scene.system().realize(st, Stage::Velocity);
+        drift = std::max(drift, std::abs(rv.calcMechanicalEnergy(st) - e0));
+        constraint = std::max(constraint, rv.getMaxConstraintError(st));
+        minX = std::min(minX, scene.payloadPosition(st)[0]);
+        maxX = std::max(maxX, scene.payloadPosition(st)[0]);
+    }
+    std::printf("[ quasi-static n_a = 3 ] KE0 %.3f J, max |E - E0| %.3e J (%.3e of KE0), max |F_a - F_b| %.3e N, "
+                "%d steps, swing %.3f m\n",
+                ke0, drift, drift / ke0, constraint, integ->getNumStepsTaken(), maxX - minX);
+    EXPECT_LE(drift, 1e-6 * ke0);
+    EXPECT_LE(constraint, 1e-9 * 1e4);
+    EXPECT_GT(maxX - minX, 2.0);
+}
