@@ -5,13 +5,17 @@
 //
 //   hoist-over-sheave               headless, prints a table
 //   hoist-over-sheave --visualize   also shows it in the Simbody visualizer (if one can start)
+//   hoist-over-sheave --t-end 2     a shorter run
+#include "common/Cli.h"
+
 #include <SimbodyReeving/ReevingSubsystem.h>
 #include <SimbodyReeving/Visualization.h>
 
 #include <Simbody.h>
 
+#include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <exception>
 #include <memory>
 #include <string>
 
@@ -27,8 +31,9 @@ using SimTK::Vec3;
 using SimTK::Visualizer;
 using namespace SimbodyReeving;
 
-int main(int argc, char** argv) {
-    const bool visualize = argc > 1 && std::strcmp(argv[1], "--visualize") == 0;
+namespace {
+
+int simulate(double tEnd, bool visualize) {
     const Vec3 g(0, -9.81, 0);  // gravity [m/s^2], y up
 
     // The system: matter, ordinary forces (gravity), then the ropes, always the last force subsystem.
@@ -69,7 +74,7 @@ int main(int argc, char** argv) {
             viz->setCameraTransform(Transform(Vec3(1.5, -10, 45)));  // looking at the x-y plane
             system.addEventReporter(new Visualizer::Reporter(*viz, 1.0 / 30));
         } else {
-            std::printf("--visualize: %s; running headless.\n", whyNot.c_str());
+            std::fprintf(stderr, "hoist-over-sheave: --visualize: %s; running headless\n", whyNot.c_str());
         }
     }
     system.realizeTopology();
@@ -97,8 +102,9 @@ int main(int argc, char** argv) {
     SimTK::TimeStepper stepper(system, integ);
     stepper.initialize(s);
     std::printf("%6s %10s %10s %12s %12s\n", "t [s]", "x [m]", "y [m]", "tension [N]", "E - E0 [J]");
-    for (int k = 0; k <= 10; ++k) {
-        if (k > 0) stepper.stepTo(0.5 * k);
+    const int reports = static_cast<int>(std::ceil(tEnd / 0.5 - 1e-9));  // every 0.5 s, and at tEnd
+    for (int k = 0; k <= reports; ++k) {
+        if (k > 0) stepper.stepTo(std::min(0.5 * k, tEnd));
         const State& st = integ.getState();
         system.realize(st, Stage::Velocity);
         const Vec3 p = payload.getBodyOriginLocation(st);
@@ -108,4 +114,28 @@ int main(int argc, char** argv) {
     std::printf("%d integrator steps\n", integ.getNumStepsTaken());
     if (viz) stopVisualizer(*viz);  // before the system is destroyed
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    double tEnd = 5.0;
+    bool visualize = false;
+    CLI::App app(
+        "A 1000 kg payload hangs from a wire rope that runs from a Ground anchor over a deviation sheave\n"
+        "and 20 m down (a ReevingSubsystem in an ordinary Simbody MultibodySystem). From the static\n"
+        "equilibrium, a 1 m/s sideways push; prints the payload position, the rope tension at the payload\n"
+        "and the energy drift every 0.5 s.\n",
+        "hoist-over-sheave");
+    demo_common::applyConventions(app);
+    app.footer("Prints a table to stdout.\nExit status: 0 done; 2 bad command line; 1 the simulation failed.");
+    app.add_option("--t-end", tEnd, "end time [s] (default 5)")->type_name("T")->check(demo_common::positiveNumber());
+    app.add_flag("--visualize", visualize, "show the run in Simbody's Visualizer (runs headless without a display)");
+    if (const int status = demo_common::parseOrExitStatus(app, argc, argv); status >= 0) return status;
+    try {
+        return simulate(tEnd, visualize);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "hoist-over-sheave: simulation failed: %s\n", e.what());
+        return 1;
+    }
 }
