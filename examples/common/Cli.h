@@ -30,7 +30,8 @@ struct UsageError : std::runtime_error {
 void applyConventions(CLI::App& app);
 
 /// Parses argv into the variables bound to `app`.
-/// @returns true if -h or --help was given (nothing else is checked then, except the values given before it).
+/// @returns true if -h or --help was given: unknown arguments are not reported then, but a value
+///          that a validator rejects still is (CLI11 checks values before it looks at --help).
 /// @throws UsageError for an unknown option, a missing value or a value a validator rejects.
 bool parse(CLI::App& app, int argc, char** argv);
 
