@@ -1,10 +1,15 @@
-// reeving-quickstart: the README's "Using it from your project" code as a complete program. The
-// paper's Table 1 pendulum built from Simbody bodies and one rope over one deviation sheave: static
-// equilibrium, a 1 m/s push, 20 s with RK-Merson; prints the payload's position, the rope's axial
-// force at the payload and the energy drift every second. Runs in about a second.
+// reeving-quickstart: the first program to read and run. The paper's Table 1 pendulum built from
+// Simbody bodies and one SimbodyReeving rope over one deviation sheave: static equilibrium, a 1 m/s
+// push, RK-Merson; prints the payload's position, the rope's axial force at the payload and the
+// energy drift every second. About a second of wall for the default 20 s.
 //
-// The lines between the "README" markers are shown verbatim in README.md; a test
-// (readme_code_blocks) checks that every C++ block of the README appears in a compiled source.
+//   reeving-quickstart               headless, prints a table
+//   reeving-quickstart --visualize   also shows it in Simbody's Visualizer (if one can start)
+//   reeving-quickstart --t-end 5     a shorter run
+//
+// The lines between the "README" markers are README.md's "Using it from your project" code; the
+// readme_code_blocks test checks that the README shows them verbatim.
+#include "common/Cli.h"
 
 #include <SimbodyReeving/SimbodyReeving.h>
 
@@ -12,21 +17,31 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
+#include <memory>
+#include <string>
 
 namespace {
 
-constexpr const char* kUsage =
-    "Usage: reeving-quickstart [--help]\n"
-    "\n"
-    "The paper's Table 1 pendulum (1000 kg payload on a 20 m rope over a deviation sheave 3 m from\n"
-    "the anchor) built from Simbody bodies and one SimbodyReeving rope: static equilibrium, a 1 m/s\n"
-    "horizontal push, 20 s with RK-Merson at accuracy 1e-6. Prints every second: time [s], payload\n"
-    "position x, y [m], axial force at the payload end [N], (E - E0) / KE0. Exit 0 on success,\n"
-    "1 if the simulation fails, 2 for an unknown option.\n";
+// Optional Visualizer (before realizeTopology); the rope, sheave and payload are drawn by the
+// ReevingSubsystem's decorations and the payload's own.
+std::unique_ptr<SimTK::Visualizer> startVisualizer(SimTK::MultibodySystem& system) {
+    std::string whyNot;
+    auto viz = SimbodyReeving::tryStartVisualizer(system, whyNot);
+    if (!viz) {
+        std::fprintf(stderr, "reeving-quickstart: --visualize: %s; running headless\n", whyNot.c_str());
+        return nullptr;
+    }
+    viz->setShowSimTime(true);
+    viz->setMode(SimTK::Visualizer::RealTime);
+    viz->setBackgroundType(SimTK::Visualizer::SolidColor);               // no ground plane at y = 0
+    viz->setCameraTransform(SimTK::Transform(SimTK::Vec3(1.5, -10, 45)));  // looking at the x-y plane
+    system.addEventReporter(new SimTK::Visualizer::Reporter(*viz, 1.0 / 30));
+    return viz;
+}
 
-int run() {
+int run(double tEnd, bool visualize) {
+    std::unique_ptr<SimTK::Visualizer> viz;
     // README: quickstart begin
     using namespace SimTK;
     MultibodySystem system;
@@ -50,48 +65,67 @@ int run() {
     rope.spanDefaults.velocityModel = SimbodyReeving::VelocityModel::Complete;
     rope.planeNormal = Vec3(0, 0, 1);           // a planar rope (optional)
     reeving.addRope(rope);
+    // README: quickstart visualizer
+    if (visualize) viz = startVisualizer(system);
+    // README: quickstart continue
     system.realizeTopology();
 
     State state = system.getDefaultState();
     payload.setQToFitTranslation(state, Vec3(3, -20.3, 0));  // near where it hangs: Newton starts here
     reeving.findStaticEquilibrium(state);                    // bodies and rope together
+    system.realize(state, Stage::Position);
+    const auto span = reeving.getSpanMaterialRange(state, 0, 1);   // rope 0, span 1 (the vertical one)
+    std::printf("equilibrium: payload at y = %.4f m, axial force at the payload %.1f N (payload weight %.1f N)\n",
+                payload.getBodyOriginLocation(state)[1], reeving.getAxialForce(state, 0, 1, span.second), 1000 * 9.81);
+
     payload.setUToFitLinearVelocity(state, Vec3(1, 0, 0));   // a 1 m/s push
     system.realize(state, Stage::Velocity);
-    const double E0 = reeving.calcMechanicalEnergy(state);
+    const double E0 = reeving.calcMechanicalEnergy(state);   // bodies + rope, kinetic + potential [J]
     const double KE0 = system.calcKineticEnergy(state) + reeving.calcRopeKineticEnergy(state);
 
     RungeKuttaMersonIntegrator integ(system);               // or any Simbody integrator
     integ.setAccuracy(1e-6);
     SimbodyReeving::InterpolatingTimeStepper stepper(system, integ);  // reports do not end steps
     stepper.initialize(state);
-    for (int k = 1; k <= 20; ++k) {
+    std::printf("%6s %10s %10s %14s %12s\n", "t [s]", "x [m]", "y [m]", "P payload [N]", "(E-E0)/KE0");
+    for (int k = 1; k <= static_cast<int>(std::round(tEnd)); ++k) {  // a report every second
         stepper.stepTo(1.0 * k);
         const State& s = stepper.getState();                 // the report, realized to Velocity
         const Vec3 x = payload.getBodyOriginLocation(s);
-        const auto span = reeving.getSpanMaterialRange(s, 0, 1);   // rope 0, span 1 (vertical)
-        const double P = reeving.getAxialForce(s, 0, 1, span.second);  // at the payload end [N]
-        std::printf("%4.1f %9.5f %9.5f %9.2f %10.3e\n", s.getTime(), x[0], x[1], P,
+        const auto range = reeving.getSpanMaterialRange(s, 0, 1);
+        const double P = reeving.getAxialForce(s, 0, 1, range.second);  // axial force EA eps [N]
+        std::printf("%6.2f %10.5f %10.5f %14.2f %12.3e\n", s.getTime(), x[0], x[1], P,
                     (reeving.calcMechanicalEnergy(s) - E0) / KE0);
     }
     // README: quickstart end
+    std::printf("%d integrator steps\n", integ.getNumStepsTaken());
+    if (viz) SimbodyReeving::stopVisualizer(*viz);  // before the system is destroyed
     return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-            std::fputs(kUsage, stdout);
-            return 0;
-        }
-        std::fprintf(stderr, "reeving-quickstart: unknown option '%s' (see --help)\n", argv[i]);
-        return 2;
-    }
+    double tEnd = 20.0;
+    bool visualize = false;
+    CLI::App app(
+        "The paper's Table 1 pendulum built from Simbody bodies and one SimbodyReeving rope: a 1000 kg\n"
+        "payload on a rope from a Ground anchor over a deviation sheave 3 m away and 20 m down\n"
+        "(n_a = 3 quasi-static axial modes, n_t = 1). From the static equilibrium, a 1 m/s sideways\n"
+        "push, RK-Merson at accuracy 1e-6; prints every second the payload position, the rope's axial\n"
+        "force at the payload and the energy drift. The code of README.md's \"Using it from your project\".\n",
+        "reeving-quickstart");
+    demo_common::applyConventions(app);
+    app.footer("Prints a table to stdout.\nExit status: 0 done; 2 bad command line; 1 the simulation failed.");
+    app.add_option("--t-end", tEnd, "end time [s], whole seconds (default 20)")
+        ->type_name("T")
+        ->check(demo_common::positiveNumber());
+    app.add_flag("--visualize", visualize, "show the run in Simbody's Visualizer (runs headless without a display)");
+    if (const int status = demo_common::parseOrExitStatus(app, argc, argv); status >= 0) return status;
     try {
-        return run();
+        return run(tEnd, visualize);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "reeving-quickstart: %s\n", e.what());
+        std::fprintf(stderr, "reeving-quickstart: simulation failed: %s\n", e.what());
         return 1;
     }
 }

@@ -59,7 +59,7 @@ Series simulate(int na, AxialDynamics axial, double accuracy, double tEnd, doubl
         out.t.push_back(st.getTime());
         out.x.push_back(p[0]);
         out.y.push_back(p[1]);
-        out.P.push_back(scene.tensionAtPayload(st));
+        out.P.push_back(scene.axialForceAtPayload(st));
         out.F.push_back(scene.reeving().getNodeForce(st, 0, 2)[1]);
     }
     out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

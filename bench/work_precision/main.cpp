@@ -96,7 +96,7 @@ int reportCount(const Options& o) { return static_cast<int>(std::floor(o.tEnd / 
 Sample observe(const SimbodyReeving::PendulumScene& scene, const SimTK::State& s) {
     scene.system().realize(s, SimTK::Stage::Dynamics);  // QuasiStatic: force with the mode-acceleration correction
     const SimTK::Vec3 p = scene.payloadPosition(s);
-    return {s.getTime(), p[0], p[1], p[2], scene.tensionAtPayload(s)};
+    return {s.getTime(), p[0], p[1], p[2], scene.axialForceAtPayload(s)};
 }
 
 /// One timed integration. `ref` (may be null) gives the errors; `cap` <= 0: no cap; `progress`

@@ -1,5 +1,8 @@
 #include "DemoOutput.h"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 #include <system_error>
@@ -44,5 +47,15 @@ void OutputFile::commit() {
     fs::rename(partial_, path_);
     committed_ = true;
 }
+
+Json jsonNumber(double v) {
+    if (!std::isfinite(v)) return nullptr;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.12g", v);
+    // nlohmann::json prints a double in its shortest round-trip form: the 12 digits, no more.
+    return std::strtod(text, nullptr);
+}
+
+void writeJson(std::ostream& out, const Json& json) { out << json.dump(2) << '\n'; }
 
 }  // namespace demo_common

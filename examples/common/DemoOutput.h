@@ -3,8 +3,11 @@
 // folder is checked before anything is simulated, and every file is written through a .partial
 // file renamed into place only when complete.
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <string>
 
 namespace demo_common {
@@ -34,5 +37,16 @@ private:
     std::ofstream out_;
     bool committed_ = false;
 };
+
+/// summary.json's objects keep their keys in the order written.
+using Json = nlohmann::ordered_json;
+
+/// A real number for summary.json, rounded to 12 significant digits (what `%.12g` prints: the
+/// digits beyond are integration noise and make files differ from run to run for nothing); NaN
+/// and infinities become null.
+Json jsonNumber(double v);
+
+/// Writes `json` indented by two spaces, with a final newline.
+void writeJson(std::ostream& out, const Json& json);
 
 }  // namespace demo_common

@@ -1,17 +1,17 @@
 #pragma once
-// Command line of the reeving-crane demo: options, defaults and validation.
+// Command line of the reeving-crane demo: options, defaults and validation (on CLI11, see
+// common/Cli.h for the shared conventions).
+
+#include "common/Cli.h"
 
 #include <SimbodyReeving/scenes/CraneScene.h>
 
-#include <stdexcept>
 #include <string>
 
 namespace crane_demo {
 
-/// A bad command line: what() is the one-line message naming the option and value.
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+/// A bad command line: what() is the one-line message naming the option and quoting the value.
+using UsageError = demo_common::UsageError;
 
 struct Options {
     int axialModes = 1;
@@ -26,12 +26,13 @@ struct Options {
     double reportInterval = 0.02;  // [s]
     int snapshots = 6;             // rope-geometry snapshots, evenly spaced over [0, t_end]
     std::string outDir = "out/crane";
-    bool plots = true, quiet = false, help = false;
+    bool plots = true, quiet = false, visualize = false, help = false;
     SimbodyReeving::CraneParameters parameters;
 };
 
-/// Parses argv. @throws UsageError for an unknown option, a missing or malformed value, an unknown
-/// integrator or an out-of-range value.
+/// Parses argv; sets Options::help for -h or --help. @throws UsageError for an unknown option, a
+/// missing or malformed value, an unknown integrator, an out-of-range value, a --set that makes
+/// the parameters invalid (CraneParameters::validate) or a --report-interval above --t-end.
 Options parseCommandLine(int argc, char** argv);
 
 /// "dynamic" or "quasi-static".

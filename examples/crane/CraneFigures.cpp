@@ -141,7 +141,7 @@ void writeSnapshots(std::ostream& out, const std::vector<Snapshot>& snapshots) {
 }
 
 bool makePlots(const fs::path& dir, const CraneScene& scene, const std::vector<Snapshot>& snapshots,
-               double staticFallTension) {
+               double staticReferenceAxialForce) {
     if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
         std::cerr << "reeving-crane: gnuplot not found, figures skipped (apt-get install gnuplot-nox)\n";
         return false;
@@ -164,13 +164,13 @@ bool makePlots(const fs::path& dir, const CraneScene& scene, const std::vector<S
        << "set ylabel 'angle [deg]'\nplot 'timeseries.csv' every ::1 using 1:($5*180/pi) with lines lw 2 title "
           "'falls (sway)', '' every ::1 using 1:($6*180/pi) with lines lw 2 title 'payload (sling)'\n"
        << "unset multiplot\n";
-    // Fall tensions.
-    gp << "set output 'fig_fall_tensions.png'\nset title 'Axial force at the top of every fall'\n"
+    // Fall axial forces.
+    gp << "set output 'fig_fall_axial_forces.png'\nset title 'Axial force at the top of every fall'\n"
        << "set ylabel 'axial force [kN]'\nplot ";
     for (int k = 0; k < n; ++k)
         gp << (k ? ", " : "") << "'timeseries.csv' every ::1 using 1:($" << fall1 + k
            << "/1000) with lines lw 1.5 title 'fall " << k + 1 << "'";
-    gp << ", " << staticFallTension / 1000 << " with lines dt 2 lw 2 lc 'black' title '(M + m_{hook}) g / n'\n"
+    gp << ", " << staticReferenceAxialForce / 1000 << " with lines dt 2 lw 2 lc 'black' title '(M + m_{hook}) g / n'\n"
        << "unset title\n";
     // Energy balance.
     gp << "set output 'fig_energy.png'\nset multiplot layout 3,1 title 'Drives and energy balance'\n"

@@ -40,8 +40,9 @@ std::string phaseAt(const SimbodyReeving::CraneCycle& cycle, double t);
 void writeSnapshots(std::ostream& out, const std::vector<Snapshot>& snapshots);
 
 /// Writes DIR/plots.gp (reads timeseries.csv and snapshots.dat in DIR) and runs gnuplot in DIR.
+/// staticReferenceAxialForce [N]: the dashed reference line of fig_fall_axial_forces.png, (M + m_hook) g / n.
 /// Returns false (with a line on stderr) if gnuplot is missing or fails.
 bool makePlots(const std::filesystem::path& dir, const SimbodyReeving::CraneScene& scene,
-               const std::vector<Snapshot>& snapshots, double staticFallTension);
+               const std::vector<Snapshot>& snapshots, double staticReferenceAxialForce);
 
 }  // namespace crane_demo

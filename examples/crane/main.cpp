@@ -9,6 +9,7 @@
 #include <SimbodyReeving/scenes/CraneScene.h>
 #include <SimbodyReeving/simbody/Integrators.h>
 #include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+#include <SimbodyReeving/simbody/Visualization.h>
 
 #include <algorithm>
 #include <chrono>
@@ -72,12 +73,49 @@ Row observe(const CraneScene& scene, const State& s, double energy0) {
     return r;
 }
 
-RunResult run(const Options& o, const CraneScene& scene) {
+/// --visualize: Simbody's Visualizer, shown at every report; stopped (frames flushed, drawing
+/// thread idle) before the scene's system is destroyed, also when the run throws.
+struct RunVisualizer {
+    std::unique_ptr<SimTK::Visualizer> viz;
+    RunVisualizer(const Options& o, CraneScene& scene, const State& s0) {
+        if (!o.visualize) return;
+        std::string whyNot;
+        viz = tryStartVisualizer(scene.system(), whyNot);
+        if (!viz) {
+            std::cerr << "reeving-crane: --visualize: " << whyNot << "; running without the Visualizer\n";
+            return;
+        }
+        const auto& p = scene.parameters();
+        viz->setMode(SimTK::Visualizer::RealTime);
+        viz->setShowSimTime(true);
+        viz->setBackgroundType(SimTK::Visualizer::SolidColor);  // no ground plane drawn through the machine
+        // Looking at the x-y plane from +z, centred on the trolley's travel, the rail height in view.
+        viz->setCameraTransform(SimTK::Transform(
+            SimTK::Vec3(p.trolleyX0 + 0.5 * o.traverse, 0.5 * p.railHeight, 1.6 * p.railHeight + std::abs(o.traverse))));
+        viz->report(s0);
+    }
+    RunVisualizer(const RunVisualizer&) = delete;
+    RunVisualizer& operator=(const RunVisualizer&) = delete;
+    ~RunVisualizer() {
+        if (!viz) return;
+        try {
+            stopVisualizer(*viz);
+        } catch (const std::exception& e) {
+            std::cerr << "reeving-crane: --visualize: " << e.what() << "\n";
+        }
+    }
+    void report(const State& s) const {
+        if (viz) viz->report(s);
+    }
+};
+
+RunResult run(const Options& o, CraneScene& scene) {
     RunResult r;
     State s0 = scene.makeInitialState();
     scene.system().realize(s0, Stage::Acceleration);
     for (int k = 0; k < scene.falls(); ++k) r.staticFallForce.push_back(scene.fallTopForce(s0, k));
     r.energy0 = scene.reeving().calcMechanicalEnergy(s0);
+    const RunVisualizer visualizer(o, scene, s0);
 
     auto integ = makeIntegrator(o.integrator, scene.system());
     integ->setAccuracy(o.accuracy);
@@ -112,6 +150,7 @@ RunResult run(const Options& o, const CraneScene& scene) {
         }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st, r.energy0));
+        visualizer.report(st);
         if (!scene.reeving().getLimitReached().empty() || integ->isSimulationOver()) {
             // A rope limit (two-blocking, empty drum) requested termination: the run ends here.
             r.limit = scene.reeving().getLimitReached();
@@ -134,32 +173,6 @@ RunResult run(const Options& o, const CraneScene& scene) {
     r.steps = integ->getNumStepsTaken();
     r.rhsEvaluations = ts.getNumRealizations();
     return r;
-}
-
-std::string jsonNumber(double v) {
-    if (!std::isfinite(v)) return "null";
-    std::ostringstream o;
-    o << std::setprecision(12) << v;
-    return o.str();
-}
-
-std::string jsonString(const std::string& s) {
-    std::string r = "\"";
-    for (const char c : s) {
-        if (c == '"' || c == '\\') r += '\\';
-        if (c == '\n') {
-            r += "\\n";
-            continue;
-        }
-        r += c;
-    }
-    return r + "\"";
-}
-
-std::string jsonArray(const std::vector<double>& v) {
-    std::string r = "[";
-    for (size_t i = 0; i < v.size(); ++i) r += (i ? ", " : "") + jsonNumber(v[i]);
-    return r + "]";
 }
 
 struct Figures {
@@ -204,59 +217,78 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     const Row& last = r.rows.back();
     std::vector<double> snapshotTimes;
     for (const Snapshot& s : r.snapshots) snapshotTimes.push_back(s.t);
-    std::ofstream& js = jsFile.stream();
-    js << "{\n"
-       << "  \"program\": \"reeving-crane\",\n"
-       << "  \"falls\": " << n << ",\n"
-       << "  \"axial_modes\": " << o.axialModes << ",\n"
-       << "  \"transverse_modes\": " << o.transverseModes << ",\n"
-       << "  \"axial_dynamics\": \"" << axialDynamicsName(o.axialDynamics) << "\",\n"
-       << "  \"axial_law\": \"" << (o.parameters.tensionOnly ? "tension-only" : "linear") << "\",\n"
-       << "  \"integrator\": \"" << o.integrator << "\",\n"
-       << "  \"accuracy\": " << jsonNumber(o.accuracy) << ",\n"
-       << "  \"fixed_step\": " << jsonNumber(o.step) << ",\n"
-       << "  \"report_interval\": " << jsonNumber(o.reportInterval) << ",\n"
-       << "  \"lift_m\": " << jsonNumber(o.lift) << ",\n"
-       << "  \"traverse_m\": " << jsonNumber(o.traverse) << ",\n"
-       << "  \"t_end\": " << jsonNumber(o.tEnd) << ",\n"
-       << "  \"t_reached\": " << jsonNumber(last.t) << ",\n"
-       << "  \"termination\": \"" << (r.limit.empty() ? "completed" : "limit_reached") << "\",\n"
-       << "  \"limit\": " << jsonString(r.limit) << ",\n"
-       << "  \"static_fall_tension_N\": " << jsonArray(r.staticFallForce) << ",\n"
-       << "  \"static_reference_tension_N\": " << jsonNumber((p.payloadMass + p.hookMass) * p.g / n) << ",\n"
-       << "  \"max_fall_tension_N\": " << jsonArray(f.maxFall) << ",\n"
-       << "  \"max_abs_sway_rad\": " << jsonNumber(f.maxSway) << ",\n"
-       << "  \"max_abs_payload_angle_rad\": " << jsonNumber(f.maxPayloadAngle) << ",\n"
-       << "  \"initial_hook_height_m\": " << jsonNumber(r.rows.front().hookY) << ",\n"
-       << "  \"final_hook_height_m\": " << jsonNumber(last.hookY) << ",\n"
-       << "  \"final_rope_on_drum_m\": " << jsonNumber(last.ropeOnDrum) << ",\n"
-       << "  \"max_abs_motor_torque_Nm\": " << jsonNumber(f.maxTorque) << ",\n"
-       << "  \"max_abs_motor_power_W\": " << jsonNumber(f.maxPower) << ",\n"
-       << "  \"max_abs_trolley_force_N\": " << jsonNumber(f.maxTrolleyForce) << ",\n"
-       << "  \"final_motion_work_J\": " << jsonNumber(last.work) << ",\n"
-       << "  \"max_abs_motion_work_J\": " << jsonNumber(f.maxWork) << ",\n"
-       << "  \"max_abs_energy_residual_J\": " << jsonNumber(f.maxResidual) << ",\n"
-       << "  \"energy_residual_relative\": " << jsonNumber(f.maxWork > 0 ? f.maxResidual / f.maxWork : 0.0) << ",\n"
-       << "  \"steps\": " << r.steps << ",\n"
-       << "  \"rhs_evaluations\": " << r.rhsEvaluations << ",\n"
-       << "  \"wall_seconds\": " << jsonNumber(r.wallSeconds) << ",\n"
-       << "  \"real_time_factor\": " << jsonNumber(r.wallSeconds > 0 ? last.t / r.wallSeconds : 0.0) << ",\n"
-       << "  \"snapshot_times\": " << jsonArray(snapshotTimes) << ",\n"
-       << "  \"parameters\": {\"g\": " << jsonNumber(p.g) << ", \"railHeight\": " << jsonNumber(p.railHeight)
-       << ", \"trolleyX0\": " << jsonNumber(p.trolleyX0) << ", \"trolleyMass\": " << jsonNumber(p.trolleyMass)
-       << ", \"sheavePitch\": " << jsonNumber(p.sheavePitch) << ", \"sheaveRadius\": " << jsonNumber(p.sheaveRadius)
-       << ", \"drumRadius\": " << jsonNumber(p.drumRadius) << ", \"drumHeight\": " << jsonNumber(p.drumHeight)
-       << ", \"drumMass\": " << jsonNumber(p.drumMass) << ", \"drumInertia\": " << jsonNumber(p.drumInertia)
-       << ", \"ropeOnDrum\": " << jsonNumber(p.ropeOnDrum) << ", \"hookMass\": " << jsonNumber(p.hookMass)
-       << ", \"hookInertia\": " << jsonNumber(p.hookInertia) << ", \"hookComBelow\": " << jsonNumber(p.hookComBelow)
-       << ", \"hookPinBelow\": " << jsonNumber(p.hookPinBelow)
-       << ", \"initialHookDepth\": " << jsonNumber(p.initialHookDepth)
-       << ", \"payloadMass\": " << jsonNumber(p.payloadMass) << ", \"payloadInertia\": " << jsonNumber(p.payloadInertia)
-       << ", \"slingLength\": " << jsonNumber(p.slingLength) << ", \"payloadWidth\": " << jsonNumber(p.payloadWidth)
-       << ", \"payloadHeight\": " << jsonNumber(p.payloadHeight) << ", \"rhoA\": " << jsonNumber(p.rhoA)
-       << ", \"EA\": " << jsonNumber(p.EA) << ", \"EI\": " << jsonNumber(p.EI)
-       << ", \"minimumSpanLength\": " << jsonNumber(p.minimumSpanLength) << "}\n"
-       << "}\n";
+    using demo_common::jsonNumber;
+    auto jsonArray = [](const std::vector<double>& v) {
+        demo_common::Json a = demo_common::Json::array();
+        for (double x : v) a.push_back(jsonNumber(x));
+        return a;
+    };
+    // The fall forces are axial forces P = EA eps at the top of each fall (CraneScene::fallTopForce),
+    // not tensions T = P |dr/ds|; the reference is the static share of the hook load, (M + m_hook) g / n.
+    demo_common::Json js;
+    js["program"] = "reeving-crane";
+    js["falls"] = n;
+    js["axial_modes"] = o.axialModes;
+    js["transverse_modes"] = o.transverseModes;
+    js["axial_dynamics"] = axialDynamicsName(o.axialDynamics);
+    js["axial_law"] = o.parameters.tensionOnly ? "tension-only" : "linear";
+    js["integrator"] = o.integrator;
+    js["accuracy"] = jsonNumber(o.accuracy);
+    js["fixed_step"] = jsonNumber(o.step);
+    js["report_interval"] = jsonNumber(o.reportInterval);
+    js["lift_m"] = jsonNumber(o.lift);
+    js["traverse_m"] = jsonNumber(o.traverse);
+    js["t_end"] = jsonNumber(o.tEnd);
+    js["t_reached"] = jsonNumber(last.t);
+    js["termination"] = r.limit.empty() ? "completed" : "limit_reached";
+    js["limit"] = r.limit;
+    js["static_fall_axial_force_N"] = jsonArray(r.staticFallForce);
+    js["static_reference_axial_force_N"] = jsonNumber((p.payloadMass + p.hookMass) * p.g / n);
+    js["max_fall_axial_force_N"] = jsonArray(f.maxFall);
+    js["max_abs_sway_rad"] = jsonNumber(f.maxSway);
+    js["max_abs_payload_angle_rad"] = jsonNumber(f.maxPayloadAngle);
+    js["initial_hook_height_m"] = jsonNumber(r.rows.front().hookY);
+    js["final_hook_height_m"] = jsonNumber(last.hookY);
+    js["final_rope_on_drum_m"] = jsonNumber(last.ropeOnDrum);
+    js["max_abs_motor_torque_Nm"] = jsonNumber(f.maxTorque);
+    js["max_abs_motor_power_W"] = jsonNumber(f.maxPower);
+    js["max_abs_trolley_force_N"] = jsonNumber(f.maxTrolleyForce);
+    js["final_motion_work_J"] = jsonNumber(last.work);
+    js["max_abs_motion_work_J"] = jsonNumber(f.maxWork);
+    js["max_abs_energy_residual_J"] = jsonNumber(f.maxResidual);
+    js["energy_residual_relative"] = jsonNumber(f.maxWork > 0 ? f.maxResidual / f.maxWork : 0.0);
+    js["steps"] = r.steps;
+    js["rhs_evaluations"] = r.rhsEvaluations;
+    js["wall_seconds"] = jsonNumber(r.wallSeconds);
+    js["real_time_factor"] = jsonNumber(r.wallSeconds > 0 ? last.t / r.wallSeconds : 0.0);
+    js["snapshot_times"] = jsonArray(snapshotTimes);
+    demo_common::Json& params = js["parameters"];
+    params["g"] = jsonNumber(p.g);
+    params["railHeight"] = jsonNumber(p.railHeight);
+    params["trolleyX0"] = jsonNumber(p.trolleyX0);
+    params["trolleyMass"] = jsonNumber(p.trolleyMass);
+    params["sheavePitch"] = jsonNumber(p.sheavePitch);
+    params["sheaveRadius"] = jsonNumber(p.sheaveRadius);
+    params["drumRadius"] = jsonNumber(p.drumRadius);
+    params["drumHeight"] = jsonNumber(p.drumHeight);
+    params["drumMass"] = jsonNumber(p.drumMass);
+    params["drumInertia"] = jsonNumber(p.drumInertia);
+    params["ropeOnDrum"] = jsonNumber(p.ropeOnDrum);
+    params["hookMass"] = jsonNumber(p.hookMass);
+    params["hookInertia"] = jsonNumber(p.hookInertia);
+    params["hookComBelow"] = jsonNumber(p.hookComBelow);
+    params["hookPinBelow"] = jsonNumber(p.hookPinBelow);
+    params["initialHookDepth"] = jsonNumber(p.initialHookDepth);
+    params["payloadMass"] = jsonNumber(p.payloadMass);
+    params["payloadInertia"] = jsonNumber(p.payloadInertia);
+    params["slingLength"] = jsonNumber(p.slingLength);
+    params["payloadWidth"] = jsonNumber(p.payloadWidth);
+    params["payloadHeight"] = jsonNumber(p.payloadHeight);
+    params["rhoA"] = jsonNumber(p.rhoA);
+    params["EA"] = jsonNumber(p.EA);
+    params["EI"] = jsonNumber(p.EI);
+    params["minimumSpanLength"] = jsonNumber(p.minimumSpanLength);
+    demo_common::writeJson(jsFile.stream(), js);
     tsFile.commit();
     snFile.commit();
     jsFile.commit();  // last: a summary.json means the outputs are complete
@@ -269,15 +301,15 @@ int main(int argc, char** argv) {
     try {
         o = parseCommandLine(argc, argv);
     } catch (const UsageError& e) {
-        std::cerr << "reeving-crane: " << e.what() << "\nTry 'reeving-crane --help'.\n";
-        return 2;
+        std::cerr << demo_common::usageErrorText("reeving-crane", e.what());
+        return demo_common::kUsageExitStatus;
     }
     if (o.help) {
         std::cout << usage();
         return 0;
     }
     // The output folder must exist or be creatable, and be writable, before anything is simulated.
-    if (!demo_common::prepareOutputFolder("reeving-crane", o.outDir)) return 2;
+    if (!demo_common::prepareOutputFolder("reeving-crane", o.outDir)) return demo_common::kUsageExitStatus;
     demo_common::installInterruptHandlers();
     const auto start = std::chrono::steady_clock::now();
 

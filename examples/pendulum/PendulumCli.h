@@ -1,18 +1,18 @@
 #pragma once
-// Command line of the reeving-pendulum demo: options, defaults and validation.
+// Command line of the reeving-pendulum demo: options, defaults and validation (on CLI11, see
+// common/Cli.h for the shared conventions).
+
+#include "common/Cli.h"
 
 #include <SimbodyReeving/scenes/PendulumScene.h>
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace pendulum_demo {
 
-/// A bad command line: what() is the one-line message naming the option and value.
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+/// A bad command line: what() is the one-line message naming the option and quoting the value.
+using UsageError = demo_common::UsageError;
 
 struct Options {
     std::vector<int> axialModes{0, 1, 2, 3};
@@ -29,8 +29,9 @@ struct Options {
     SimbodyReeving::PendulumParameters parameters;
 };
 
-/// Parses argv. @throws UsageError for an unknown option, a missing or malformed value, an unknown
-/// integrator or an out-of-range value.
+/// Parses argv; sets Options::help for -h or --help. @throws UsageError for an unknown option, a
+/// missing or malformed value, an unknown integrator, an out-of-range value, a --set that makes
+/// the parameters invalid (PendulumParameters::validate) or a --report-interval above --t-end.
 Options parseCommandLine(int argc, char** argv);
 
 /// "dynamic" or "quasi-static".

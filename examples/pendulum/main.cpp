@@ -39,7 +39,9 @@ struct Interrupted : std::runtime_error {
 };
 
 struct Row {
-    double t, x, y, theta, tensionPayload, tensionSheave, sSheave, energy, constraintError;
+    // axialForcePayload, axialForceSheave: the axial force P = EA eps [N] at the two ends of the
+    // vertical span (not the tension T = P |dr/ds|).
+    double t, x, y, theta, axialForcePayload, axialForceSheave, sSheave, energy, constraintError;
 };
 struct StaticRow {
     int span;
@@ -62,8 +64,8 @@ Row observe(const PendulumScene& scene, const State& s) {
             p[0],
             p[1],
             scene.payloadAngle(s),
-            scene.tensionAtPayload(s),
-            scene.tensionAtSheave(s),
+            scene.axialForceAtPayload(s),
+            scene.axialForceAtSheave(s),
             scene.sheaveMaterialCoordinate(s),
             rv.calcMechanicalEnergy(s),
             rv.getConstraintError(s, 0, 1)};
@@ -140,47 +142,42 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     return r;
 }
 
-std::string jsonNumber(double v) {
-    std::ostringstream o;
-    o << std::setprecision(12) << v;
-    return o.str();
-}
-
 void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
     fs::create_directories(dir);
     OutputFile tsFile(dir / "timeseries.csv"), stFile(dir / "static_axial_force.csv"), jsFile(dir / "summary.json");
     std::ofstream& ts = tsFile.stream();
-    ts << "t,x,y,theta,tension_payload,tension_sheave,s_sheave,energy,constraint_error\n" << std::setprecision(12);
+    ts << "t,x,y,theta,axial_force_payload,axial_force_sheave,s_sheave,energy,constraint_error\n"
+       << std::setprecision(12);
     for (const Row& w : r.rows)
-        ts << w.t << ',' << w.x << ',' << w.y << ',' << w.theta << ',' << w.tensionPayload << ',' << w.tensionSheave
-           << ',' << w.sSheave << ',' << w.energy << ',' << w.constraintError << '\n';
+        ts << w.t << ',' << w.x << ',' << w.y << ',' << w.theta << ',' << w.axialForcePayload << ','
+           << w.axialForceSheave << ',' << w.sSheave << ',' << w.energy << ',' << w.constraintError << '\n';
     std::ofstream& st = stFile.stream();
     st << "span,s,axial_force\n" << std::setprecision(12);
     for (const StaticRow& w : r.staticRows) st << w.span << ',' << w.s << ',' << w.axialForce << '\n';
     const auto& p = o.parameters;
-    std::ofstream& js = jsFile.stream();
-    js << "{\n"
-       << "  \"integrator\": \"" << o.integrator << "\",\n"
-       << "  \"accuracy\": " << jsonNumber(o.accuracy) << ",\n"
-       << "  \"fixed_step\": " << jsonNumber(o.step) << ",\n"
-       << "  \"axial_modes\": " << r.axialModes << ",\n"
-       << "  \"transverse_modes\": " << o.transverseModes << ",\n"
-       << "  \"axial_dynamics\": \"" << axialDynamicsName(o.axialDynamics) << "\",\n"
-       << "  \"axial_law\": \"" << (o.parameters.tensionOnly ? "tension-only" : "linear") << "\",\n"
-       << "  \"t_end\": " << jsonNumber(o.tEnd) << ",\n"
-       << "  \"vx0\": " << jsonNumber(o.vx0) << ",\n"
-       << "  \"vy0\": " << jsonNumber(o.vy0) << ",\n"
-       << "  \"steps\": " << r.steps << ",\n"
-       << "  \"rhs_evaluations\": " << r.rhsEvaluations << ",\n"
-       << "  \"wall_seconds\": " << jsonNumber(r.wallSeconds) << ",\n"
-       << "  \"initial_kinetic_energy_J\": " << jsonNumber(r.initialKineticEnergy) << ",\n"
-       << "  \"max_energy_drift_J\": " << jsonNumber(r.maxEnergyDrift) << ",\n"
-       << "  \"max_constraint_error_N\": " << jsonNumber(r.maxConstraintError) << ",\n"
-       << "  \"parameters\": {\"a\": " << jsonNumber(p.a) << ", \"L\": " << jsonNumber(p.L)
-       << ", \"d\": " << jsonNumber(p.d) << ", \"r\": " << jsonNumber(p.r) << ", \"g\": " << jsonNumber(p.g)
-       << ", \"rhoA\": " << jsonNumber(p.rhoA) << ", \"EA\": " << jsonNumber(p.EA) << ", \"EI\": " << jsonNumber(p.EI)
-       << ", \"M\": " << jsonNumber(p.M) << ", \"J\": " << jsonNumber(p.J) << "}\n"
-       << "}\n";
+    using demo_common::jsonNumber;
+    demo_common::Json js;
+    js["integrator"] = o.integrator;
+    js["accuracy"] = jsonNumber(o.accuracy);
+    js["fixed_step"] = jsonNumber(o.step);
+    js["axial_modes"] = r.axialModes;
+    js["transverse_modes"] = o.transverseModes;
+    js["axial_dynamics"] = axialDynamicsName(o.axialDynamics);
+    js["axial_law"] = o.parameters.tensionOnly ? "tension-only" : "linear";
+    js["t_end"] = jsonNumber(o.tEnd);
+    js["vx0"] = jsonNumber(o.vx0);
+    js["vy0"] = jsonNumber(o.vy0);
+    js["steps"] = r.steps;
+    js["rhs_evaluations"] = r.rhsEvaluations;
+    js["wall_seconds"] = jsonNumber(r.wallSeconds);
+    js["initial_kinetic_energy_J"] = jsonNumber(r.initialKineticEnergy);
+    js["max_energy_drift_J"] = jsonNumber(r.maxEnergyDrift);
+    js["max_constraint_error_N"] = jsonNumber(r.maxConstraintError);
+    js["parameters"] = {{"a", jsonNumber(p.a)},   {"L", jsonNumber(p.L)},   {"d", jsonNumber(p.d)},
+                        {"r", jsonNumber(p.r)},   {"g", jsonNumber(p.g)},   {"rhoA", jsonNumber(p.rhoA)},
+                        {"EA", jsonNumber(p.EA)}, {"EI", jsonNumber(p.EI)}, {"M", jsonNumber(p.M)},
+                        {"J", jsonNumber(p.J)}};
+    demo_common::writeJson(jsFile.stream(), js);
     tsFile.commit();
     stFile.commit();
     jsFile.commit();  // last: a summary.json means the case's outputs are complete
@@ -191,11 +188,11 @@ void writeComparison(const fs::path& dir, const std::vector<CaseResult>& cases) 
     OutputFile file(dir / "comparison.csv");
     std::ofstream& c = file.stream();
     c << "t";
-    for (const auto& r : cases) c << ",x_" << r.axialModes << ",tension_payload_" << r.axialModes;
+    for (const auto& r : cases) c << ",x_" << r.axialModes << ",axial_force_payload_" << r.axialModes;
     c << '\n' << std::setprecision(12);
     for (size_t k = 0; k < cases.front().rows.size(); ++k) {
         c << cases.front().rows[k].t;
-        for (const auto& r : cases) c << ',' << r.rows[k].x << ',' << r.rows[k].tensionPayload;
+        for (const auto& r : cases) c << ',' << r.rows[k].x << ',' << r.rows[k].axialForcePayload;
         c << '\n';
     }
     file.commit();
@@ -270,15 +267,15 @@ int main(int argc, char** argv) {
     try {
         o = parseCommandLine(argc, argv);
     } catch (const UsageError& e) {
-        std::cerr << "reeving-pendulum: " << e.what() << "\nTry 'reeving-pendulum --help'.\n";
-        return 2;
+        std::cerr << demo_common::usageErrorText("reeving-pendulum", e.what());
+        return demo_common::kUsageExitStatus;
     }
     if (o.help) {
         std::cout << usage();
         return 0;
     }
     // The output folder must exist or be creatable, and be writable, before anything is simulated.
-    if (!demo_common::prepareOutputFolder("reeving-pendulum", o.outDir)) return 2;
+    if (!demo_common::prepareOutputFolder("reeving-pendulum", o.outDir)) return demo_common::kUsageExitStatus;
     // SIGINT / SIGTERM stop the cases at their next report; nothing is written then.
     demo_common::installInterruptHandlers();
     const bool visualize = o.visualize;

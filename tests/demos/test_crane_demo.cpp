@@ -2,6 +2,7 @@
 // keys, the number of falls, a rope limit ending the run (exit 3, outputs written), bad input and
 // unusable output folders (exit 2, nothing written), SIGINT (exit 130, nothing written).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -76,18 +77,46 @@ std::vector<std::string> expectedColumns(int falls) {
     return c;
 }
 
-void checkSummary(const fs::path& p) {
-    const std::string json = slurp(p);
-    for (const char* key : {"program", "falls", "axial_modes", "transverse_modes", "axial_dynamics", "integrator",
-                            "accuracy", "report_interval", "lift_m", "traverse_m", "t_end", "t_reached", "termination",
-                            "limit", "static_fall_tension_N", "static_reference_tension_N", "max_fall_tension_N",
-                            "max_abs_sway_rad", "max_abs_payload_angle_rad", "final_hook_height_m",
+// No null anywhere (a NaN or infinity is written as null).
+void expectNoNull(const nlohmann::json& j, const std::string& where) {
+    EXPECT_FALSE(j.is_null()) << where;
+    if (j.is_object())
+        for (const auto& [k, v] : j.items()) expectNoNull(v, where + "." + k);
+    if (j.is_array())
+        for (size_t i = 0; i < j.size(); ++i) expectNoNull(j[i], where + "[" + std::to_string(i) + "]");
+}
+
+// summary.json parses and has every key with a value of the right kind; returns it.
+nlohmann::json checkSummary(const fs::path& p) {
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(slurp(p));
+    } catch (const nlohmann::json::exception& e) {
+        ADD_FAILURE() << p << ": " << e.what();
+        return json;
+    }
+    for (const char* key : {"program", "axial_dynamics", "axial_law", "integrator", "termination", "limit"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_string()) << key;
+    for (const char* key : {"falls", "axial_modes", "transverse_modes", "steps", "rhs_evaluations"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_number_integer()) << key;
+    for (const char* key : {"accuracy", "fixed_step", "report_interval", "lift_m", "traverse_m", "t_end",
+                            "t_reached", "static_reference_axial_force_N", "max_abs_sway_rad",
+                            "max_abs_payload_angle_rad", "initial_hook_height_m", "final_hook_height_m",
                             "final_rope_on_drum_m", "max_abs_motor_torque_Nm", "max_abs_motor_power_W",
-                            "final_motion_work_J", "max_abs_energy_residual_J", "energy_residual_relative", "steps",
-                            "rhs_evaluations", "wall_seconds", "real_time_factor", "snapshot_times", "parameters"})
-        EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
-    EXPECT_EQ(json.find("nan"), std::string::npos);
-    EXPECT_EQ(json.find("null"), std::string::npos);
+                            "max_abs_trolley_force_N", "final_motion_work_J", "max_abs_motion_work_J",
+                            "max_abs_energy_residual_J", "energy_residual_relative", "wall_seconds",
+                            "real_time_factor"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_number()) << key;
+    // The fall forces are axial forces P = EA eps (issue 19: not tensions), one per fall.
+    const size_t falls = json.value("falls", 0u);
+    for (const char* key : {"static_fall_axial_force_N", "max_fall_axial_force_N"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_array() && json[key].size() == falls) << key;
+    for (const char* old : {"static_fall_tension_N", "static_reference_tension_N", "max_fall_tension_N"})
+        EXPECT_FALSE(json.contains(old)) << old;
+    EXPECT_TRUE(json.contains("snapshot_times") && json["snapshot_times"].is_array());
+    EXPECT_TRUE(json.contains("parameters") && json["parameters"].is_object() && json["parameters"].size() == 25u);
+    expectNoNull(json, "summary");
+    return json;
 }
 
 // Number of gnuplot data sets (snapshots) in snapshots.dat.
@@ -107,15 +136,16 @@ TEST(CraneDemo, WritesAllOutputs) {
     size_t rows = 0;
     EXPECT_EQ(checkCsv(out / "timeseries.csv", rows), expectedColumns(4));
     EXPECT_EQ(rows, 16u);  // t = 0, 0.1, ..., 1.5
-    checkSummary(out / "summary.json");
-    const std::string json = slurp(out / "summary.json");
-    EXPECT_NE(json.find("\"termination\": \"completed\""), std::string::npos);
-    EXPECT_NE(json.find("\"falls\": 4"), std::string::npos);
+    const nlohmann::json json = checkSummary(out / "summary.json");
+    EXPECT_EQ(json.value("termination", ""), "completed");
+    EXPECT_EQ(json.value("falls", 0), 4);
+    EXPECT_EQ(json.value("program", ""), "reeving-crane");
     EXPECT_EQ(countSnapshots(out / "snapshots.dat"), 6);
     for (const auto& e : fs::directory_iterator(out))
         EXPECT_EQ(e.path().extension(), e.path().extension() == ".partial" ? ".none" : e.path().extension()) << e.path();
     if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
-        for (const char* fig : {"fig_hook_height_sway.png", "fig_fall_tensions.png", "fig_energy.png", "fig_snapshots.png"})
+        for (const char* fig : {"fig_hook_height_sway.png", "fig_fall_axial_forces.png", "fig_energy.png",
+                                "fig_snapshots.png"})
             EXPECT_GT(fs::exists(out / fig) ? fs::file_size(out / fig) : 0u, 1000u) << fig;
     }
 }
@@ -134,8 +164,7 @@ TEST(CraneDemo, FallsAndModeOptions) {
         size_t rows = 0;
         EXPECT_EQ(checkCsv(out / "timeseries.csv", rows), expectedColumns(falls)) << falls;
         EXPECT_EQ(rows, 5u);
-        checkSummary(out / "summary.json");
-        EXPECT_NE(slurp(out / "summary.json").find("\"falls\": " + std::to_string(falls) + ","), std::string::npos);
+        EXPECT_EQ(checkSummary(out / "summary.json").value("falls", 0), falls);
         EXPECT_EQ(countSnapshots(out / "snapshots.dat"), 2);
         EXPECT_FALSE(fs::exists(out / "fig_snapshots.png"));
     }
@@ -151,9 +180,9 @@ TEST(CraneDemo, TwoBlockingEndsTheRunWithExitThree) {
                   log),
               3)
         << slurp(log);
-    const std::string json = slurp(out / "summary.json");
-    EXPECT_NE(json.find("\"termination\": \"limit_reached\""), std::string::npos) << json;
-    EXPECT_EQ(json.find("\"limit\": \"\""), std::string::npos) << json;
+    const nlohmann::json json = checkSummary(out / "summary.json");
+    EXPECT_EQ(json.value("termination", ""), "limit_reached") << json.dump(2);
+    EXPECT_NE(json.value("limit", ""), "") << json.dump(2);
     size_t rows = 0;
     checkCsv(out / "timeseries.csv", rows);
     EXPECT_GT(rows, 20u);
@@ -164,25 +193,28 @@ TEST(CraneDemo, TwoBlockingEndsTheRunWithExitThree) {
 }
 
 TEST(CraneDemo, BadInputExitsTwoAndWritesNothing) {
+    // The message names the option and quotes the value (CLI11's "option: message" form).
     const std::vector<std::pair<std::string, std::string>> cases{
-        {"--bogus", "--bogus"},
-        {"--falls 0", "--falls '0'"},
-        {"--falls 13", "--falls '13'"},
-        {"--falls two", "--falls 'two'"},
-        {"--axial-modes 17", "--axial-modes '17'"},
-        {"--transverse-modes -1", "--transverse-modes '-1'"},
-        {"--axial-dynamics fast", "--axial-dynamics 'fast'"},
-        {"--lift 0", "--lift '0'"},
-        {"--traverse inf", "--traverse 'inf'"},
-        {"--t-end -1", "--t-end '-1'"},
-        {"--integrator rk45", "--integrator 'rk45'"},
-        {"--accuracy 2", "--accuracy '2'"},
-        {"--set EA=-5", "--set 'EA=-5'"},
-        {"--set Q=1", "--set 'Q=1'"},
-        {"--set payloadMass", "--set 'payloadMass'"},
-        {"--snapshots 0", "--snapshots '0'"},
-        {"--report-interval nan", "--report-interval 'nan'"},
-        {"--out", "--out"},
+        {"--bogus", "not expected: --bogus"},
+        {"--falls 0", "--falls: '0' must be in 1..12"},
+        {"--falls 13", "--falls: '13' must be in 1..12"},
+        {"--falls two", "--falls: 'two' is not an integer"},
+        {"--axial-modes 17", "--axial-modes: '17' must be in 0..16"},
+        {"--transverse-modes -1", "--transverse-modes: '-1' must be in 0..16"},
+        {"--axial-dynamics fast", "--axial-dynamics: 'fast' must be one of: quasi-static, dynamic"},
+        {"--axial-law rigid", "--axial-law: 'rigid' must be one of: tension-only, linear"},
+        {"--lift 0", "--lift: '0' must be > 0"},
+        {"--traverse inf", "--traverse: 'inf' is not a finite number"},
+        {"--t-end -1", "--t-end: '-1' must be > 0"},
+        {"--integrator rk45", "--integrator: 'rk45' must be one of: rk-merson,"},
+        {"--accuracy 2", "--accuracy: '2' must be in (0, 1)"},
+        {"--set EA=-5", "--set: 'EA=-5': CraneParameters: EA = -5"},
+        {"--set Q=1", "--set: 'Q=1': unknown key"},
+        {"--set payloadMass", "--set: 'payloadMass' must be KEY=VALUE"},
+        {"--snapshots 0", "--snapshots: '0' must be in 1..12"},
+        {"--report-interval nan", "--report-interval: 'nan' is not a finite number"},
+        {"--report-interval 1 --t-end 0.5", "--report-interval: 1 s must not exceed --t-end (0.5 s)"},
+        {"--out", "--out: 1 required DIR missing"},
     };
     for (const auto& [args, needle] : cases) {
         const fs::path out = scratch("bad");
@@ -190,7 +222,8 @@ TEST(CraneDemo, BadInputExitsTwoAndWritesNothing) {
         EXPECT_EQ(run(args + (args == "--out" ? "" : " --out '" + out.string() + "'"), log), 2) << args;
         const std::string msg = slurp(log);
         EXPECT_NE(msg.find(needle), std::string::npos) << args << " -> " << msg;
-        EXPECT_NE(msg.find("--help"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("Try 'reeving-crane --help'."), std::string::npos) << msg;
+        EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 2) << msg;
         EXPECT_FALSE(fs::exists(out)) << args;
     }
     const fs::path out = scratch("help");

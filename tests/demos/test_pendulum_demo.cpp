@@ -1,6 +1,7 @@
 // The reeving-pendulum executable end to end (issue 4): outputs with their columns and keys, every
 // integrator name, and bad input (exit 2, output folder untouched).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -56,15 +57,28 @@ std::string checkCsv(const fs::path& p, size_t minRows) {
     return header;
 }
 
-void checkSummary(const fs::path& p) {
-    const std::string json = slurp(p);
-    for (const char* key : {"integrator", "accuracy", "axial_modes", "transverse_modes", "axial_dynamics", "steps",
-                            "rhs_evaluations",
-                            "wall_seconds", "initial_kinetic_energy_J", "max_energy_drift_J", "max_constraint_error_N",
-                            "parameters"})
-        EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
-    EXPECT_EQ(json.find("nan"), std::string::npos);
-    EXPECT_EQ(json.find("inf"), std::string::npos);
+// summary.json parses, has every key with a value of the right kind (numbers finite: a NaN would
+// be null) and the Table 1 parameters; returns it.
+nlohmann::json checkSummary(const fs::path& p) {
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(slurp(p));
+    } catch (const nlohmann::json::exception& e) {
+        ADD_FAILURE() << p << ": " << e.what();
+        return json;
+    }
+    for (const char* key : {"integrator", "axial_dynamics", "axial_law"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_string()) << key;
+    for (const char* key : {"axial_modes", "transverse_modes", "steps", "rhs_evaluations"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_number_integer()) << key;
+    for (const char* key : {"accuracy", "fixed_step", "t_end", "vx0", "vy0", "wall_seconds",
+                            "initial_kinetic_energy_J", "max_energy_drift_J", "max_constraint_error_N"})
+        EXPECT_TRUE(json.contains(key) && json[key].is_number()) << key;
+    for (const char* key : {"a", "L", "d", "r", "g", "rhoA", "EA", "EI", "M", "J"})
+        EXPECT_TRUE(json.contains("parameters") && json["parameters"].contains(key) &&
+                    json["parameters"][key].is_number())
+            << "parameters." << key;
+    return json;
 }
 
 }  // namespace
@@ -78,12 +92,19 @@ TEST(PendulumDemo, WritesAllOutputsForSeveralModeCounts) {
     for (int na : {0, 1}) {
         const fs::path dir = out / ("modes-" + std::to_string(na));
         const std::string header = checkCsv(dir / "timeseries.csv", 7);
-        for (const char* col : {"t", "x", "y", "theta", "tension_payload", "tension_sheave", "s_sheave", "energy",
-                                "constraint_error"})
+        for (const char* col : {"t", "x", "y", "theta", "axial_force_payload", "axial_force_sheave", "s_sheave",
+                                "energy", "constraint_error"})
             EXPECT_NE(("," + header + ",").find(std::string(",") + col + ","), std::string::npos) << col;
         EXPECT_EQ(checkCsv(dir / "static_axial_force.csv", 100), "span,s,axial_force");
-        checkSummary(dir / "summary.json");
+        const nlohmann::json summary = checkSummary(dir / "summary.json");
+        EXPECT_EQ(summary.value("axial_modes", -1), na);
+        // 12 significant digits, as %.12g: Table 1's values come back exactly.
+        const nlohmann::json parameters = summary.value("parameters", nlohmann::json::object());
+        EXPECT_EQ(parameters.value("EA", 0.0), 16.5e6);
+        EXPECT_EQ(parameters.value("rhoA", 0.0), 0.6205);
     }
+    const std::string comparison = checkCsv(out / "comparison.csv", 7);
+    EXPECT_EQ(comparison, "t,x_0,axial_force_payload_0,x_1,axial_force_payload_1");
     if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
         for (const char* fig : {"fig2_payload_displacement.png", "fig3_static_axial_force.png",
                                 "fig4_payload_end_axial_force.png", "fig5_axial_force_difference.png"})
@@ -111,8 +132,7 @@ TEST(PendulumDemo, BothAxialDynamics) {
                   0)
             << kind << ": " << slurp(out.string() + ".log");
         checkCsv(out / "timeseries.csv", 11);
-        EXPECT_NE(slurp(out / "summary.json").find(std::string("\"axial_dynamics\": \"") + kind + "\""),
-                  std::string::npos);
+        EXPECT_EQ(checkSummary(out / "summary.json").value("axial_dynamics", ""), kind);
     }
 }
 
@@ -127,7 +147,7 @@ TEST(PendulumDemo, AcceptsEveryIntegrator) {
                   0)
             << name << ": " << slurp(out.string() + ".log");
         checkCsv(out / "timeseries.csv", 6);
-        EXPECT_NE(slurp(out / "summary.json").find(std::string("\"") + name + "\""), std::string::npos);
+        EXPECT_EQ(checkSummary(out / "summary.json").value("integrator", ""), name);
     }
     const fs::path out = scratch("fixed_step");
     EXPECT_EQ(run("--integrator explicit-euler --step 1e-4 --axial-modes 0 --t-end 0.02 --no-plots --quiet --out '" +
@@ -137,22 +157,28 @@ TEST(PendulumDemo, AcceptsEveryIntegrator) {
 }
 
 TEST(PendulumDemo, BadInputExitsTwoAndWritesNothing) {
+    // The message names the option and quotes the value (CLI11's "option: message" form).
     const std::vector<std::pair<std::string, std::string>> cases{
-        {"--bogus", "--bogus"},
-        {"--t-end abc", "--t-end 'abc'"},
-        {"--t-end -1", "--t-end '-1'"},
-        {"--integrator rk45", "--integrator 'rk45'"},
-        {"--axial-modes 0,17", "--axial-modes '0,17'"},
-        {"--axial-modes 1,,2", "--axial-modes"},
-        {"--transverse-modes -1", "--transverse-modes '-1'"},
-        {"--accuracy 0", "--accuracy '0'"},
-        {"--set EA=-5", "--set 'EA=-5'"},
-        {"--set Q=1", "--set 'Q=1'"},
-        {"--set M", "--set 'M'"},
-        {"--step 0", "--step '0'"},
-        {"--report-interval nan", "--report-interval 'nan'"},
+        {"--bogus", "not expected: --bogus"},
+        {"--t-end abc", "--t-end: 'abc' is not a finite number"},
+        {"--t-end -1", "--t-end: '-1' must be > 0"},
+        {"--integrator rk45", "--integrator: 'rk45' must be one of: rk-merson,"},
+        {"--axial-modes 0,17", "--axial-modes: '0,17' must be a comma list of integers in 0..16"},
+        {"--axial-modes 1,,2", "--axial-modes: '1,,2'"},
+        {"--axial-modes 1,", "--axial-modes: '1,'"},
+        {"--transverse-modes -1", "--transverse-modes: '-1' must be in 0..16"},
+        {"--transverse-modes 1.5", "--transverse-modes: '1.5' is not an integer"},
+        {"--accuracy 0", "--accuracy: '0' must be in (0, 1)"},
+        {"--set EA=-5", "--set: 'EA=-5': PendulumParameters: EA = -5"},
+        {"--set Q=1", "--set: 'Q=1': unknown key"},
+        {"--set M", "--set: 'M' must be KEY=VALUE"},
+        {"--set M=1e400", "--set: 'M=1e400': the value is not a finite number"},
+        {"--step 0", "--step: '0' must be > 0"},
+        {"--report-interval nan", "--report-interval: 'nan' is not a finite number"},
+        {"--report-interval 1 --t-end 0.5", "--report-interval: 1 s must not exceed --t-end (0.5 s)"},
         {"--vx0", "--vx0"},
-        {"--axial-dynamics fast", "--axial-dynamics 'fast'"},
+        {"--axial-dynamics fast", "--axial-dynamics: 'fast' must be one of: quasi-static, dynamic"},
+        {"--axial-law rigid", "--axial-law: 'rigid' must be one of: tension-only, linear"},
     };
     for (const auto& [args, needle] : cases) {
         const fs::path out = scratch("bad");
@@ -160,7 +186,8 @@ TEST(PendulumDemo, BadInputExitsTwoAndWritesNothing) {
         EXPECT_EQ(run(args + " --out '" + out.string() + "'", log), 2) << args;
         const std::string msg = slurp(log);
         EXPECT_NE(msg.find(needle), std::string::npos) << args << " -> " << msg;
-        EXPECT_NE(msg.find("--help"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("Try 'reeving-pendulum --help'."), std::string::npos) << msg;
+        EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 2) << msg;
         EXPECT_FALSE(fs::exists(out)) << args;
     }
 }

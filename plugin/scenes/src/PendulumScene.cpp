@@ -72,11 +72,11 @@ double PendulumScene::payloadAngle(const SimTK::State& s) const {
     const SimTK::Vec3 x = payload_->getBodyRotation(s).x();
     return std::atan2(x[1], x[0]);
 }
-double PendulumScene::tensionAtPayload(const SimTK::State& s) const {
+double PendulumScene::axialForceAtPayload(const SimTK::State& s) const {
     const auto range = reeving_->getSpanMaterialRange(s, 0, 1);
     return reeving_->getAxialForce(s, 0, 1, range.second);
 }
-double PendulumScene::tensionAtSheave(const SimTK::State& s) const {
+double PendulumScene::axialForceAtSheave(const SimTK::State& s) const {
     const auto range = reeving_->getSpanMaterialRange(s, 0, 1);
     return reeving_->getAxialForce(s, 0, 1, range.first);
 }

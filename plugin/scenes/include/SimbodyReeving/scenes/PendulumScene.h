@@ -52,8 +52,10 @@ public:
     // Observables at a state realized to Stage::Position (energy: Stage::Velocity).
     SimTK::Vec3 payloadPosition(const SimTK::State& s) const;  ///< centre of mass [m]
     double payloadAngle(const SimTK::State& s) const;          ///< rotation about z [rad]
-    double tensionAtPayload(const SimTK::State& s) const;      ///< axial force, vertical span, payload end [N]
-    double tensionAtSheave(const SimTK::State& s) const;       ///< axial force, vertical span, sheave end [N]
+    /// Axial force P = EA eps [N] of the vertical span at its payload end (not the tension
+    /// T = P |dr/ds| that ReevingSubsystem::getTension returns).
+    double axialForceAtPayload(const SimTK::State& s) const;
+    double axialForceAtSheave(const SimTK::State& s) const;    ///< the same at the sheave end [N]
     double sheaveMaterialCoordinate(const SimTK::State& s) const;  ///< s at the deviation sheave [m]
 
 private:
