@@ -5,8 +5,9 @@
 //
 //   hoist-over-sheave               headless, prints a table
 //   hoist-over-sheave --visualize   also shows it in the Simbody visualizer (if one can start)
+#include "common/DemoVisualizer.h"
+
 #include <SimbodyReeving/ReevingSubsystem.h>
-#include <SimbodyReeving/Visualization.h>
 
 #include <Simbody.h>
 
@@ -24,7 +25,6 @@ using SimTK::Stage;
 using SimTK::State;
 using SimTK::Transform;
 using SimTK::Vec3;
-using SimTK::Visualizer;
 using namespace SimbodyReeving;
 
 int main(int argc, char** argv) {
@@ -57,21 +57,11 @@ int main(int argc, char** argv) {
     rope.planeNormal = Vec3(0, 0, 1);                        // planar rope, in the x-y plane
     reeving.addRope(rope);
 
-    // Optional visualizer; the rope is drawn by the ReevingSubsystem's own decorations.
-    std::unique_ptr<Visualizer> viz;
-    if (visualize) {
-        std::string whyNot;
-        viz = tryStartVisualizer(system, whyNot);
-        if (viz) {
-            viz->setShowSimTime(true);
-            viz->setMode(Visualizer::RealTime);
-            viz->setBackgroundType(Visualizer::SolidColor);          // no ground plane at y = 0
-            viz->setCameraTransform(Transform(Vec3(1.5, -10, 45)));  // looking at the x-y plane
-            system.addEventReporter(new Visualizer::Reporter(*viz, 1.0 / 30));
-        } else {
-            std::printf("--visualize: %s; running headless.\n", whyNot.c_str());
-        }
-    }
+    // Optional visualizer (real time; closing its window does not stop the run); the rope, sheave and
+    // anchor are drawn by the ReevingSubsystem's own decorations.
+    demo_common::DemoVisualizer viz(system, reeving, "hoist-over-sheave", visualize);
+    viz.lookAt(Vec3(1.5, -10.2, 27), Vec3(1.5, -10.2, 0));  // looking at the x-y plane
+    if (viz.showing()) system.addEventReporter(new demo_common::DemoVisualizerReporter(viz, 1.0 / 30));
     system.realizeTopology();
 
     // Static equilibrium of payload and rope together, from a straight hanging guess.
@@ -106,6 +96,6 @@ int main(int argc, char** argv) {
                     reeving.calcMechanicalEnergy(st) - E0);
     }
     std::printf("%d integrator steps\n", integ.getNumStepsTaken());
-    if (viz) stopVisualizer(*viz);  // before the system is destroyed
+    viz.close();  // the window closes and its process ends with the run
     return 0;
 }

@@ -104,6 +104,7 @@ lower 5 m (23.5-32.5 s), settle until 36 s.
   --out DIR                output folder (default out/crane)
   --no-plots               do not make PNG figures
   --quiet                  no progress output
+  --visualize              show the run in Simbody's Visualizer (paced to real time)
   --help                   this text
 Outputs in DIR: timeseries.csv, snapshots.dat (rope geometry), summary.json and, with gnuplot,
 fig_hook_height_sway.png, fig_fall_tensions.png, fig_energy.png, fig_snapshots.png.
@@ -184,6 +185,8 @@ Options parseCommandLine(int argc, char** argv) {
             o.plots = false;
         } else if (opt == "--quiet") {
             o.quiet = true;
+        } else if (opt == "--visualize") {
+            o.visualize = true;
         } else if (opt == "--set") {
             const std::string v = value();
             const auto eq = v.find('=');

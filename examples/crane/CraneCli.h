@@ -27,6 +27,7 @@ struct Options {
     int snapshots = 6;             // rope-geometry snapshots, evenly spaced over [0, t_end]
     std::string outDir = "out/crane";
     bool plots = true, quiet = false, help = false;
+    bool visualize = false;  // --visualize: show the run in Simbody's Visualizer
     SimbodyReeving::CraneParameters parameters;
 };
 

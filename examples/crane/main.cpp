@@ -4,6 +4,7 @@
 #include "CraneCli.h"
 #include "CraneFigures.h"
 #include "common/DemoOutput.h"
+#include "common/DemoVisualizer.h"
 #include "common/Interrupt.h"
 
 #include <SimbodyReeving/CraneScene.h>
@@ -72,12 +73,16 @@ Row observe(const CraneScene& scene, const State& s, double energy0) {
     return r;
 }
 
-RunResult run(const Options& o, const CraneScene& scene) {
+RunResult run(const Options& o, CraneScene& scene) {
     RunResult r;
     State s0 = scene.makeInitialState();
     scene.system().realize(s0, Stage::Acceleration);
     for (int k = 0; k < scene.falls(); ++k) r.staticFallForce.push_back(scene.fallTopForce(s0, k));
     r.energy0 = scene.reeving().calcMechanicalEnergy(s0);
+    demo_common::DemoVisualizer viz(scene.system(), scene.reeving(), "reeving-crane", o.visualize);
+    const SimTK::Vec3 centre(scene.parameters().trolleyX0 + 0.5 * o.traverse, 0.55 * scene.parameters().railHeight, 0);
+    viz.lookAt(centre + SimTK::Vec3(-11, 2, 21), centre);  // oblique: the drum's stored rope shows
+    viz.report(s0);
 
     auto integ = makeIntegrator(o.integrator, scene.system());
     integ->setAccuracy(o.accuracy);
@@ -112,6 +117,7 @@ RunResult run(const Options& o, const CraneScene& scene) {
         }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st, r.energy0));
+        viz.report(st);
         if (!scene.reeving().getLimitReached().empty() || integ->isSimulationOver()) {
             // A rope limit (two-blocking, empty drum) requested termination: the run ends here.
             r.limit = scene.reeving().getLimitReached();
@@ -130,6 +136,7 @@ RunResult run(const Options& o, const CraneScene& scene) {
         }
     }
     if (printed) std::fprintf(stderr, "\n");
+    viz.close();  // the window closes and its process ends with the run
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhsEvaluations = ts.getNumRealizations();
