@@ -8,6 +8,9 @@
 #      run goes on without it (message on stderr), ends with exit 0 and complete outputs; no
 #      visualizer process is left.
 #   4. hoist-over-sheave --visualize: exit 0, no visualizer process left.
+#   5. reeving-crane --visualize with the visualizer process stopped (SIGSTOP: it reads no more
+#      frames, as a hung window): the demo's watchdog ends it after 10 s of a blocked frame and the
+#      run completes with exit 0 and complete outputs.
 # Screenshots are kept in WORKDIR (crane.png, pendulum.png) for a human to look at.
 # usage: test_visualizer.sh REEVING_CRANE REEVING_PENDULUM HOIST_OVER_SHEAVE X11_WINDOW_TOOL WORKDIR
 set -u
@@ -48,8 +51,8 @@ check_shot() {
 }
 
 # run_demo NAME WINDOW_TITLE ACTION EXE ARGS...: runs the demo in the background, waits for its
-# window; ACTION "shot" takes a screenshot after 3 s, "close" closes the window after 2 s, "none"
-# only waits. Sets demo_rc, viz_pid.
+# window; ACTION "shot" takes a screenshot after 3 s, "close" closes the window after 2 s, "stop"
+# stops the visualizer process (SIGSTOP) after 2 s, "none" only waits. Sets demo_rc, viz_pid.
 run_demo() {
   local name=$1 title=$2 action=$3
   shift 3
@@ -61,6 +64,7 @@ run_demo() {
   case $action in
     shot) sleep 3; shot=$("$tool" screenshot "$work/$name.png" "$title") || fail "$name: screenshot failed" ;;
     close) sleep 2; "$tool" close-window "$title" || fail "$name: could not close the window" ;;
+    stop) sleep 2; kill -STOP "$viz_pid" || fail "$name: could not stop the visualizer" ;;
   esac
   wait $demo
   demo_rc=$?
@@ -96,4 +100,10 @@ rows=$(($(wc -l < "$work/crane-closed-out/timeseries.csv") - 1))
 # 4. hoist-over-sheave, shown.
 run_demo hoist hoist-over-sheave none "$hoist" --visualize
 
-echo "test_visualizer: all four Visualizer runs behaved"
+# 5. The crane, visualizer hung.
+run_demo crane-hung reeving-crane stop "$crane" --visualize --t-end 6 --no-plots --quiet --out "$work/crane-hung-out"
+grep -q "the Visualizer read no frame for 10 s and was ended at t = .* s; the run goes on without it" "$work/crane-hung.err" ||
+  fail "crane-hung: the run did not go on without the hung visualizer: $(cat "$work/crane-hung.err")"
+[ -s "$work/crane-hung-out/summary.json" ] || fail "crane-hung: summary.json missing"
+
+echo "test_visualizer: all five Visualizer runs behaved"

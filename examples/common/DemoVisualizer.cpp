@@ -101,6 +101,7 @@ void DemoVisualizer::watch() {
     while (!stopWatch_) {
         const long long since = writingSince_;
         if (since != 0 && steadyNanoseconds() - since > limit) {
+            endedHung_ = true;
             kill(pid_, SIGKILL);  // the blocked write now fails with EPIPE
             return;
         }
@@ -161,8 +162,10 @@ void DemoVisualizer::draw(const SimTK::State& state) {
     } catch (const std::exception&) {
         writingSince_ = 0;
         broken_ = true;
-        std::cerr << "\n" << name_ << ": the Visualizer window was closed at t = " << state.getTime()
-                  << " s; the run goes on without it\n";
+        std::cerr << "\n" << name_
+                  << (endedHung_ ? ": the Visualizer read no frame for 10 s and was ended at t = "
+                                 : ": the Visualizer window was closed at t = ")
+                  << state.getTime() << " s; the run goes on without it\n";
     }
 }
 

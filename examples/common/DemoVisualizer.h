@@ -26,7 +26,8 @@ namespace demo_common {
 /// - A visualizer that stops reading (a window closed while its process hangs on the way out, seen
 ///   under Xvfb) would block a frame's write to its pipe forever: a watchdog thread ends the
 ///   visualizer process (SIGKILL) when one frame has been writing for 10 s; the write then fails
-///   and the run goes on as after a closed window.
+///   and the run goes on as after a closed window ("<demo>: the Visualizer read no frame for 10 s
+///   and was ended at t = T s; the run goes on without it").
 /// - close() (also run by the destructor) shuts the visualizer down and waits for its process
 ///   (found among this process's children when it started) to end: at most 2 s, then SIGTERM.
 /// Not copyable; one thread at a time.
@@ -68,7 +69,7 @@ private:
     std::unique_ptr<SimTK::State> last_;
     // Watchdog: steady_clock time (ns) the current write to the visualizer began, 0 when none.
     std::atomic<long long> writingSince_{0};
-    std::atomic<bool> stopWatch_{false};
+    std::atomic<bool> stopWatch_{false}, endedHung_{false};
     std::thread watchdog_;
 };
 
