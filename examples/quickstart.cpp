@@ -3,9 +3,9 @@
 // push, RK-Merson; prints the payload's position, the rope's axial force at the payload and the
 // energy drift every second. About a second of wall for the default 20 s.
 //
-//   reeving-quickstart               headless, prints a table
-//   reeving-quickstart --visualize   also shows it in Simbody's Visualizer (if one can start)
+//   reeving-quickstart               prints a table
 //   reeving-quickstart --t-end 5     a shorter run
+// (The bundled demos, reeving-pendulum and reeving-crane, show their runs with --visualize.)
 //
 // The lines between the "README" markers are README.md's "Using it from your project" code; the
 // readme_code_blocks test checks that the README shows them verbatim.
@@ -18,30 +18,11 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <memory>
 #include <string>
 
 namespace {
 
-// Optional Visualizer (before realizeTopology); the rope, sheave and payload are drawn by the
-// ReevingSubsystem's decorations and the payload's own.
-std::unique_ptr<SimTK::Visualizer> startVisualizer(SimTK::MultibodySystem& system) {
-    std::string whyNot;
-    auto viz = SimbodyReeving::tryStartVisualizer(system, whyNot);
-    if (!viz) {
-        std::fprintf(stderr, "reeving-quickstart: --visualize: %s; running headless\n", whyNot.c_str());
-        return nullptr;
-    }
-    viz->setShowSimTime(true);
-    viz->setMode(SimTK::Visualizer::RealTime);
-    viz->setBackgroundType(SimTK::Visualizer::SolidColor);               // no ground plane at y = 0
-    viz->setCameraTransform(SimTK::Transform(SimTK::Vec3(1.5, -10, 45)));  // looking at the x-y plane
-    system.addEventReporter(new SimTK::Visualizer::Reporter(*viz, 1.0 / 30));
-    return viz;
-}
-
-int run(double tEnd, bool visualize) {
-    std::unique_ptr<SimTK::Visualizer> viz;
+int run(double tEnd) {
     // README: quickstart begin
     using namespace SimTK;
     MultibodySystem system;
@@ -65,9 +46,6 @@ int run(double tEnd, bool visualize) {
     rope.spanDefaults.velocityModel = SimbodyReeving::VelocityModel::Complete;
     rope.planeNormal = Vec3(0, 0, 1);           // a planar rope (optional)
     reeving.addRope(rope);
-    // README: quickstart visualizer
-    if (visualize) viz = startVisualizer(system);
-    // README: quickstart continue
     system.realizeTopology();
 
     State state = system.getDefaultState();
@@ -99,7 +77,6 @@ int run(double tEnd, bool visualize) {
     }
     // README: quickstart end
     std::printf("%d integrator steps\n", integ.getNumStepsTaken());
-    if (viz) SimbodyReeving::stopVisualizer(*viz);  // before the system is destroyed
     return 0;
 }
 
@@ -107,7 +84,6 @@ int run(double tEnd, bool visualize) {
 
 int main(int argc, char** argv) {
     double tEnd = 20.0;
-    bool visualize = false;
     CLI::App app(
         "The paper's Table 1 pendulum built from Simbody bodies and one SimbodyReeving rope: a 1000 kg\n"
         "payload on a rope from a Ground anchor over a deviation sheave 3 m away and 20 m down\n"
@@ -120,10 +96,9 @@ int main(int argc, char** argv) {
     app.add_option("--t-end", tEnd, "end time [s], whole seconds (default 20)")
         ->type_name("T")
         ->check(demo_common::positiveNumber());
-    app.add_flag("--visualize", visualize, "show the run in Simbody's Visualizer (runs headless without a display)");
     if (const int status = demo_common::parseOrExitStatus(app, argc, argv); status >= 0) return status;
     try {
-        return run(tEnd, visualize);
+        return run(tEnd);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "reeving-quickstart: simulation failed: %s\n", e.what());
         return 1;

@@ -4,6 +4,7 @@
 #include "CraneCli.h"
 #include "CraneFigures.h"
 #include "common/DemoOutput.h"
+#include "common/DemoVisualizer.h"
 #include "common/Interrupt.h"
 
 #include <SimbodyReeving/scenes/CraneScene.h>
@@ -73,49 +74,16 @@ Row observe(const CraneScene& scene, const State& s, double energy0) {
     return r;
 }
 
-/// --visualize: Simbody's Visualizer, shown at every report; stopped (frames flushed, drawing
-/// thread idle) before the scene's system is destroyed, also when the run throws.
-struct RunVisualizer {
-    std::unique_ptr<SimTK::Visualizer> viz;
-    RunVisualizer(const Options& o, CraneScene& scene, const State& s0) {
-        if (!o.visualize) return;
-        std::string whyNot;
-        viz = tryStartVisualizer(scene.system(), whyNot);
-        if (!viz) {
-            std::cerr << "reeving-crane: --visualize: " << whyNot << "; running without the Visualizer\n";
-            return;
-        }
-        const auto& p = scene.parameters();
-        viz->setMode(SimTK::Visualizer::RealTime);
-        viz->setShowSimTime(true);
-        viz->setBackgroundType(SimTK::Visualizer::SolidColor);  // no ground plane drawn through the machine
-        // Looking at the x-y plane from +z, centred on the trolley's travel, the rail height in view.
-        viz->setCameraTransform(SimTK::Transform(
-            SimTK::Vec3(p.trolleyX0 + 0.5 * o.traverse, 0.5 * p.railHeight, 1.6 * p.railHeight + std::abs(o.traverse))));
-        viz->report(s0);
-    }
-    RunVisualizer(const RunVisualizer&) = delete;
-    RunVisualizer& operator=(const RunVisualizer&) = delete;
-    ~RunVisualizer() {
-        if (!viz) return;
-        try {
-            stopVisualizer(*viz);
-        } catch (const std::exception& e) {
-            std::cerr << "reeving-crane: --visualize: " << e.what() << "\n";
-        }
-    }
-    void report(const State& s) const {
-        if (viz) viz->report(s);
-    }
-};
-
 RunResult run(const Options& o, CraneScene& scene) {
     RunResult r;
     State s0 = scene.makeInitialState();
     scene.system().realize(s0, Stage::Acceleration);
     for (int k = 0; k < scene.falls(); ++k) r.staticFallForce.push_back(scene.fallTopForce(s0, k));
     r.energy0 = scene.reeving().calcMechanicalEnergy(s0);
-    const RunVisualizer visualizer(o, scene, s0);
+    demo_common::DemoVisualizer viz(scene.system(), scene.reeving(), "reeving-crane", o.visualize);
+    const SimTK::Vec3 centre(scene.parameters().trolleyX0 + 0.5 * o.traverse, 0.55 * scene.parameters().railHeight, 0);
+    viz.lookAt(centre + SimTK::Vec3(-11, 2, 21), centre);  // oblique: the drum's stored rope shows
+    viz.report(s0);
 
     auto integ = makeIntegrator(o.integrator, scene.system());
     integ->setAccuracy(o.accuracy);
@@ -150,7 +118,7 @@ RunResult run(const Options& o, CraneScene& scene) {
         }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st, r.energy0));
-        visualizer.report(st);
+        viz.report(st);
         if (!scene.reeving().getLimitReached().empty() || integ->isSimulationOver()) {
             // A rope limit (two-blocking, empty drum) requested termination: the run ends here.
             r.limit = scene.reeving().getLimitReached();
@@ -169,6 +137,7 @@ RunResult run(const Options& o, CraneScene& scene) {
         }
     }
     if (printed) std::fprintf(stderr, "\n");
+    viz.close();  // the window closes and its process ends with the run
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhsEvaluations = ts.getNumRealizations();

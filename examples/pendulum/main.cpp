@@ -2,12 +2,12 @@
 // reproducible from one command. See --help and README.md.
 #include "PendulumCli.h"
 #include "common/DemoOutput.h"
+#include "common/DemoVisualizer.h"
 #include "common/Interrupt.h"
 
 #include <SimbodyReeving/simbody/Integrators.h>
 #include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
 #include <SimbodyReeving/scenes/PendulumScene.h>
-#include <SimbodyReeving/simbody/Visualization.h>
 
 #include <algorithm>
 #include <atomic>
@@ -91,19 +91,9 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     r.initialKineticEnergy = scene.system().calcKineticEnergy(s) + rv.calcRopeKineticEnergy(s);
     const double e0 = rv.calcMechanicalEnergy(s);
 
-    std::unique_ptr<SimTK::Visualizer> viz;
-    if (visualize) {
-        std::string whyNot;
-        viz = tryStartVisualizer(scene.system(), whyNot);
-        if (viz) {
-            viz->setMode(SimTK::Visualizer::RealTime);
-            viz->setBackgroundType(SimTK::Visualizer::SolidColor);
-            viz->setCameraTransform(SimTK::Transform(SimTK::Vec3(1.5, -10, 45)));
-            viz->report(s);
-        } else {
-            std::cerr << "reeving-pendulum: --visualize: " << whyNot << "; running without the Visualizer\n";
-        }
-    }
+    demo_common::DemoVisualizer viz(scene.system(), scene.reeving(), "reeving-pendulum", visualize);
+    viz.lookAt(SimTK::Vec3(1.5, -10.2, 27), SimTK::Vec3(1.5, -10.2, 0));  // the whole pendulum, side on
+    viz.report(s);
     auto integ = makeIntegrator(o.integrator, scene.system());
     integ->setAccuracy(o.accuracy);
     if (o.step > 0) integ->setFixedStepSize(o.step);
@@ -127,10 +117,10 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
         }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st));
-        if (viz) viz->report(st);
+        viz.report(st);
         progress = st.getTime() / o.tEnd;
     }
-    if (viz) stopVisualizer(*viz);
+    viz.close();  // the window closes and its process ends with the run
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhsEvaluations = ts.getNumRealizations();

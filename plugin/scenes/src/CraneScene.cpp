@@ -1,5 +1,6 @@
 #include "SimbodyReeving/scenes/CraneScene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -119,6 +120,8 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     payload_ = std::make_unique<MobilizedBody::Pin>(*hook_, Transform(Vec3(0, -p.hookPinBelow, 0)), payloadBody,
                                                     Transform(Vec3(0, p.slingLength, 0)));
 
+    addDecorations();
+
     RopeSpec rope;
     rope.name = "hoist rope";
     WinchDrum drum;
@@ -155,7 +158,70 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     rope.planeNormal = Vec3(0, 0, 1);
     rope.minimumSpanLength = p.minimumSpanLength;
     reeving_->addRope(rope);
+    // Rope colours (drawing only): red at twice the static load of a fall, (M + m_hook) g / n.
+    reeving_->setDecorationForceScale(2.0 * tension);
     system_->realizeTopology();
+}
+
+void CraneScene::addDecorations() {
+    // Drawing only (the rope, sheaves and drum are drawn by the ReevingSubsystem). The rope plane is
+    // z = 0; the structure sits behind it (z < 0) or above it so that the reeving stays in view.
+    using namespace SimTK;
+    const CraneParameters& p = parameters_;
+    double xMin = stations_[0][0], xMax = xMin, hookMin = 1e300, hookMax = -1e300;
+    for (int k = 1; k <= p.falls; ++k) {
+        if (nodeOnHook(k)) {
+            hookMin = std::min(hookMin, stations_[k][0]);
+            hookMax = std::max(hookMax, stations_[k][0]);
+        } else {
+            xMin = std::min(xMin, stations_[k][0]);
+            xMax = std::max(xMax, stations_[k][0]);
+        }
+    }
+    xMin = std::min(xMin, -p.drumRadius);
+    xMax = std::max(xMax, p.drumRadius);
+    // Trolley: a back plate behind its sheaves and drum, a deck above the drum, four wheels.
+    const Vec3 steel(0.55, 0.58, 0.62), frame(0.25, 0.35, 0.6);
+    const double top = p.drumHeight + p.drumRadius + 0.3, halfX = 0.5 * (xMax - xMin) + 0.5;
+    const double midX = 0.5 * (xMin + xMax);
+    trolley_->addBodyDecoration(Transform(Vec3(midX, 0.5 * (top - 0.4), -0.6)),
+                                DecorativeBrick(Vec3(halfX, 0.5 * (top + 0.4), 0.04)).setColor(frame));
+    trolley_->addBodyDecoration(Transform(Vec3(midX, top, 0)), DecorativeBrick(Vec3(halfX, 0.08, 0.65)).setColor(frame));
+    for (double sx : {-1.0, 1.0})
+        for (double sz : {-0.55, 0.55})
+            trolley_->addBodyDecoration(Transform(Rotation(Pi / 2, XAxis), Vec3(midX + sx * (halfX - 0.25), top + 0.23, sz)),
+                                        DecorativeCylinder(0.15, 0.05).setColor(Vec3(0.2, 0.2, 0.2)));
+    // Rails (Ground) over the trolley's travel, with 3 m to spare at each end.
+    double travelMin = 0, travelMax = 0;
+    const double end = std::max(cycle_.traverse.endTime(), cycle_.duration);
+    for (int k = 0; k <= 200; ++k) {
+        const double x = cycle_.traverse.position(end * k / 200.0);
+        travelMin = std::min(travelMin, x);
+        travelMax = std::max(travelMax, x);
+    }
+    const double railA = p.trolleyX0 + travelMin - halfX - 3.0, railB = p.trolleyX0 + travelMax + halfX + 3.0;
+    for (double sz : {-0.55, 0.55})
+        matter_->updGround().addBodyDecoration(
+            Transform(Vec3(0.5 * (railA + railB) + midX, p.railHeight + top + 0.45, sz)),
+            DecorativeBrick(Vec3(0.5 * (railB - railA), 0.07, 0.07)).setColor(steel));
+    // Hook block: side plate behind its sheaves, shank down to the sling pin, the pin.
+    const Vec3 yellow(0.95, 0.75, 0.1);
+    const double plateHalf = 0.5 * (hookMax - hookMin) + p.sheaveRadius + 0.12;
+    hook_->addBodyDecoration(Transform(Vec3(0.5 * (hookMin + hookMax), -0.05, -0.2)),
+                             DecorativeBrick(Vec3(plateHalf, p.sheaveRadius + 0.17, 0.04)).setColor(yellow));
+    const double shankTop = p.sheaveRadius + 0.1;
+    if (p.hookPinBelow > shankTop)
+        hook_->addBodyDecoration(Transform(Vec3(0, -0.5 * (shankTop + p.hookPinBelow), -0.1)),
+                                 DecorativeBrick(Vec3(0.08, 0.5 * (p.hookPinBelow - shankTop), 0.08)).setColor(yellow));
+    hook_->addBodyDecoration(Transform(Vec3(0, -p.hookPinBelow, 0)), DecorativeSphere(0.07).setColor(Vec3(0.2, 0.2, 0.2)));
+    // Payload: its block, slung by two legs from the pin to its top corners.
+    payload_->addBodyDecoration(Transform(), DecorativeBrick(Vec3(0.5 * p.payloadWidth, 0.5 * p.payloadHeight, 0.6))
+                                                 .setColor(Vec3(0.2, 0.6, 0.3)));
+    for (double sx : {-0.4, 0.4})
+        payload_->addBodyDecoration(Transform(), DecorativeLine(Vec3(0, p.slingLength, 0),
+                                                                Vec3(sx * p.payloadWidth, 0.5 * p.payloadHeight, 0))
+                                                     .setColor(Vec3(0.2, 0.2, 0.2))
+                                                     .setLineThickness(3));
 }
 
 SimTK::State CraneScene::makeInitialState() const {

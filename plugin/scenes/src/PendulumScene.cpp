@@ -37,6 +37,14 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
     reeving_ = std::make_unique<ReevingSubsystem>(*system_, Vec3(0, -p.g, 0));
     const Body::Rigid body(MassProperties(p.M, Vec3(0), Inertia(p.J)));
     payload_ = std::make_unique<MobilizedBody::Free>(matter_->updGround(), Transform(), body, Transform());
+    // Drawing: the payload as the cube of its mass and inertia (J = M side^2 / 6), a link up to the
+    // rope's attachment d above its centre.
+    const double side = std::sqrt(6.0 * p.J / p.M);
+    payload_->addBodyDecoration(Transform(), DecorativeBrick(Vec3(0.5 * side)).setColor(Vec3(0.2, 0.6, 0.3)));
+    if (p.d > 0.5 * side)
+        payload_->addBodyDecoration(Transform(), DecorativeLine(Vec3(0, 0.5 * side, 0), Vec3(0, p.d, 0))
+                                                     .setColor(Vec3(0.2, 0.2, 0.2))
+                                                     .setLineThickness(3));
 
     RopeSpec rope;
     rope.name = "pendulum rope";
@@ -48,6 +56,8 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
     rope.spanDefaults = spans;
     rope.planeNormal = planarRope ? Vec3(0, 0, 1) : Vec3(0);
     reeving_->addRope(rope);
+    // Rope colours (drawing only): red at twice the payload's weight.
+    reeving_->setDecorationForceScale(2.0 * p.M * p.g);  // g = 0: the largest force of each frame
     system_->realizeTopology();
 }
 

@@ -180,6 +180,7 @@ public:
 
     std::vector<detail::RopeRecord> ropes;
     int decorationPoints = 20;
+    double decorationForceScale = 0;  // ReevingSubsystem::setDecorationForceScale [N], 0: per frame
 
     // Cached at realizeTopology (MultibodySystem::downcast is a dynamic_cast: not per evaluation).
     const SimTK::MultibodySystem& mbs() const {

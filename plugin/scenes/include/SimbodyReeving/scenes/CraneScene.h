@@ -92,6 +92,10 @@ struct CraneCycle {
 /// it hangs level. The rope's unstretched length is chosen so that the hook hangs about
 /// initialHookDepth below the trolley sheaves when loaded.
 ///
+/// Drawing (any SimTK::Visualizer): the trolley with its frame, wheels and rails, the hook block,
+/// the payload block on its sling legs; the rope coloured blue (slack) ... red (twice the static
+/// load of a fall, (payloadMass + hookMass) g / falls: ReevingSubsystem::setDecorationForceScale).
+///
 /// A MotionWorkMeter integrates the work of the two prescribed motions, so
 ///     energy residual = E_mech(t) - E_mech(0) - W_motion(t)
 /// checks the simulation (ReevingSubsystem::calcMechanicalEnergy).
@@ -149,6 +153,9 @@ public:
     double hookRestOffset() const { return hookRestOffset_; }
 
 private:
+    /// Body and Ground decorations (drawing only): trolley frame and wheels, rails over the
+    /// traverse, hook block plate, shank and sling pin, payload block and sling legs.
+    void addDecorations();
     CraneParameters parameters_;
     CraneCycle cycle_;
     std::vector<SimTK::Vec3> stations_;

@@ -30,7 +30,9 @@ struct PendulumParameters {
 /// The pendulum: rope anchored at the first sheave (Ground, origin), horizontal span a to the
 /// deviation sheave (Ground, (a, 0, 0)), vertical span down to the payload, a Simbody free body
 /// (quaternions) with the rope attached d above its centre of mass. Motion in the x-y plane, y up;
-/// the rope is planar (plane normal z).
+/// the rope is planar (plane normal z). Drawing (any SimTK::Visualizer): the payload as the cube of
+/// its M and J (side sqrt(6 J / M)), the deviation sheave at radius r, the anchor, the rope coloured blue (slack) ... red
+/// (2 M g, ReevingSubsystem::setDecorationForceScale).
 class PendulumScene {
 public:
     /// @param planarRope true (default): planar spans in the x-y plane; false: spatial spans (same

@@ -299,6 +299,21 @@ public:
 
     /// Number of rope node pairs drawn per span by the decorations (default 20).
     void setDecorationResolution(int pointsPerSpan);
+    /// What the decorations draw (any SimTK::Visualizer, at Stage::Position): each span as a
+    /// polyline coloured by its axial force P = EA eps at each segment's midpoint, through the
+    /// colour map c(x) = (1 - x) blue (0.1, 0.3, 1) + x red (1, 0.1, 0.05), x = clamp(P / P_ref, 0, 1)
+    /// (blue: slack or P = 0; red: P >= P_ref); every DeviationSheave and TurningSheave as a disc of
+    /// its radius in the plane of its spans (a TurningSheave with a spoke that turns with its pin);
+    /// every WinchDrum as a drum of its radius with the stored rope (getRopeOnDrum) wound on it as a
+    /// helix in layers (rope diameter for drawing only: that of a steel wire rope of the rope's rhoA,
+    /// d = sqrt(4 rhoA / (pi 0.6 7850 kg/m^3))); every Anchor as a small sphere.
+    /// @param referenceForce P_ref [N], >= 0 and finite; 0 (the default): the largest span axial force
+    ///        of the frame being drawn (then the map shows the force distribution, not its level).
+    /// @throws std::invalid_argument if referenceForce is negative or not finite.
+    void setDecorationForceScale(double referenceForce);
+    /// P_ref the decorations use for `state` [N]: the set reference force, or with 0 set the largest
+    /// span axial force of the frame (sampled as drawn; 0 if every span is slack) (Stage::Position).
+    double getDecorationForceScale(const SimTK::State& state) const;
 
     class Guts;
 private:

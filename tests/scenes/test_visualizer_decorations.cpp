@@ -1,0 +1,142 @@
+// What ReevingSubsystem's decorations draw (issue 19): spans coloured by axial force through the
+// documented colour map, sheaves at their radius, the drum's stored rope following getRopeOnDrum,
+// and the force scale's validation.
+#include <SimbodyReeving/scenes/CraneScene.h>
+#include <SimbodyReeving/scenes/PendulumScene.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+using namespace SimbodyReeving;
+using SimTK::Array_;
+using SimTK::DecorativeGeometry;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::Vec3;
+
+namespace {
+
+struct Drawn : SimTK::DecorativeGeometryImplementation {
+    struct Line {
+        Vec3 colour;
+        double thickness;
+    };
+    std::vector<Line> lines;
+    std::vector<double> cylinderRadii, sphereRadii;
+    void implementPointGeometry(const SimTK::DecorativePoint&) override {}
+    void implementLineGeometry(const SimTK::DecorativeLine& l) override {
+        lines.push_back({l.getColor(), l.getLineThickness()});
+    }
+    void implementBrickGeometry(const SimTK::DecorativeBrick&) override {}
+    void implementCylinderGeometry(const SimTK::DecorativeCylinder& c) override { cylinderRadii.push_back(c.getRadius()); }
+    void implementCircleGeometry(const SimTK::DecorativeCircle&) override {}
+    void implementSphereGeometry(const SimTK::DecorativeSphere& s) override { sphereRadii.push_back(s.getRadius()); }
+    void implementEllipsoidGeometry(const SimTK::DecorativeEllipsoid&) override {}
+    void implementFrameGeometry(const SimTK::DecorativeFrame&) override {}
+    void implementTextGeometry(const SimTK::DecorativeText&) override {}
+    void implementMeshGeometry(const SimTK::DecorativeMesh&) override {}
+    void implementMeshFileGeometry(const SimTK::DecorativeMeshFile&) override {}
+    void implementArrowGeometry(const SimTK::DecorativeArrow&) override {}
+    void implementTorusGeometry(const SimTK::DecorativeTorus&) override {}
+    void implementConeGeometry(const SimTK::DecorativeCone&) override {}
+
+    int countLines(const Vec3& colour) const {
+        return static_cast<int>(std::count_if(lines.begin(), lines.end(),
+                                              [&](const Line& l) { return (l.colour - colour).norm() < 1e-12; }));
+    }
+};
+
+Drawn draw(const ReevingSubsystem& rv, const State& s) {
+    Array_<DecorativeGeometry> g;
+    rv.getSubsystemGuts().calcDecorativeGeometryAndAppend(s, Stage::Position, g);
+    Drawn d;
+    for (const DecorativeGeometry& x : g) x.implementGeometry(d);
+    return d;
+}
+
+// The documented map: (1 - x) (0.1, 0.3, 1) + x (1, 0.1, 0.05), x clamped to [0, 1].
+Vec3 mapColour(double x) {
+    x = std::min(std::max(x, 0.0), 1.0);
+    return Vec3(0.1, 0.3, 1.0) * (1 - x) + Vec3(1.0, 0.1, 0.05) * x;
+}
+
+}  // namespace
+
+TEST(VisualizerDecorations, PendulumSpansColouredByAxialForceSheaveAtItsRadius) {
+    PendulumScene scene(PendulumParameters{}, SpanOptions{});
+    const State s = scene.makeInitialState(0, 0);
+    const ReevingSubsystem& rv = scene.reeving();
+    const PendulumParameters& p = scene.parameters();
+    const double reference = 2 * p.M * p.g;
+    EXPECT_DOUBLE_EQ(rv.getDecorationForceScale(s), reference);
+    const Drawn d = draw(rv, s);
+    // Span segments (thickness 4): 2 spans x (20 points - 1), segment k of span j in the colour of
+    // the axial force at its midpoint.
+    std::vector<Vec3> segments;
+    for (const auto& l : d.lines)
+        if (l.thickness == 4) segments.push_back(l.colour);
+    ASSERT_EQ(segments.size(), 38u);
+    double worst = 0;
+    for (int j = 0, i = 0; j < 2; ++j) {
+        const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, j);
+        for (int k = 0; k < 19; ++k, ++i)
+            worst = std::max(worst, (segments[i] - mapColour(rv.getAxialForce(s, 0, j, s1 + (s2 - s1) * (k + 0.5) / 19) /
+                                                             reference)).norm());
+    }
+    EXPECT_LT(worst, 1e-12);  // measured 0: the same formula
+    // At rest the rope carries M g plus at most its own weight (122 N, 1.2 %): x about 0.5.
+    std::printf("colour distance of the payload-end segment from x = 0.5: %.3g; worst segment %.3g\n",
+                (segments.back() - mapColour(0.5)).norm(), worst);
+    EXPECT_LT((segments.back() - mapColour(0.5)).norm(), 0.05);  // measured 0.00426 (12x margin)
+    // The deviation sheave as a disc of radius r; both anchors (Ground, payload) as spheres.
+    ASSERT_EQ(d.cylinderRadii.size(), 1u);
+    EXPECT_DOUBLE_EQ(d.cylinderRadii[0], p.r);
+    EXPECT_EQ(d.sphereRadii.size(), 2u);
+}
+
+TEST(VisualizerDecorations, CraneDrumShowsItsStoredRope) {
+    CraneScene scene(CraneParameters{}, CraneCycle::liftTraverseLower(), SpanOptions{});
+    State s = scene.makeInitialState();
+    const CraneParameters& p = scene.parameters();
+    const Vec3 storedRopeColour(0.45, 0.28, 0.12);
+    // Drum, two flanges, n - 1 = 3 sheaves; the dead end as a sphere.
+    Drawn d = draw(scene.reeving(), s);
+    EXPECT_EQ(d.cylinderRadii.size(), 6u);
+    EXPECT_EQ(std::count(d.cylinderRadii.begin(), d.cylinderRadii.end(), p.sheaveRadius), 3);
+    EXPECT_EQ(std::count(d.cylinderRadii.begin(), d.cylinderRadii.end(), p.drumRadius), 1);
+    // The helix: 16 segments per turn at rho = R + d / 2 on the first layer (d = 20.8 mm for 1.6
+    // kg/m), until the drawn length reaches the rope stored: ceil(stored / (rho 2 pi / 16)) - 1 lines.
+    const double dRope = std::sqrt(4 * p.rhoA / (SimTK::Pi * 0.6 * 7850.0));
+    auto helixLines = [&](double stored) {
+        const double step = (p.drumRadius + 0.5 * dRope) * 2 * SimTK::Pi / 16;
+        return static_cast<int>(std::ceil(stored / step)) - 1;
+    };
+    const double stored0 = scene.ropeOnDrum(s);
+    EXPECT_DOUBLE_EQ(stored0, p.ropeOnDrum);
+    EXPECT_EQ(d.countLines(storedRopeColour), helixLines(stored0));  // 328 lines for 40 m
+    // Haul in 5 m (the drum turns back): 5 m more rope drawn on the drum, still on the first layer
+    // (28 turns of 20.8 mm on the 0.6 m drum hold 54.6 m).
+    scene.drum().setOneQ(s, 0, scene.drum().getOneQ(s, 0) - 5.0 / p.drumRadius);
+    scene.system().realize(s, Stage::Position);
+    EXPECT_NEAR(scene.ropeOnDrum(s), stored0 + 5.0, 1e-12);
+    d = draw(scene.reeving(), s);
+    EXPECT_EQ(d.countLines(storedRopeColour), helixLines(stored0 + 5.0));
+}
+
+TEST(VisualizerDecorations, ForceScaleIsValidated) {
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter(system);
+    SimTK::GeneralForceSubsystem forces(system);
+    ReevingSubsystem rv(system, Vec3(0, -9.81, 0));
+    EXPECT_THROW(rv.setDecorationForceScale(-1.0), std::invalid_argument);
+    EXPECT_THROW(rv.setDecorationForceScale(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+    EXPECT_THROW(rv.setDecorationForceScale(std::numeric_limits<double>::infinity()), std::invalid_argument);
+    EXPECT_NO_THROW(rv.setDecorationForceScale(0.0));
+    EXPECT_NO_THROW(rv.setDecorationForceScale(1e5));
+}
