@@ -19,6 +19,7 @@ int main() {
         options.axialModes = 3;
         options.transverseModes = 3;
         options.elasticModel = energy;
+        options.axialDynamics = AxialDynamics::Dynamic;  // PaperLiteral cannot be condensed (QuasiStatic)
         const PlanarSpanModel span(rope, options, Eigen::Vector2d(0, -9.81));
 
         // Sheave node at the origin, payload node straight below, stretched so P = payload weight.
