@@ -24,6 +24,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace SimbodyReeving;
@@ -328,4 +330,49 @@ TEST(AxiallyMovingString, IntegratedFlowOscillatesAtTheLinearisedFrequency) {
                     wickertMote(1, v), atRest(1));
         EXPECT_LT(std::abs(e), 1e-6);  // measured: 1.5e-8 (Complete), 8.8e-9 (Simplified)
     }
+}
+
+// The QuasiStatic default has no effect without axial modes: a span with n_a = 0 evaluates to the
+// same numbers (bit for bit) as with Dynamic, for the linear and the tension-only law and both
+// energies (PaperLiteral is accepted with n_a = 0); with axial modes, QuasiStatic + PaperLiteral is
+// rejected with a message that names the way out (Dynamic).
+TEST(SpanOptionsDefaults, QuasiStaticIsInertWithoutAxialModes) {
+    for (bool tensionOnly : {false, true})
+        for (auto em : {ElasticEnergyModel::Consistent, ElasticEnergyModel::PaperLiteral}) {
+            if (tensionOnly && em == ElasticEnergyModel::PaperLiteral) continue;  // rejected by the law
+            RopeProperties p{0.6205, 16.5e6, 30.9};
+            p.tensionOnly = tensionOnly;
+            SpanOptions quasi;  // the defaults: QuasiStatic, Complete, n_a = 0
+            quasi.transverseModes = 2;
+            quasi.elasticModel = em;
+            SpanOptions dynamic = quasi;
+            dynamic.axialDynamics = AxialDynamics::Dynamic;
+            const PlanarSpanModel a(p, quasi, Eigen::Vector2d(0.3, -9.81)), b(p, dynamic, Eigen::Vector2d(0.3, -9.81));
+            EXPECT_FALSE(a.slackRegularised());
+            Eigen::VectorXd q = Eigen::VectorXd::Zero(a.numCoordinates()), qd(a.numCoordinates());
+            q.segment<2>(2) = Eigen::Vector2d(0.4, -3.01);
+            q[4] = 0.01;
+            q[5] = -0.003;
+            q[a.s1Index()] = 1.0;
+            q[a.s2Index()] = 4.0;
+            for (int k = 0; k < qd.size(); ++k) qd[k] = 0.1 * (k + 1) * (k % 2 ? -1 : 1);
+            SpanData<2> da, db;
+            a.evaluate(q, qd, da);
+            b.evaluate(q, qd, db);
+            EXPECT_EQ((da.massMatrix - db.massMatrix).cwiseAbs().maxCoeff(), 0.0);
+            EXPECT_EQ((da.velocityForces - db.velocityForces).cwiseAbs().maxCoeff(), 0.0);
+            EXPECT_EQ((da.elasticForces - db.elasticForces).cwiseAbs().maxCoeff(), 0.0);
+            EXPECT_EQ(da.strainEnergy(), db.strainEnergy());
+        }
+    SpanOptions o;
+    o.axialModes = 2;
+    o.elasticModel = ElasticEnergyModel::PaperLiteral;
+    try {
+        PlanarSpanModel({0.6205, 16.5e6, 30.9, false}, o, Eigen::Vector2d(0, -9.81));
+        ADD_FAILURE() << "QuasiStatic (default) + PaperLiteral with n_a = 2 must throw";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("axialDynamics = Dynamic"), std::string::npos) << e.what();
+    }
+    o.axialDynamics = AxialDynamics::Dynamic;
+    EXPECT_NO_THROW(PlanarSpanModel({0.6205, 16.5e6, 30.9, false}, o, Eigen::Vector2d(0, -9.81)));
 }
