@@ -42,6 +42,7 @@ Series simulate(int na, AxialDynamics axial, double accuracy, double tEnd, doubl
     o.axialModes = na;
     o.transverseModes = 1;
     o.axialDynamics = axial;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const PendulumScene scene(PendulumParameters{}, o);
     SimTK::State s = scene.makeInitialState(1.0, 0.0);
     auto integ = makeIntegrator("rk-merson", scene.system());

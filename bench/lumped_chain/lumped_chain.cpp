@@ -250,7 +250,9 @@ public:
         rope.unstretchedLength = p.L;
         rope.spanDefaults.axialModes = na;
         rope.spanDefaults.transverseModes = nt;
-        if (completeVelocity) rope.spanDefaults.velocityModel = SimbodyReeving::VelocityModel::Complete;
+        rope.spanDefaults.velocityModel = completeVelocity ? SimbodyReeving::VelocityModel::Complete
+                                                           : SimbodyReeving::VelocityModel::Simplified;
+        rope.spanDefaults.axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
         rope.planeNormal = Vec3(0, 0, 1);
         reeving_.addRope(rope);
         system_.realizeTopology();

@@ -38,6 +38,7 @@ void run(double transition, double delta) {
     spec.spanDefaults.axialModes = 2;
     spec.spanDefaults.transverseModes = 1;
     spec.spanDefaults.axialDynamics = AxialDynamics::QuasiStatic;
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     spec.spanDefaults.quasiStaticSlackTransitionStrain = transition;
     spec.spanDefaults.quasiStaticSlackStiffness = delta;
     spec.planeNormal = Vec3(0, 0, 1);

@@ -108,6 +108,7 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
     spans.axialModes = spec.axialModes;
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
+    spans.velocityModel = SimbodyReeving::VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const SimbodyReeving::PendulumParameters params{};
     SimbodyReeving::PendulumScene scene(params, spans);
     const SimTK::State s0 = scene.makeInitialState(o.vx0, o.vy0);

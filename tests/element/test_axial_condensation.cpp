@@ -24,6 +24,7 @@ SpanModel<Dim> makeSpan(int na, int nt, bool tensionOnly = false, double transit
     o.axialModes = na;
     o.transverseModes = nt;
     o.axialDynamics = AxialDynamics::QuasiStatic;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     Eigen::Matrix<double, Dim, 1> g = Eigen::Matrix<double, Dim, 1>::Zero();
     g[0] = 1.3;
     g[1] = -9.81;

@@ -22,6 +22,7 @@ std::vector<SpanModel<2>> makeSpans(int n, int na, int nt, AxialDynamics axial) 
     o.axialModes = na;
     o.transverseModes = nt;
     o.axialDynamics = axial;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     return std::vector<SpanModel<2>>(n, SpanModel<2>(kRope, o, kGravity));
 }
 

@@ -73,6 +73,7 @@ PointMassPendulum makePendulum(int na, int nt, VelocityModel vm, double EA) {
     o.axialModes = na;
     o.transverseModes = nt;
     o.velocityModel = vm;
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     const Eigen::Vector2d g(0, -9.81);
     std::vector<SpanModel<2>> spans{SpanModel<2>(props, o, g), SpanModel<2>(props, o, g)};
     return PointMassPendulum{RopeModel<2>(std::move(spans), 23.0), 1000.0, g, {}};

@@ -58,6 +58,7 @@ SpanModel<Dim> makeModel(const Config& c) {
     o.transverseModes = c.nt;
     o.velocityModel = c.velocity;
     o.elasticModel = c.elastic;
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     return SpanModel<Dim>(kRope, o, someGravity<Dim>(), someReference<Dim>());
 }
 
@@ -291,6 +292,7 @@ TEST(SpanModel, AutomaticQuadratureMatchesMuchHigherOrder) {
                 o.transverseModes = nt;
                 o.velocityModel = vm;
                 o.elasticModel = ElasticEnergyModel::PaperLiteral;  // the richest integrand
+                o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
                 const SpatialSpanModel autoModel(kRope, o, someGravity<3>(), someReference<3>());
                 o.quadraturePoints = 150;
                 const SpatialSpanModel refModel(kRope, o, someGravity<3>(), someReference<3>());
@@ -315,6 +317,7 @@ TEST(SpanModel, PlanarSpanEqualsInPlaneSpatialSpan) {
     o.axialModes = 2;
     o.transverseModes = 2;
     o.velocityModel = VelocityModel::Complete;
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     const PlanarSpanModel planar(kRope, o, Eigen::Vector2d(0.5, -9.81));
     const SpatialSpanModel spatial(kRope, o, Eigen::Vector3d(0.5, -9.81, 0),
                                    makeReferenceFrame(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1)));

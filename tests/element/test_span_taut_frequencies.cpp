@@ -55,6 +55,8 @@ void checkTautSpan(ElasticEnergyModel energy, double expectedRatio, double toler
     o.axialModes = 2;
     o.transverseModes = 3;
     o.elasticModel = energy;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
     if constexpr (Dim == 3) ref = makeReferenceFrame(Eigen::Vector3d(0, -1, 0));  // a vertical span
     const SpanModel<Dim> model(rope, o, Eigen::Matrix<double, Dim, 1>::Zero(), ref);

@@ -20,6 +20,7 @@ SpanOptions spans(int na) {
     o.axialModes = na;
     o.transverseModes = 1;
     o.axialDynamics = AxialDynamics::QuasiStatic;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     return o;
 }
 

@@ -54,6 +54,8 @@ SpanOptions spans(int na) {
     SpanOptions o;
     o.axialModes = na;
     o.transverseModes = 1;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     return o;
 }
 

@@ -145,6 +145,7 @@ TEST(Hoisting, LockedDrumReproducesTheFixedAnchor) {
         spec.spanDefaults.axialModes = 1;
         spec.spanDefaults.transverseModes = 1;
         spec.spanDefaults.axialDynamics = AxialDynamics::Dynamic;
+        spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
         spec.planeNormal = planar ? Vec3(0, 0, 1) : Vec3(0);
         reeving.addRope(spec);
         system.realizeTopology();
@@ -402,6 +403,8 @@ TEST(Hoisting, EndDrumHaulingItsSpanInEndsAtTheMinimum) {
     spec.unstretchedLength = 3.0;
     spec.spanDefaults.axialModes = 1;
     spec.spanDefaults.transverseModes = 1;
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spec.spanDefaults.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     spec.planeNormal = Vec3(0, 0, 1);
     spec.minimumSpanLength = 0.5;
     reeving.addRope(spec);
@@ -513,6 +516,7 @@ TEST(Hoisting, SpanFromOneHundredMetresToHalfAMetre) {
     spec.spanDefaults.axialModes = 2;
     spec.spanDefaults.transverseModes = 2;
     spec.spanDefaults.axialDynamics = AxialDynamics::QuasiStatic;
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     spec.planeNormal = Vec3(0, 0, 1);
     spec.minimumSpanLength = 0.5;
     reeving.addRope(spec);

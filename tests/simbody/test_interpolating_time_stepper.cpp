@@ -24,6 +24,7 @@ RunRecord run(double reportInterval, double tEnd = 5.0) {
     SpanOptions o;
     o.axialModes = 0;
     o.transverseModes = 1;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const PendulumScene scene(PendulumParameters{}, o);
     auto integ = makeIntegrator("rk-merson", scene.system());
     integ->setAccuracy(1e-6);
@@ -104,6 +105,7 @@ TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper
             SpanOptions o;
             o.axialModes = 1;
             o.axialDynamics = AxialDynamics::QuasiStatic;
+            o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
             PendulumScene scene(PendulumParameters{}, o);
             auto* kick = new Kick(scene, 0.737);  // the system takes ownership
             auto* reporter = new CountingReporter(0.25);
@@ -147,6 +149,7 @@ TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper
 TEST(InterpolatingTimeStepper, StepLimitReturnsEarlyAndRejectsNegative) {
     SpanOptions o;
     o.axialModes = 0;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const PendulumScene scene(PendulumParameters{}, o);
     auto integ = makeIntegrator("rk-merson", scene.system());
     integ->setAccuracy(1e-8);

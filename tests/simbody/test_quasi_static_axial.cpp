@@ -21,6 +21,7 @@ SpanOptions spans(int na, AxialDynamics dynamics) {
     o.axialModes = na;
     o.transverseModes = 1;
     o.axialDynamics = dynamics;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     return o;
 }
 

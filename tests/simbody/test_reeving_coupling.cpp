@@ -47,6 +47,7 @@ SpanOptions oneModeEach(SimbodyReeving::AxialDynamics axial) {
     o.axialModes = 1;
     o.transverseModes = 1;
     o.axialDynamics = axial;
+    o.velocityModel = SimbodyReeving::VelocityModel::Simplified;  // pre-issue-19 default, explicit
     return o;
 }
 

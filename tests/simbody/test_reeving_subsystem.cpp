@@ -28,6 +28,8 @@ SpanOptions spans(int na, int nt = 1) {
     SpanOptions o;
     o.axialModes = na;
     o.transverseModes = nt;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     return o;
 }
 

@@ -35,6 +35,7 @@ Outcome run(const char* integrator, double initialStep, double fixedStep = 0, do
     o.axialModes = axialModes;
     o.transverseModes = 1;
     o.axialDynamics = axial;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     PendulumParameters params;
     params.tensionOnly = false;  // the linear law: its Newton fails at the far trial states built here
     PendulumScene scene(params, o);

@@ -158,6 +158,7 @@ Measurement runCase(const StressRun& run) {
     spans.axialModes = c.na;
     spans.transverseModes = c.nt;
     spans.axialDynamics = c.axialDynamics;
+    spans.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     try {
         const PendulumScene scene(c.params, spans);
         const ReevingSubsystem& rv = scene.reeving();
@@ -306,6 +307,7 @@ TEST(LongRun, OneHourConservativePendulum) {
     o.axialModes = 1;
     o.transverseModes = 1;
     o.axialDynamics = AxialDynamics::QuasiStatic;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const PendulumScene scene(PendulumParameters{}, o);
     const ReevingSubsystem& rv = scene.reeving();
     const State s0 = scene.makeInitialState(1.0, 0.0);

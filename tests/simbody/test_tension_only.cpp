@@ -52,6 +52,8 @@ TEST(TensionOnlySpan, EnergyAndForcesFollowTheClampedLaw) {
     SpanOptions o;
     o.axialModes = 2;
     o.transverseModes = 1;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
     RopeProperties linear{0.62, 16.5e6, 0.0, false};
     RopeProperties tensionOnly = linear;
     tensionOnly.tensionOnly = true;
@@ -139,6 +141,7 @@ TEST(TensionOnlySpan, SlackRegularisationEnergyAndForces) {
     qs.axialModes = 3;
     qs.transverseModes = 1;
     qs.axialDynamics = AxialDynamics::QuasiStatic;
+    qs.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     qs.quasiStaticSlackStiffness = 2e-3;
     const PlanarSpanModel span(p, qs, Eigen::Vector2d(0, -kG));
     // A slack span (chord 2.9 m, material 3 m): no axial energy, only U_delta.
@@ -321,6 +324,7 @@ static void tableOneDrop(AxialDynamics axialDynamics) {
     o.axialModes = 2;
     o.transverseModes = 1;
     o.axialDynamics = axialDynamics;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const char* name = axialDynamics == AxialDynamics::Dynamic ? "Dynamic" : "QuasiStatic";
     DropScene scene(p, o);
     const double v0 = 3.0;
@@ -376,6 +380,7 @@ static void pendulumOverTheTop(AxialDynamics axialDynamics) {
     o.axialModes = 1;
     o.transverseModes = 1;
     o.axialDynamics = axialDynamics;
+    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     const char* name = axialDynamics == AxialDynamics::Dynamic ? "Dynamic" : "QuasiStatic";
     PendulumScene scene(params, o);
     SlackMonitor monitor(scene.system(), scene.reeving());
@@ -450,6 +455,7 @@ static void hookBlockBothSlack(AxialDynamics axialDynamics) {
     spec.spanDefaults.axialModes = 1;
     spec.spanDefaults.transverseModes = 1;
     spec.spanDefaults.axialDynamics = axialDynamics;
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     spec.planeNormal = Vec3(0, 0, 1);
     reeving.addRope(spec);
     SlackMonitor monitor(system, reeving);

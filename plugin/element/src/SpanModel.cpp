@@ -77,11 +77,11 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
         throw std::invalid_argument(
             "SpanModel: RopeProperties::tensionOnly requires elasticModel = Consistent (PaperLiteral's string "
             "energy is linear in the strain: clamped at zero it would not be differentiable)");
-    if (options_.axialDynamics == AxialDynamics::QuasiStatic &&
+    if (options_.axialDynamics == AxialDynamics::QuasiStatic && options_.axialModes > 0 &&
         options_.elasticModel == ElasticEnergyModel::PaperLiteral)
         throw std::invalid_argument(
-            "SpanModel: SpanOptions::axialDynamics = QuasiStatic requires elasticModel = Consistent "
-            "(got PaperLiteral)");
+            "SpanModel: SpanOptions::axialDynamics = QuasiStatic (the default) with axial modes requires "
+            "elasticModel = Consistent (got PaperLiteral); set axialDynamics = Dynamic for the paper's energy");
     if (!gravity_.allFinite()) {
         std::ostringstream v;
         v << "(" << gravity_.transpose() << ")";

@@ -18,14 +18,33 @@ namespace SimbodyReeving {
 inline constexpr int kMaxModesPerDirection = 16;
 
 /// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
+///
+/// The default is Complete (issue 19): it is exact, it costs 2.4-4.8 % more instructions per span
+/// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 22 296 against
+/// 21 276 at n_a = 0, n_t = 1; 54 451 against 53 159 at n_a = 3, n_t = 3; bench/RESULTS.md,
+/// "Axially moving string"), and Simplified misses the transport of the transverse motion by rope
+/// flowing through a span (hoisting, a drum paying out, a belt) at a speed v that is not small
+/// against the wave speed c = sqrt(P / rhoA). Measured on the axially moving string (a taut span
+/// between fixed nodes, both material coordinates moving at v; tests/element/test_axially_moving_string.cpp),
+/// whose frequencies are omega_n = (n pi c / l)(1 - v^2 / c^2) (Wickert & Mote 1990).
 enum class VelocityModel {
-    /// Paper eq 13 (default): rdot = Ndot q_a + N qdot_a + A_e S qdot_m. Drops the frame-rotation
-    /// term Adot_e S q_m and the mode-convection term A_e Sdot q_m of eq 12. Measured consequence
-    /// (bench/LUMPED_CHAIN.md, 20 m hanging rope swinging at 1 m/s): with axial modes the force the
-    /// rope puts on the payload carries an inertial model error of 0.13-0.20 N (2e-5 of the
-    /// tension); Complete removes it at the same step count. Prefer Complete for body loads.
+    /// Paper eq 13: rdot = Ndot q_a + N qdot_a + A_e S qdot_m. Drops the frame-rotation term
+    /// Adot_e S q_m and the mode-convection term A_e Sdot q_m of eq 12. Measured consequences:
+    /// - rope flowing through a span leaves its transverse modes at the frequencies of a rope at
+    ///   rest, n pi c / l at every speed (to 7e-11): 1 / (1 - v^2/c^2) above the moving string's,
+    ///   +1.0 % at v/c = 0.1, +9.9 % at 0.3, +33 % at 0.5, +96 % at 0.7;
+    /// - (bench/LUMPED_CHAIN.md, 20 m hanging rope swinging at 1 m/s) with axial modes the force the
+    ///   rope puts on the payload carries an inertial model error of 0.13-0.20 N (2e-5 of the
+    ///   tension); Complete removes it at the same step count.
+    /// Use it to reproduce the paper's eq 13.
     Simplified,
-    /// Paper eq 12 with no term dropped: the exact material velocity of the discretised rope.
+    /// Default. Paper eq 12 with no term dropped: the exact material velocity of the discretised
+    /// rope. On the axially moving string its linearised modal equations are the string's Galerkin
+    /// system on the same sine modes (to 1e-9: the Coriolis and centripetal transport terms are
+    /// exact), so its frequencies converge to Wickert & Mote's as n_t grows, about like n_t^-3: at
+    /// v/c = 0.7, first mode +4.9e-3 with n_t = 3, +5.0e-4 with n_t = 8, +6.3e-5 with n_t = 16; at
+    /// v/c = 0.3, +1.5e-3 / +7.4e-5 / +1.0e-5 (the highest modes of a basis converge last: with
+    /// n_t = 3 the third is +14 % off at v/c = 0.3).
     Complete,
 };
 
@@ -46,13 +65,23 @@ enum class ElasticEnergyModel {
 };
 
 /// How a span's axial modal amplitudes q_a (the paper's axial part of q_m, eq 3 and 10) evolve.
+///
+/// The default is QuasiStatic (issue 19): on the Table 1 pendulum with n_a = 3 (RK-Merson 1e-6,
+/// 20 s; bench/RESULTS.md, "Quasi-static axial modes") it takes 61x less wall time than Dynamic
+/// (0.223 s against 13.69 s; 1 127 steps against 76 790) with the payload within 7.2e-8 m and the
+/// slow part of the axial force within 0.062 N of Dynamic's; what it leaves out is the axial-wave
+/// part of the force (0.18 N of 9.8 kN there). Choose Dynamic for axial waves (snap loads
+/// travelling along a long rope, axial resonance) or with ElasticEnergyModel::PaperLiteral. With
+/// n_a = 0 (the default mode count) there are no axial amplitudes and the choice has no effect.
+/// The transverse modes do not care: on the axially moving string (see VelocityModel) n_a = 2
+/// gives the n_a = 0 transverse frequencies with either choice (to 3e-12).
 enum class AxialDynamics {
-    /// Default; the paper's model: the axial amplitudes are generalized coordinates with their own
+    /// The paper's model: the axial amplitudes are generalized coordinates with their own
     /// inertia, so the span carries axial waves. Their frequencies, i pi / l sqrt(EA / rhoA) for a
     /// span of length l (5 400 rad/s per mode number for the Table 1 rope on a 3 m span), limit
     /// the step of every explicit integrator.
     Dynamic,
-    /// The axial amplitudes are not states: at every configuration they take the values that make
+    /// Default. The axial amplitudes are not states: at every configuration they take the values that make
     /// the rope's potential energy (axial strain + bending + gravity) stationary with respect to
     /// them, for the current nodes and transverse modes, on the manifold of the sheave
     /// tension-equality constraints (the material coordinates at the sheaves follow the amplitudes;
@@ -77,7 +106,8 @@ enum class AxialDynamics {
     /// 0.059 / 0.062 / 0.062 N of 9.8 kN; what is left out is the axial-wave part, 0.13 / 0.18 /
     /// 0.21 N. The slow difference grows about linearly in time (a small shift of the payload's
     /// bounce frequency), so compare over the horizon you need.
-    /// Requires ElasticEnergyModel::Consistent on every span of the rope. With a tension-only rope
+    /// Requires ElasticEnergyModel::Consistent on every span of the rope that has axial modes (the
+    /// SpanModel constructor throws otherwise: set Dynamic for PaperLiteral). With a tension-only rope
     /// (RopeProperties::tensionOnly) the condensation uses the clamped law and a slack span's
     /// amplitudes are held by SpanOptions::quasiStaticSlackStiffness (a fully slack span has no
     /// axial stiffness of its own).
@@ -97,9 +127,14 @@ struct SpanOptions {
     /// n_t: number of transverse sine modes per transverse direction, 0..16 (one direction in a
     /// planar span, two in a spatial one).
     int transverseModes = 1;
-    VelocityModel velocityModel = VelocityModel::Simplified;
-    /// Axial amplitudes as states (Dynamic) or condensed (QuasiStatic); no effect when n_a = 0.
-    AxialDynamics axialDynamics = AxialDynamics::Dynamic;
+    /// Complete (default: exact, 2.4-4.8 % more instructions per evaluation) or Simplified (the
+    /// paper's eq 13: misses the transport of transverse motion by rope flowing through the span;
+    /// see VelocityModel for the measurements).
+    VelocityModel velocityModel = VelocityModel::Complete;
+    /// Axial amplitudes condensed (QuasiStatic, default: no axial waves, 61x less wall time on the
+    /// Table 1 pendulum with n_a = 3) or states (Dynamic, the paper's; needed for axial waves and
+    /// for ElasticEnergyModel::PaperLiteral with n_a > 0); no effect when n_a = 0. See AxialDynamics.
+    AxialDynamics axialDynamics = AxialDynamics::QuasiStatic;
     ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
     /// delta [-], finite, in [1e-9, 1]; used only by a tension-only rope's (RopeProperties::tensionOnly)
     /// spans with AxialDynamics::QuasiStatic axial modes. A fully slack span has no axial
@@ -232,8 +267,9 @@ public:
     /// @throws std::invalid_argument for rhoA or EA not finite and > 0, EI not finite and >= 0,
     ///         mode counts outside 0..16, quadraturePoints outside 0..200, non-finite gravity, a
     ///         reference frame that is not orthonormal and right-handed, or AxialDynamics::QuasiStatic
-    ///         with ElasticEnergyModel::PaperLiteral (its string energy makes the axial stiffness
-    ///         depend on the transverse slope twice; the condensation is defined for Consistent only),
+    ///         (the default) with n_a > 0 and ElasticEnergyModel::PaperLiteral (its string energy
+    ///         makes the axial stiffness depend on the transverse slope twice; the condensation is
+    ///         defined for Consistent only),
     ///         RopeProperties::tensionOnly with PaperLiteral, quasiStaticSlackStiffness outside
     ///         [1e-9, 1] or quasiStaticSlackTransitionStrain outside [1e-12, 1e-3] (or not finite).
     SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
