@@ -41,9 +41,7 @@ int run(double tEnd) {
     rope.end = SimbodyReeving::RopeAnchor{payload, Vec3(0, 0.3, 0)};  // 0.3 m above the centre of mass
     rope.properties = {0.6205, 16.5e6, 30.9};   // rhoA [kg/m], EA [N], EI [N m^2]; tension-only
     rope.unstretchedLength = 23;                // [m]: 3 m span + 20 m span
-    rope.spanDefaults.axialModes = 3;           // n_a (transverseModes: n_t = 1)
-    rope.spanDefaults.axialDynamics = SimbodyReeving::AxialDynamics::QuasiStatic;   // no axial waves
-    rope.spanDefaults.velocityModel = SimbodyReeving::VelocityModel::Complete;
+    rope.spanDefaults.axialModes = 3;           // n_a; defaults: n_t = 1, quasi-static axial modes
     rope.planeNormal = Vec3(0, 0, 1);           // a planar rope (optional)
     reeving.addRope(rope);
     system.realizeTopology();

@@ -7,7 +7,7 @@
 // the table gives the first three transverse frequencies against Wickert & Mote's
 //     omega_n = (n pi c / L) (1 - v^2 / c^2)
 // for VelocityModel::Complete and ::Simplified, n_t = 1..16, v / c = 0, 0.1, 0.3, 0.5, 0.7.
-// The assertions on the same numbers: tests/test_axially_moving_string.cpp.
+// The assertions on the same numbers: tests/element/test_axially_moving_string.cpp.
 //
 // Usage:
 //   bench-moving-string                      the frequency table (markdown) on stdout

@@ -140,8 +140,10 @@ TEST(RopeModel, PointMassPendulumConservesEnergy) {
         std::printf("[ rope ] %s: |E - E0| max %.3e J (E0 = %.3f J, KE0 = 500 J), max |F_a - F_b| %.3e N, s_sheave %.6f\n",
                     vm == VelocityModel::Complete ? "complete" : "simplified", drift, E0, maxC,
                     p.data.materialCoordinates[1]);
-        EXPECT_LT(drift, 1e-6 * 500.0);
-        EXPECT_LT(maxC, 1e-10 * 2e5);
+        // Measured (2026-12-01, 2e3eafb) (both velocity models): drift 2.9e-8 J of KE0 = 500 J, margin 34x;
+        // sheave residual 6.7e-11 N, margin 75x.
+        EXPECT_LT(drift, 1e-6);
+        EXPECT_LT(maxC, 5e-9);
         EXPECT_GT(y[0], 3.0);  // it swung
     }
 }

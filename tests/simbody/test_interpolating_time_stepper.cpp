@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 using namespace SimbodyReeving;
@@ -58,7 +59,10 @@ TEST(InterpolatingTimeStepper, StepCountIndependentOfReportInterval) {
     for (size_t k = 0; k < fine.positions.size(); ++k)
         worst = std::max(worst, (fine.positions[k] - stopping.positions[k]).norm());
     std::printf("max |payload position difference| interpolated vs stopping: %.2e m\n", worst);
-    EXPECT_LT(worst, 1e-5);  // both within the 1e-6 accuracy setting of the true path
+    // Both within the 1e-6 accuracy setting of the true path: measured 1.21e-6 m (2026-12-01, 2e3eafb),
+    // margin 8.3x. The two runs take different steps, so they differ by the integrator's error at this
+    // accuracy; a tighter bound would test RK-Merson's error estimate, not the stepper.
+    EXPECT_LT(worst, 1e-5);
 }
 
 namespace {
@@ -137,7 +141,9 @@ TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper
         }
         std::printf("%s: final payload position difference %.2e m; reports %zu / %zu\n", name,
                     (finals[0] - finals[1]).norm(), reportTimes[0].size(), reportTimes[1].size());
-        EXPECT_LT((finals[0] - finals[1]).norm(), 1e-5) << name;
+        // Measured 1.66e-10 m (rk-merson) and 1.36e-11 m (cpodes) at accuracy 1e-8 (2026-12-01, 2e3eafb):
+        // the same steps, only the report states differ; margins 60x and 74x.
+        EXPECT_LT((finals[0] - finals[1]).norm(), std::string(name) == "cpodes" ? 1e-9 : 1e-8) << name;
         ASSERT_EQ(reportTimes[0].size(), reportTimes[1].size()) << name;
         for (size_t k = 0; k < reportTimes[0].size(); ++k) {
             EXPECT_NEAR(reportTimes[0][k], 0.25 * static_cast<double>(k), 1e-12) << name;

@@ -1,6 +1,7 @@
 // The rope/body coupling is exact: two conservative scenes (no damping) integrated for 20 s with
 // Simbody's RungeKuttaMersonIntegrator at accuracy 1e-10 keep the total mechanical energy of bodies
-// and ropes to 1e-6 of the initial kinetic energy, and the sheave tension equality to 1e-5 N.
+// and ropes to 2e-11 .. 1e-9 of the initial kinetic energy (each scene's limit 30-55x what it
+// measured), and the sheave tension equality to 2e-7 N.
 //  1. "moving sheave": the deviation sheave sits on a free hook block that carries a pinned payload.
 //  2. "Simbody constraint": the rope ends on a small free hook; the payload, a separate free body,
 //     is held to the hook by a SimTK::Constraint::Ball, so the coupled solve goes through
@@ -39,8 +40,12 @@ const RopeProperties kTable1{0.6205, 16.5e6, 30.9};  // rhoA [kg/m], EA [N], EI 
 constexpr double kRunTime = 20.0;                    // [s]
 constexpr double kReportInterval = 0.5;              // [s]
 constexpr double kAccuracy = 1e-10;
-constexpr double kEnergyTolerance = 1e-6;            // relative to the initial kinetic energy
-constexpr double kConstraintTolerance = 1e-9 * 1e4;  // 1e-9 of the largest rope tension (~1e4 N) [N]
+// Each scene passes its own limits (energy drift relative to the initial kinetic energy, sheave
+// constraint residual in N), set from what it measured.
+struct Limits {
+    double relativeDrift;
+    double constraint;  // [N]
+};
 
 SpanOptions oneModeEach(SimbodyReeving::AxialDynamics axial) {
     SpanOptions o;
@@ -71,13 +76,14 @@ bool allFinite(const SimTK::Vector& v) {
 /// The QuasiStatic variants step with SimbodyReeving::InterpolatingTimeStepper (interpolated,
 /// projected reports), the Dynamic ones with SimTK::TimeStepper.
 template <class Stepper>
-void runConservative(const char* name, const World& w, const State& initial, const MobilizedBody& swinging) {
+void runConservative(const char* name, const World& w, const State& initial, const MobilizedBody& swinging,
+                     const Limits& limits) {
     State s = initial;
     w.system.realize(s, Stage::Velocity);
     const double KE0 = w.system.calcKineticEnergy(s) + w.reeving.calcRopeKineticEnergy(s);
     const double E0 = w.reeving.calcMechanicalEnergy(s);
     ASSERT_GT(KE0, 0.0);
-    const double allowedDrift = kEnergyTolerance * KE0;
+    const double allowedDrift = limits.relativeDrift * KE0;
 
     SimTK::RungeKuttaMersonIntegrator integ(w.system);
     integ.setAccuracy(kAccuracy);
@@ -104,7 +110,7 @@ void runConservative(const char* name, const World& w, const State& initial, con
         minX = std::min(minX, x);
         maxX = std::max(maxX, x);
         EXPECT_LE(drift, allowedDrift) << name << " t = " << t;
-        EXPECT_LE(constraint, kConstraintTolerance) << name << " t = " << t;
+        EXPECT_LE(constraint, limits.constraint) << name << " t = " << t;
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("[ %s ] %g s: max |E - E0| = %.3e J (KE0 = %.6g J, drift/KE0 = %.3e), max sheave constraint "
@@ -149,10 +155,12 @@ void movingSheave(SimbodyReeving::AxialDynamics axial, const char* name) {
     ASSERT_LE(residual, 1e-10);
     // Horizontal push; the pinned payload follows its parent (pin rate stays 0).
     block.setUToFitLinearVelocity(s, Vec3(0.5, 0, 0));
+    // Measured (2026-12-01, 2e3eafb): drift 6.6e-13 of KE0 (Dynamic) and 1.0e-11 (QuasiStatic), margins 30x
+    // and 48x; sheave residual 5.5e-9 N in both, margin 36x.
     if (axial == SimbodyReeving::AxialDynamics::QuasiStatic)
-        runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, block);
+        runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, block, Limits{5e-10, 2e-7});
     else
-        runConservative<SimTK::TimeStepper>(name, w, s, block);
+        runConservative<SimTK::TimeStepper>(name, w, s, block, Limits{2e-11, 2e-7});
 }
 
 // Scene 2: the pendulum of the paper (rope from the Ground origin over a Ground sheave at (3, 0, 0),
@@ -195,10 +203,12 @@ void payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics axial, const c
     payload.setUToFitLinearVelocity(s, Vec3(1, 0, 0));
     w.system.realize(s, Stage::Velocity);
     w.system.project(s);
+    // Measured (2026-12-01, 2e3eafb): drift 2.1e-11 of KE0 (Dynamic) and 9.5e-12 (QuasiStatic),
+    // margins 48x and 52x; sheave residual 3.7e-9 N and 5.5e-9 N, margins 55x and 36x.
     if (axial == SimbodyReeving::AxialDynamics::QuasiStatic)
-        runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, payload);
+        runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, payload, Limits{5e-10, 2e-7});
     else
-        runConservative<SimTK::TimeStepper>(name, w, s, payload);
+        runConservative<SimTK::TimeStepper>(name, w, s, payload, Limits{1e-9, 2e-7});
 }
 
 }  // namespace

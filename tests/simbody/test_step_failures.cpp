@@ -74,18 +74,25 @@ TEST(StepFailures, RungeKuttaRetriesAfterAFailedTrialEvaluation) {
     EXPECT_GE(wild.evaluationFailures, 1);
     EXPECT_NE(wild.lastFailure.find("rope 'pendulum rope' at t = "), std::string::npos);
     EXPECT_NE(wild.lastFailure.find("sheave node 1"), std::string::npos);
-    EXPECT_LT((wild.payload - normal.payload).norm(), 1e-4);  // both within the 1e-6 accuracy setting
+    // After the rejected first step both runs take the same steps: measured 8.5e-13 m (2026-12-01, 2e3eafb),
+    // margin 59x (a run that took other steps would differ by about the 1e-6 accuracy setting).
+    EXPECT_LT((wild.payload - normal.payload).norm(), 5e-11);
 }
 
 // A fixed-step Verlet at 1 ms overshoots into a configuration where the sheave Newton fails and
-// cannot retry: the run ends with the rope's own message (rope, time, sheave), not a crash.
+// cannot retry: the run ends with the rope's own message (rope, time, sheave), not a crash. The
+// assertions are on that behaviour, not on when it happens (t = 0.02 s today; a more robust Newton
+// may fail later).
 TEST(StepFailures, FixedStepEndsWithTheRopesMessage) {
     const Outcome r = run("verlet", 0, 1e-3);
     std::printf("verlet, fixed 1 ms: %s\n", r.completed ? "completed" : r.error.c_str());
     ASSERT_FALSE(r.completed);
-    EXPECT_NE(r.error.find("rope 'pendulum rope' at t = 0.02"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find("rope 'pendulum rope' at t = "), std::string::npos) << r.error;
     EXPECT_NE(r.error.find("sheave node 1"), std::string::npos) << r.error;
-    EXPECT_GE(r.evaluationFailures, 1);
+    EXPECT_GT(r.evaluationFailures, 0);
+    // The run stopped with the evaluation failure the rope recorded.
+    EXPECT_NE(r.error.find(r.lastFailure), std::string::npos) << r.error << " / " << r.lastFailure;
+    EXPECT_FALSE(r.lastFailure.empty());
 }
 
 // CPodes: the payload pushed at 100 m/s with QuasiStatic axial modes and a first step of 20 s: the

@@ -4,8 +4,9 @@
 // The paper's pendulum (PendulumScene, Table 1) pushed one parameter at a time: stiffer rope, a
 // short horizontal span, fast pushes, a long run, many modes, a heavy rope, a light payload. Every
 // case runs with RK-Merson and with CPodes at accuracy 1e-6, reporting every 0.1 s. A run passes if
-// every reported state is finite, the mechanical energy drift stays <= 1e-3 of the initial kinetic
-// energy (the system is conservative) and the sheave tension-equality residual stays <= 1e-9 of the
+// every reported state is finite, the mechanical energy drift stays within 100 times the drift
+// recorded for that run in bench/STRESS.md, at most 1e-3 of the initial kinetic energy (the system
+// is conservative), and the sheave tension-equality residual stays <= 1e-9 of the
 // payload weight. Otherwise it fails with a message naming the case, the integrator and the cause:
 // an exception from the simulation (Simbody's step-size underflow, the sheave Newton solver's
 // std::runtime_error, std::domain_error, ...), an integrator that ended the simulation, non-finite
@@ -28,7 +29,9 @@
 #include <exception>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 using SimTK::Stage;
@@ -41,7 +44,7 @@ namespace {
 constexpr double kAccuracy = 1e-6;
 constexpr double kReportInterval = 0.1;          // [s]
 constexpr double kWallCapSeconds = 600.0;        // integration wall time per run
-constexpr double kMaxRelativeDrift = 1e-3;       // max |E - E0| / KE0
+constexpr double kMaxRelativeDrift = 1e-3;       // max |E - E0| / KE0, the ceiling of every case's limit
 constexpr double kMaxRelativeConstraint = 1e-9;  // max |F_a - F_b| / (M g)
 constexpr int kStepsBetweenWallChecks = 200;     // internal steps per Integrator::stepTo call at most
 
@@ -109,6 +112,40 @@ struct StressRun {
     StressCase stressCase;
     std::string integrator;
 };
+
+/// The drift / KE0 each run was measured at (bench/STRESS.md; where a case was measured twice, the
+/// larger figure): the Dynamic table at commit 80c4aec (EA x100 at cd59813; Baseline also at
+/// cd59813: 1.6e-11 and 2.4e-8, CPodes' drift moved 3.4x with a round-off change), the QS table at
+/// b83cc56, Push20TensionOnly at 814a40b and 26f4909. Returns {rk-merson, cpodes}.
+std::pair<double, double> recordedDrift(const std::string& name) {
+    static const struct {
+        const char* name;
+        double rkMerson, cpodes;
+    } table[] = {
+        {"Baseline", 1.7e-11, 8.1e-08},   {"EAx10", 1.5e-10, 4.3e-08},        {"EAx100", 1.2e-09, 1.9e-06},
+        {"ShortSpan", 9.4e-10, 1.6e-08},  {"Push5", 1.7e-11, 3.1e-10},        {"Push20", 2.5e-07, 1.8e-06},
+        {"Long200s", 2.7e-11, 1.1e-07},   {"Na8", 7.8e-11, 2.4e-08},          {"Nt4", 2.7e-11, 1.7e-08},
+        {"HeavyRope", 4.3e-09, 1.9e-08},  {"LightPayload", 1.2e-09, 9.2e-08}, {"Push20TensionOnly", 6.9e-06, 3.1e-04},
+        {"BaselineQS", 3.9e-08, 8.5e-08}, {"EAx10QS", 2.0e-07, 4.7e-07},      {"EAx100QS", 3.5e-08, 1.2e-07},
+        {"ShortSpanQS", 2.1e-11, 1.9e-06}, {"Push5QS", 2.6e-08, 2.2e-07},     {"Push20QS", 3.9e-07, 1.5e-04},
+        {"Long200sQS", 2.9e-07, 8.5e-08}, {"Na8QS", 2.8e-08, 9.8e-08},        {"Nt4QS", 8.0e-10, 9.4e-08},
+        {"HeavyRopeQS", 3.0e-07, 1.1e-06}, {"LightPayloadQS", 4.7e-08, 8.6e-06},
+        {"Push20TensionOnlyQS", 4.8e-07, 2.0e-05},
+    };
+    for (const auto& row : table)
+        if (name == row.name) return {row.rkMerson, row.cpodes};
+    throw std::logic_error("no recorded drift for stress case " + name);
+}
+
+/// A run's drift limit: 100 x its recorded drift (the margin covers round-off changes of the step
+/// sequence, which moved the Baseline CPodes figure 3.4x), capped at kMaxRelativeDrift (never
+/// looser than before). The cap binds for three CPodes runs, with smaller margins: Push20QS (1.5e-4,
+/// 6.7x), Push20TensionOnly (3.1e-4, 3.2x) and Push20TensionOnlyQS (2.0e-5, 50x).
+double driftLimit(const StressRun& run) {
+    const auto recorded = recordedDrift(run.stressCase.name);
+    const double measured = run.integrator == "cpodes" ? recorded.second : recorded.first;
+    return std::min(kMaxRelativeDrift, 100.0 * measured);
+}
 
 // gtest prints this instead of the parameter's bytes.
 void PrintTo(const StressRun& run, std::ostream* os) { *os << run.stressCase.name << " / " << run.integrator; }
@@ -251,8 +288,10 @@ TEST_P(StressSuite, RunsStably) {
     std::vector<std::string> causes;
     if (!r.failure.empty()) causes.push_back(r.failure);
     if (r.finite) {
-        if (r.relDrift > kMaxRelativeDrift)
-            causes.push_back("energy drift " + describe(r.relDrift) + " of KE0 > " + describe(kMaxRelativeDrift));
+        if (r.relDrift > driftLimit(run))
+            causes.push_back("energy drift " + describe(r.relDrift) + " of KE0 > " + describe(driftLimit(run)) +
+                             " (100 x the drift recorded in bench/STRESS.md, at most " +
+                             describe(kMaxRelativeDrift) + ")");
         if (r.relConstraint > kMaxRelativeConstraint)
             causes.push_back("constraint residual " + describe(r.relConstraint) + " of the payload weight > " +
                              describe(kMaxRelativeConstraint));
@@ -335,6 +374,8 @@ TEST(LongRun, OneHourConservativePendulum) {
                         s.getTime(), drift / ke0, residual / weight, integ->getNumStepsTaken(),
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    EXPECT_LT(drift, 1e-5 * ke0);
-    EXPECT_LT(residual, 1e-9 * weight);
+    // bench/STRESS.md (tension-only default, 2026-11-29): drift 3.7e-08 of KE0 at 3 600 s, margin
+    // 27x; residual 1.1e-12 of the weight (round-off floor), margin 91x.
+    EXPECT_LT(drift, 1e-6 * ke0);
+    EXPECT_LT(residual, 1e-10 * weight);
 }

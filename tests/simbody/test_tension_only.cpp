@@ -102,7 +102,8 @@ TEST(TensionOnlySpan, EnergyAndForcesFollowTheClampedLaw) {
     }
     std::printf("partly slack span: strain %.3e .. %.3e, max |Q_el - (-dU/dq)_fd| = %.2e of max |Q_el| %.3e N\n",
                 minEps, maxEps, worst / scale, scale);
-    EXPECT_LT(worst, 1e-6 * scale);
+    // Measured 1.4e-4 N = 2.4e-10 of max |Q_el| (central differences at h = 1e-6) (2026-12-01, 2e3eafb); margin 41x.
+    EXPECT_LT(worst, 1e-8 * scale);
 }
 
 TEST(TensionOnlySpan, RejectsCombinationsWithoutAConsistentLaw) {
@@ -303,7 +304,8 @@ TEST(TensionOnlyDrop, LightRopeFreeFlightSnapLoadAndEnergy) {
     std::printf("\n");
 
     EXPECT_GT(last - first, 3000u);  // about 0.6 s of flight at 1e-4 s reports
-    EXPECT_LT(flightError, 1e-6);
+    EXPECT_LT(flightError, 2e-7);  // measured 6.0e-9 m (2026-12-01, 2e3eafb), margin 33x
+    // Measured (2026-12-01, 2e3eafb): peak 3.3e-4 relative (margin 31x); drift 1.2e-7 of KE0 (margin 8.7x).
     EXPECT_NEAR(peak, predicted, 0.01 * predicted);
     EXPECT_GE(minForce, 0.0);
     EXPECT_LT(drift, 1e-6 * ke0);
@@ -361,7 +363,9 @@ static void tableOneDrop(AxialDynamics axialDynamics) {
                 name, slackReports, run.size(), peak, minForce, drift / ke0, ke0, scene.monitor->transitions().size());
     EXPECT_GT(slackReports, 100);
     EXPECT_GE(minForce, 0.0);
-    EXPECT_LT(drift, 1e-6 * ke0);
+    // Measured (2026-12-01, 2e3eafb): 5.2e-10 of KE0 (Dynamic; bound 2e-8, margin 38x) and 1.4e-7 (QuasiStatic;
+    // bound 1e-6, margin 7.4x).
+    EXPECT_LT(drift, (axialDynamics == AxialDynamics::Dynamic ? 2e-8 : 1e-6) * ke0);
     EXPECT_GE(scene.monitor->transitions().size(), 2u);
 }
 
@@ -420,7 +424,8 @@ static void pendulumOverTheTop(AxialDynamics axialDynamics) {
     EXPECT_GT(maxHeight, 0.0);  // over the top
     EXPECT_GE(minForce, 0.0);
     EXPECT_GE(monitor.transitions().size(), 2u);
-    EXPECT_LT(drift, 1e-5 * ke0);
+    // Measured 3.5e-10 (Dynamic) and 2.6e-10 (QuasiStatic) of KE0 (2026-12-01, 2e3eafb); margins 28x and 38x.
+    EXPECT_LT(drift, 1e-8 * ke0);
 }
 
 TEST(TensionOnlyDrop, PendulumPushedOverTheTopNeverPushes) { pendulumOverTheTop(AxialDynamics::Dynamic); }
@@ -500,7 +505,9 @@ static void hookBlockBothSlack(AxialDynamics axialDynamics) {
                 integ.getNumStepsTaken());
     EXPECT_GT(bothSlack, 10);
     EXPECT_GE(minForce, 0.0);
-    EXPECT_LT(drift, 1e-6 * ke0);
+    // Measured (2026-12-01, 2e3eafb): 1.4e-9 of KE0 (Dynamic; bound 5e-8, margin 37x) and 1.8e-7 (QuasiStatic;
+    // bound 1e-6, margin 5.6x).
+    EXPECT_LT(drift, (axialDynamics == AxialDynamics::Dynamic ? 5e-8 : 1e-6) * ke0);
 }
 
 TEST(TensionOnlyDrop, HookBlockWithBothFallsSlack) { hookBlockBothSlack(AxialDynamics::Dynamic); }
