@@ -286,7 +286,6 @@ int main(int argc, char** argv) {
     spans.axialModes = o.axialModes;
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
-    spans.velocityModel = VelocityModel::Simplified;  // the library default before issue 19: the README's figures
     std::unique_ptr<CraneScene> scene;
     RunResult result;
     try {

@@ -76,7 +76,6 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     spans.axialModes = na;
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
-    spans.velocityModel = VelocityModel::Simplified;  // the library default before issue 19: the README's figures
     PendulumScene scene(o.parameters, spans);
     CaseResult r;
     r.axialModes = na;

@@ -12,7 +12,7 @@
 /// in the caller's thread, so the caller can catch the exception and go on without the window; after
 /// such an exception the Visualizer must not be reported to again (its scene lock stays taken).
 
-#include <SimbodyReeving/ReevingSubsystem.h>
+#include <SimbodyReeving/simbody/ReevingSubsystem.h>
 
 #include <Simbody.h>
 
