@@ -164,6 +164,8 @@ SceneOutcome randomScene(Hostile& h) {
         system.realizeTopology();
     } catch (const std::invalid_argument& e) {
         return {"setup: invalid_argument", e.what()};
+    } catch (const std::logic_error& e) {  // the rope's gravity disagrees with the Force::Gravity
+        return {"setup: logic_error", e.what()};
     }
     SimTK::State s = system.getDefaultState();
     hook.setQToFitTranslation(s, h.point(40, 0.0));

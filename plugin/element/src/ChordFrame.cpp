@@ -105,6 +105,44 @@ template void computeChordFrame<2>(const Eigen::Vector2d&, const Eigen::Vector2d
 template void computeChordFrame<3>(const Eigen::Vector3d&, const Eigen::Vector3d&, const Eigen::Matrix3d&,
                                    ChordFrame<3>&);
 
+double referenceAlignment(const Eigen::Vector3d& e, const Eigen::Matrix3d& reference) {
+    const double n = e.norm();
+    if (!(n > 0.0) || !e.allFinite()) {
+        std::ostringstream msg;
+        msg << "referenceAlignment: chord e = (" << e.transpose() << ") is zero or not finite";
+        throw std::domain_error(msg.str());
+    }
+    return 1.0 + reference.col(0).dot(e) / n;
+}
+
+void reReferenceTransverseModes(const Eigen::Vector3d& e, const Eigen::Vector3d& edot,
+                                const Eigen::Matrix3d& oldReference, const Eigen::Matrix3d& newReference,
+                                bool completeVelocity, Eigen::Ref<Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> c,
+                                Eigen::Ref<Eigen::VectorXd> bdot, Eigen::Ref<Eigen::VectorXd> cdot) {
+    const Eigen::Index n = b.size();
+    if (c.size() != n || bdot.size() != n || cdot.size() != n)
+        throw std::invalid_argument("reReferenceTransverseModes: b, c, bdot, cdot must have the same size");
+    ChordFrame<3> from, to;
+    computeChordFrame<3>(e, edot, oldReference, from);
+    computeChordFrame<3>(e, edot, newReference, to);
+    const Eigen::Matrix<double, 3, 2> J0 = from.A.rightCols<2>(), J1 = to.A.rightCols<2>();
+    const Eigen::Matrix<double, 3, 2> J0dot = from.Adot.rightCols<2>(), J1dot = to.Adot.rightCols<2>();
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::Vector2d q0(b[i], c[i]), q0dot(bdot[i], cdot[i]);
+        const Eigen::Vector3d w = J0 * q0;  // displacement of mode i, normal to the chord
+        Eigen::Vector3d wdot = J0 * q0dot;  // its velocity (Simplified: without the frame's rotation)
+        if (completeVelocity) wdot += J0dot * q0;
+        const Eigen::Vector2d q1 = J1.transpose() * w;
+        Eigen::Vector3d rest = wdot;
+        if (completeVelocity) rest -= J1dot * q1;
+        const Eigen::Vector2d q1dot = J1.transpose() * rest;
+        b[i] = q1[0];
+        c[i] = q1[1];
+        bdot[i] = q1dot[0];
+        cdot[i] = q1dot[1];
+    }
+}
+
 Eigen::Matrix3d makeReferenceFrame(const Eigen::Vector3d& chordDirection, const Eigen::Vector3d& normalHint) {
     const double n = chordDirection.norm();
     if (!(n > 0.0) || !chordDirection.allFinite()) {

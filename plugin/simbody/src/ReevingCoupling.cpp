@@ -24,6 +24,9 @@ using namespace detail;
 // theta moves with its pin: its row of the Jacobian is dsdTheta at the pin's mobility, and a
 // force f_s on it is the generalized force dsdTheta f_s on the pin.
 int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
+    // Force::Gravity's magnitude and direction are State parameters (they invalidate
+    // Stage::Dynamics); the ropes were built with gravity_.
+    checkStateGravity(s);
     PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
     refreshFromZ(s, pc, true);
     CouplingWorkspace& ws = pc.coupling;
@@ -144,8 +147,9 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             r.planarModel->modalAccelerations(c.planar, c.externalAccelerations, c.modalAccelerations);
             r.planarModel->recoverInertialStrain(c.planar, c.externalAccelerations, c.modalAccelerations);
         } else {
-            r.spatialModel->modalAccelerations(c.spatial, c.externalAccelerations, c.modalAccelerations);
-            r.spatialModel->recoverInertialStrain(c.spatial, c.externalAccelerations, c.modalAccelerations);
+            const RopeModel<3>& model = spatialModel(s, r);
+            model.modalAccelerations(c.spatial, c.externalAccelerations, c.modalAccelerations);
+            model.recoverInertialStrain(c.spatial, c.externalAccelerations, c.modalAccelerations);
         }
         for (int j = 0; j < r.numModal; ++j) {
             zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];

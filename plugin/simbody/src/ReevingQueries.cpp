@@ -36,8 +36,9 @@ std::vector<Vec3> ReevingSubsystem::Guts::sample(const State& s, int rope, int s
             out.push_back(toSimTK(r.e1 * p[0] + r.e2 * p[1] + r.normal * offset));
         }
     } else {
-        r.spatialModel->spanCoordinates(span, c.nodes3, qm, c.spatial, q);
-        const auto& sp = r.spatialModel->span(span);
+        const RopeModel<3>& model = spatialModel(s, r);
+        model.spanCoordinates(span, c.nodes3, qm, c.spatial, q);
+        const auto& sp = model.span(span);
         for (int k = 0; k < numPoints; ++k) {
             const double sk = q[sp.s1Index()] + (q[sp.s2Index()] - q[sp.s1Index()]) * k / (numPoints - 1);
             out.push_back(toSimTK(Eigen::Vector3d(sp.position(q, std::min(sk, q[sp.s2Index()])))));
@@ -58,21 +59,21 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
 
 namespace {
 // The span's axial law (the tension-only law of quasi-static spans is rounded near eps = 0).
-const AxialLaw& lawOf(const detail::RopeRecord& r, int span) {
-    return r.planar ? r.planarModel->span(span).axialLaw() : r.spatialModel->span(span).axialLaw();
+const AxialLaw& lawOf(const ReevingSubsystem::Guts& g, const State& s, const detail::RopeRecord& r, int span) {
+    return r.planar ? r.planarModel->span(span).axialLaw() : g.spatialModel(s, r).span(span).axialLaw();
 }
 }  // namespace
 
 double ReevingSubsystem::getAxialForce(const State& s, int rope, int span, double sMaterial) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const double eps = strainAt(s, rope, span, sMaterial);
-    return lawOf(r, span).force(eps);
+    return lawOf(getGuts(), s, r, span).force(eps);
 }
 
 double ReevingSubsystem::getTension(const State& s, int rope, int span, double sMaterial) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const double eps = strainAt(s, rope, span, sMaterial);
-    return lawOf(r, span).force(eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+    return lawOf(getGuts(), s, r, span).force(eps) * std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
 }
 
 int ReevingSubsystem::getNumEvaluationFailures() const { return getGuts().numEvaluationFailures(); }
@@ -84,7 +85,7 @@ double ReevingSubsystem::getSpanMaxStrain(const State& s, int rope, int span) co
     getSpanMaterialRange(s, rope, span);  // validates span
     const RopeCache& c = g.positionCache(s).ropes[rope];
     return r.planar ? r.planarModel->span(span).maxStrain(c.planar.spanCoordinates(span))
-                    : r.spatialModel->span(span).maxStrain(c.spatial.spanCoordinates(span));
+                    : g.spatialModel(s, r).span(span).maxStrain(c.spatial.spanCoordinates(span));
 }
 
 bool ReevingSubsystem::isSpanSlack(const State& s, int rope, int span) const {
@@ -115,7 +116,7 @@ double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMa
         return sp.strain(q, xi >= 1.0 ? r2 : r1 + xi * (r2 - r1));
     };
     if (r.planar) return strainOf(*r.planarModel, g.planarNodes(r, c.nodes3), c.planar);
-    return strainOf(*r.spatialModel, c.nodes3, c.spatial);
+    return strainOf(g.spatialModel(s, r), c.nodes3, c.spatial);
 }
 
 Vec3 ReevingSubsystem::getNodeForce(const State& s, int rope, int node) const {
@@ -147,7 +148,7 @@ double ReevingSubsystem::getConstraintError(const State& s, int rope, int sheave
         invalid("sheave node index = " + std::to_string(sheave) + " is outside 1.." + std::to_string(r.numNodes() - 2));
     const RopeCache& c = getGuts().positionCache(s).ropes[rope];
     return r.planar ? r.planarModel->constraintError(c.planar, sheave)
-                    : r.spatialModel->constraintError(c.spatial, sheave);
+                    : getGuts().spatialModel(s, r).constraintError(c.spatial, sheave);
 }
 
 double ReevingSubsystem::getMaxConstraintError(const State& s) const {

@@ -48,6 +48,33 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     matter_ = nullptr;
     int z = 0;
     auto& self = const_cast<Guts&>(*this);
+    // Gravity: the system's (one-argument constructor) or the given one, which must then agree with
+    // the system's gravity forces if there are any.
+    self.findGravityForces();
+    Vec3 systemG;
+    const int numGravityForces = systemGravity(nullptr, systemG);
+    if (gravityFromSystem_) {
+        self.gravity_ = systemG;
+    } else if (numGravityForces > 0 && (gravity_ - systemG).norm() > 1e-12 * std::max(gravity_.norm(), systemG.norm())) {
+        throw std::logic_error("ReevingSubsystem: the ropes' gravity " + str(gravity_) +
+                               " m/s^2 (constructor argument) differs from the gravity the bodies feel, " +
+                               str(systemG) + " m/s^2 (the sum of the system's " + std::to_string(numGravityForces) +
+                               " Force::Gravity / Force::UniformGravity defaults); give the same vector, or "
+                               "construct the ReevingSubsystem without one to take the system's");
+    }
+    const Eigen::Vector3d gravity = toEigen(gravity_);
+    for (RopeRecord& r : self.ropes) {
+        if (!r.planar) continue;
+        if (std::abs(r.normal.dot(gravity)) > 1e-12 * gravity.norm())
+            throw std::logic_error("ReevingSubsystem: rope '" + r.spec.name + "': gravity " + str(gravity_) +
+                                   " is not in the rope plane (normal " + str(r.spec.planeNormal) + ")");
+        std::vector<SpanModel<2>> spans;
+        const Eigen::Vector2d g2(r.e1.dot(gravity), r.e2.dot(gravity));
+        for (int j = 0; j < r.numSpans(); ++j) spans.emplace_back(r.spec.properties, r.spanOptions[j], g2);
+        auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
+        r.addStoredRope(*model);
+        r.planarModel = std::move(model);
+    }
     for (RopeRecord& r : self.ropes) {
         for (int k = 0; k < r.numNodes(); ++k) {
             const MobilizedBody& b = *r.node(k).first;
@@ -57,7 +84,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         }
         r.zOffset = z;
         z += 2 * r.numModal;
-        r.spatialModel.reset();
+        r.index = static_cast<int>(&r - self.ropes.data());
     }
     // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
     // coordinate (1 row each); each rope records which of its external coordinates each row is.
@@ -119,40 +146,52 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     }
     if (z > 0) allocateZ(s, Vector(z, 0.0));
     positionCache_ = allocateCacheEntry(s, Stage::Position, new Value<PositionCache>());
+    SpatialFrames frames;  // none yet: built at the state's first realization to Stage::Position
+    frames.models.assign(ropes.size(), nullptr);
+    frames.changes.assign(ropes.size(), 0);
+    framesVariable_ = allocateDiscreteVariable(s, Stage::Position, new Value<SpatialFrames>(frames));
     return 0;
 }
 
-// Integrator error weights of the rope's Z entries. Transverse amplitudes are lengths like body
-// positions (weight 1/m). An axial amplitude error da changes the strain by i pi da / l, i.e. the
-// axial force by EA i pi da / l: weight w = i pi / (l eps_ref) with eps_ref = 1e-3, so an
-// accuracy of 1e-6 holds the axial force to about EA 1e-9 (0.02 N for the Table 1 rope);
-// l = L / (number of spans), the mean span length. Rates: w / omega_i with omega_i the span's
-// i-th axial frequency i pi / l sqrt(EA / rhoA).
+// Integrator error weights of the rope's Z entries (State::updZWeights; the integrators weigh a
+// step's error estimate of z with the weights of the state the step starts from). Transverse
+// amplitudes are lengths like body positions (weight 1/m). An axial amplitude error da changes the
+// strain by i pi da / l, i.e. the axial force by EA i pi da / l: weight w = i pi / (l eps_ref)
+// with eps_ref = 1e-3, so an accuracy of 1e-6 holds the axial force to about EA 1e-9 (0.02 N for
+// the Table 1 rope). l is the span's own current material length s_{j+1} - s_j, set at every
+// realization to Stage::Position (hoisting changes span lengths by orders of magnitude; at
+// Stage::Instance, before positions are known, the mean span length L / (number of spans) stands
+// in). Rates: w / omega_i with omega_i = i pi / l sqrt(EA / rhoA) the span's i-th axial
+// frequency, i.e. 1 / (eps_ref sqrt(EA / rhoA)): the same for every span length.
+void ReevingSubsystem::Guts::setZWeights(const State& s, const RopeRecord& r,
+                                         const Eigen::VectorXd* materialCoordinates) const {
+    Vector& w = const_cast<State&>(s).updZWeights(getMySubsystemIndex());  // invalidates Stage::Report only
+    const double pi = std::acos(-1.0);
+    const double meanLength = r.spec.unstretchedLength / r.numSpans();
+    const double wave = std::sqrt(r.spec.properties.axialStiffness / r.spec.properties.massPerLength);
+    int k = 0;
+    for (int j = 0; j < r.numSpans(); ++j) {
+        const SpanOptions& o = r.spanOptions[j];
+        const double l = materialCoordinates ? (*materialCoordinates)[j + 1] - (*materialCoordinates)[j] : meanLength;
+        const int dynamicAxialModes = o.axialDynamics == AxialDynamics::Dynamic ? o.axialModes : 0;
+        for (int i = 1; i <= dynamicAxialModes; ++i, ++k) {
+            const double weight = i * pi / (l * kAxialWeightStrain);
+            w[r.zOffset + k] = weight;
+            w[r.zOffset + r.numModal + k] = 1.0 / (kAxialWeightStrain * wave);
+        }
+        for (int i = 0; i < (r.planar ? 1 : 2) * o.transverseModes; ++i, ++k) {
+            w[r.zOffset + k] = 1.0;
+            w[r.zOffset + r.numModal + k] = 1.0;
+        }
+    }
+}
+
 int ReevingSubsystem::Guts::realizeSubsystemInstanceImpl(const State& s) const {
     // A new run (an integrator's initialize realizes Stage::Instance afresh) has reached no limit
     // yet; a limit ends a run, so this never clears the message of the current one.
     recordLimit("");
     if (getZ(s).size() == 0) return 0;
-    Vector& w = const_cast<State&>(s).updZWeights(getMySubsystemIndex());
-    const double pi = std::acos(-1.0);
-    for (const RopeRecord& r : ropes) {
-        const double l = r.spec.unstretchedLength / r.numSpans();
-        const double wave = std::sqrt(r.spec.properties.axialStiffness / r.spec.properties.massPerLength);
-        int k = 0;
-        for (int j = 0; j < r.numSpans(); ++j) {
-            const SpanOptions& o = r.spanOptions[j];
-            const int dynamicAxialModes = o.axialDynamics == AxialDynamics::Dynamic ? o.axialModes : 0;
-            for (int i = 1; i <= dynamicAxialModes; ++i, ++k) {
-                const double weight = i * pi / (l * 1e-3);
-                w[r.zOffset + k] = weight;
-                w[r.zOffset + r.numModal + k] = weight / (i * pi / l * wave);
-            }
-            for (int i = 0; i < (r.planar ? 1 : 2) * o.transverseModes; ++i, ++k) {
-                w[r.zOffset + k] = 1.0;
-                w[r.zOffset + r.numModal + k] = 1.0;
-            }
-        }
-    }
+    for (const RopeRecord& r : ropes) setZWeights(s, r, nullptr);
     return 0;
 }
 
@@ -162,7 +201,12 @@ int ReevingSubsystem::Guts::realizeSubsystemInstanceImpl(const State& s) const {
 int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
     PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
     pc.ropes.resize(ropes.size());
-    for (size_t i = 0; i < ropes.size(); ++i) updatePositionPart(s, ropes[i], pc.ropes[i]);
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        updatePositionPart(s, ropes[i], pc.ropes[i]);
+        if (ropes[i].numModal > 0)
+            setZWeights(s, ropes[i],
+                        ropes[i].planar ? &pc.ropes[i].planar.materialCoordinates : &pc.ropes[i].spatial.materialCoordinates);
+    }
     markCacheValueRealized(s, positionCache_);
     return 0;
 }
@@ -219,7 +263,7 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
             c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
             r.planarModel->solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
         } else {
-            spatialModel(r, c.nodes3).solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
+            spatialModel(s, r, c.nodes3).solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
         }
     } catch (const std::exception& e) {
         failEvaluation(s, r, e);
@@ -249,7 +293,7 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
             r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.drivenS, c.drivenSdot, c.modalCoordinates,
                                            c.modalRates, c.planar);
         } else {
-            spatialModel(r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot,
+            spatialModel(s, r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot,
                                                       c.modalCoordinates, c.modalRates, c.spatial);
         }
     } catch (const std::exception& e) {
@@ -287,7 +331,7 @@ Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {
         } else if (r.planar) {
             u += potential(*r.planarModel, c.planar, planarNodes(r, c.nodes3), modal(getZ(s), r, false));
         } else {
-            u += potential(*r.spatialModel, c.spatial, c.nodes3, modal(getZ(s), r, false));
+            u += potential(spatialModel(s, r), c.spatial, c.nodes3, modal(getZ(s), r, false));
         }
     }
     return u;
@@ -457,18 +501,135 @@ int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, 
     return 0;
 }
 
-const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const RopeRecord& r,
+// ---- spatial span frames -----------------------------------------------------------------
+const SpatialFrames& ReevingSubsystem::Guts::spatialFrames(const State& s) const {
+    return Value<SpatialFrames>::downcast(getDiscreteVariable(s, framesVariable_)).get();
+}
+
+std::shared_ptr<const RopeModel<3>> ReevingSubsystem::Guts::makeSpatialModel(
+    const RopeRecord& r, const std::vector<Eigen::Matrix3d>& references) const {
+    std::vector<SpanModel<3>> spans;
+    for (int j = 0; j < r.numSpans(); ++j)
+        spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_), references[j]);
+    auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
+    r.addStoredRope(*model);
+    return model;
+}
+
+const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const RopeRecord& r,
                                                          const Eigen::Matrix3Xd& nodes) const {
-    if (!r.spatialModel) {
-        std::vector<SpanModel<3>> spans;
-        for (int j = 0; j < r.numSpans(); ++j)
-            spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_),
-                               makeReferenceFrame(nodes.col(j + 1) - nodes.col(j)));
-        auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
-        r.addStoredRope(*model);
-        r.spatialModel = std::move(model);
+    const SpatialFrames& frames = spatialFrames(s);
+    if (!frames.models[r.index]) {
+        // The state's first realization to Stage::Position defines its frames, from its own
+        // chords. This fills in a value the state did not have yet (nothing computed from it can
+        // be stale), so it is written in place rather than through updDiscreteVariable, which
+        // would invalidate the stage being realized.
+        std::vector<Eigen::Matrix3d> references;
+        for (int j = 0; j < r.numSpans(); ++j) {
+            const Eigen::Vector3d chord = nodes.col(j + 1) - nodes.col(j);
+            if (!(chord.norm() > 0))
+                throw std::runtime_error("ReevingSubsystem: rope '" + r.spec.name + "' span " + std::to_string(j) +
+                                         ": its end nodes coincide in the configuration that defines its frame");
+            references.push_back(makeReferenceFrame(chord));
+        }
+        const_cast<SpatialFrames&>(frames).models[r.index] = makeSpatialModel(r, references);
     }
-    return *r.spatialModel;
+    return *frames.models[r.index];
+}
+
+const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const RopeRecord& r) const {
+    const SpatialFrames& frames = spatialFrames(s);
+    if (!frames.models[r.index])
+        throw std::logic_error("ReevingSubsystem: rope '" + r.spec.name +
+                               "': the state has no span frames yet (realize it to Stage::Position first)");
+    return *frames.models[r.index];
+}
+
+double ReevingSubsystem::Guts::frameChangeMargin(const State& s, int rope) const {
+    const RopeRecord& r = ropes[rope];
+    const RopeCache& c = positionCache(s).ropes[rope];
+    const RopeModel<3>& model = spatialModel(s, r);
+    double alignment = 2.0;
+    for (int j = 0; j < r.numSpans(); ++j)
+        alignment = std::min(alignment, referenceAlignment(c.nodes3.col(j + 1) - c.nodes3.col(j),
+                                                           model.span(j).referenceFrame()));
+    return alignment - frameChangeAlignment;
+}
+
+int ReevingSubsystem::Guts::changeSpanFrames(State& s, int rope, bool onlyDue) const {
+    const RopeRecord& r = ropes[rope];
+    if (r.planar) return 0;
+    getSystem().realize(s, Stage::Velocity);
+    const RopeCache& c = positionCache(s).ropes[rope];
+    const RopeModel<3>& model = spatialModel(s, r);
+    const std::shared_ptr<const RopeModel<3>> keep = spatialFrames(s).models[rope];  // outlives the update
+    Eigen::VectorXd q = modal(getZ(s), r, false), qdot = modal(getZ(s), r, true);
+    std::vector<Eigen::Matrix3d> references;
+    int changed = 0;
+    for (int j = 0; j < r.numSpans(); ++j) {
+        const SpanModel<3>& span = model.span(j);
+        const Eigen::Vector3d e = c.nodes3.col(j + 1) - c.nodes3.col(j);
+        const Eigen::Vector3d edot = c.nodeVelocities3.col(j + 1) - c.nodeVelocities3.col(j);
+        references.push_back(span.referenceFrame());
+        if (onlyDue && referenceAlignment(e, span.referenceFrame()) > frameChangeAlignment) continue;
+        // The new reference is the current element frame (orthonormalised afresh: i0 along the
+        // chord, k0 its k_e), so the chord is aligned with it: 1 + i0 . i_e = 2.
+        ChordFrame<3> frame;
+        computeChordFrame<3>(e, Eigen::Vector3d::Zero(), span.referenceFrame(), frame);
+        const Eigen::Matrix3d next = makeReferenceFrame(e, frame.A.col(2));
+        const int nt = span.transverseModes();
+        const int first = model.modalOffset(j) + (model.isCondensed(j) ? 0 : span.axialModes());
+        reReferenceTransverseModes(e, edot, span.referenceFrame(), next,
+                                   span.options().velocityModel == VelocityModel::Complete, q.segment(first, nt),
+                                   q.segment(first + nt, nt), qdot.segment(first, nt), qdot.segment(first + nt, nt));
+        references.back() = next;
+        ++changed;
+    }
+    if (changed == 0) return 0;
+    std::shared_ptr<const RopeModel<3>> next = makeSpatialModel(r, references);
+    Vector& z = updZ(s);
+    for (int j = 0; j < r.numModal; ++j) {
+        z[r.zOffset + j] = q[j];
+        z[r.zOffset + r.numModal + j] = qdot[j];
+    }
+    SpatialFrames& frames = Value<SpatialFrames>::updDowncast(updDiscreteVariable(s, framesVariable_)).upd();
+    frames.models[rope] = std::move(next);
+    ++frames.changes[rope];
+    return changed;
+}
+
+namespace {
+
+/// Witness: the smallest 1 + i0 . i_e over a spatial rope's spans, less frameChangeAlignment;
+/// when it falls through zero, the spans due get new reference frames (their current element
+/// frames), so no chord ever reaches reversal against its reference.
+class SpanFrameEvent : public SimTK::TriggeredEventHandler {
+public:
+    SpanFrameEvent(const System& system, SubsystemIndex reeving, int rope)
+        : SimTK::TriggeredEventHandler(Stage::Position), system_(system), reeving_(reeving), rope_(rope) {
+        getTriggerInfo().setTriggerOnRisingSignTransition(false);
+        getTriggerInfo().setTriggerOnFallingSignTransition(true);
+        getTriggerInfo().setRequiredLocalizationTimeWindow(1e-3);
+    }
+    Real getValue(const State& s) const override { return guts().frameChangeMargin(s, rope_); }
+    void handleEvent(State& s, Real, bool& shouldTerminate) const override {
+        shouldTerminate = false;
+        guts().changeSpanFrames(s, rope_, true);
+    }
+
+private:
+    const ReevingSubsystem::Guts& guts() const {
+        return dynamic_cast<const ReevingSubsystem::Guts&>(system_.getSubsystem(reeving_).getSubsystemGuts());
+    }
+    const System& system_;
+    SubsystemIndex reeving_;
+    int rope_;
+};
+
+}  // namespace
+
+void detail::installFrameChangeHandler(System& system, SubsystemIndex reeving, int rope) {
+    system.addEventHandler(new SpanFrameEvent(system, reeving, rope));  // the system owns it
 }
 
 void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord& r, Eigen::VectorXd& sDriven,

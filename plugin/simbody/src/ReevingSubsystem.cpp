@@ -2,10 +2,12 @@
 
 #include "ReevingSubsystemGuts.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <typeinfo>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,8 +36,67 @@ const ReevingSubsystem::Guts& ReevingSubsystem::getGuts() const { return dynamic
 
 ReevingSubsystem::ReevingSubsystem(MultibodySystem& system, const Vec3& gravity) {
     if (!finite(gravity)) invalid("gravity [m/s^2] = " + str(gravity) + " must be finite");
-    adoptSubsystemGuts(new Guts(gravity));
+    adoptSubsystemGuts(new Guts(gravity, false));
     system.addForceSubsystem(*this);
+}
+
+ReevingSubsystem::ReevingSubsystem(MultibodySystem& system) {
+    adoptSubsystemGuts(new Guts(Vec3(0), true));
+    system.addForceSubsystem(*this);
+}
+
+Vec3 ReevingSubsystem::getGravity() const { return getGuts().gravity(); }
+
+void ReevingSubsystem::Guts::findGravityForces() {
+    gravityForces_.clear();
+    const SimTK::System& sys = getSystem();
+    for (SimTK::SubsystemIndex i(0); i < sys.getNumSubsystems(); ++i) {
+        const SimTK::Subsystem& sub = sys.getSubsystem(i);
+        // Simbody 3.7's GeneralForceSubsystem::isInstanceOf answers true for other force
+        // subsystems (this one included), and its accessors then throw std::bad_cast: identify
+        // it by its name, and let a bad_cast say it is not one after all.
+        if (sub.getName() != "GeneralForceSubsystem" || !ForceSubsystem::isInstanceOf(sub)) continue;
+        const auto& forces = static_cast<const SimTK::GeneralForceSubsystem&>(ForceSubsystem::downcast(sub));
+        int numForces = 0;
+        try {
+            numForces = forces.getNumForces();
+        } catch (const std::bad_cast&) {
+            continue;
+        }
+        for (SimTK::ForceIndex f(0); f < numForces; ++f) {
+            const SimTK::Force& force = forces.getForce(f);
+            if (SimTK::Force::Gravity::isInstanceOf(force))
+                gravityForces_.push_back({&force, &SimTK::Force::Gravity::downcast(force), nullptr});
+            else if (SimTK::Force::UniformGravity::isInstanceOf(force))
+                gravityForces_.push_back({&force, nullptr, &SimTK::Force::UniformGravity::downcast(force)});
+        }
+    }
+}
+
+int ReevingSubsystem::Guts::systemGravity(const State* state, Vec3& sum) const {
+    sum = Vec3(0);
+    int count = 0;
+    for (const GravityForce& g : gravityForces_) {
+        if (state ? g.force->isDisabled(*state) : g.force->isDisabledByDefault()) continue;
+        if (g.gravity)
+            sum += state ? g.gravity->getGravityVector(*state) : g.gravity->getDefaultGravityVector();
+        else
+            sum += g.uniform->getGravity();
+        ++count;
+    }
+    return count;
+}
+
+void ReevingSubsystem::Guts::checkStateGravity(const State& s) const {
+    if (gravityForces_.empty()) return;
+    Vec3 stateG;
+    systemGravity(&s, stateG);
+    if ((stateG - gravity_).norm() > 1e-12 * std::max(stateG.norm(), gravity_.norm()))
+        throw std::logic_error("ReevingSubsystem: the gravity the bodies feel in this state, " + str(stateG) +
+                               " m/s^2 (the system's enabled Force::Gravity / Force::UniformGravity), differs "
+                               "from the ropes' gravity " + str(gravity_) +
+                               " m/s^2 fixed at realizeTopology; change gravity through the forces' defaults "
+                               "and realize the topology again");
 }
 
 int ReevingSubsystem::addRope(const RopeSpec& specIn) {
@@ -162,16 +223,23 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             r.e1 = frame.col(1);
             r.e2 = frame.col(2);
             r.planeBasis << r.e1, r.e2;
-            if (std::abs(r.normal.dot(gravity)) > 1e-12 * gravity.norm())
+            if (!g.gravityFromSystem() && std::abs(r.normal.dot(gravity)) > 1e-12 * gravity.norm())
                 invalid(who + "gravity " + str(g.gravity()) + " is not in the rope plane (normal " +
                         str(spec.planeNormal) + ")");
+            // The model itself is built at realizeTopology, when gravity is known.
+            for (int j = 0; j < r.numSpans(); ++j) {
+                const SpanModel<2> probe(spec.properties, r.spanOptions[j], Eigen::Vector2d::Zero());
+                r.numModal += probe.numModalCoordinates();
+                if (r.spanOptions[j].axialDynamics == AxialDynamics::QuasiStatic)
+                    r.numModal -= probe.axialModes();  // condensed: not states
+            }
+            // Validates the rope as a chain (material kinds, lengths) now rather than at topology.
             std::vector<SpanModel<2>> spans;
-            const Eigen::Vector2d g2(r.e1.dot(gravity), r.e2.dot(gravity));
-            for (int j = 0; j < r.numSpans(); ++j) spans.emplace_back(spec.properties, r.spanOptions[j], g2);
-            auto model = std::make_shared<RopeModel<2>>(std::move(spans), spec.unstretchedLength, r.materialKinds);
-            r.addStoredRope(*model);
-            r.planarModel = std::move(model);
-            r.numModal = r.planarModel->numModalCoordinates();
+            for (int j = 0; j < r.numSpans(); ++j)
+                spans.emplace_back(spec.properties, r.spanOptions[j], Eigen::Vector2d::Zero());
+            const RopeModel<2> probeRope(std::move(spans), spec.unstretchedLength, r.materialKinds);
+            if (probeRope.numModalCoordinates() != r.numModal)
+                throw std::logic_error("ReevingSubsystem: modal coordinate count mismatch (internal)");
         } else {
             for (int j = 0; j < r.numSpans(); ++j) {
                 const SpanModel<3> probe(spec.properties, r.spanOptions[j], gravity);  // validates options
@@ -186,6 +254,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
         invalid(who + msg);
     }
     if (g.ropes.empty()) installLimitHandler(updSystem(), getMySubsystemIndex());
+    if (!r.planar) installFrameChangeHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()));
     g.ropes.push_back(std::move(r));
     invalidateSubsystemTopologyCache();
     return static_cast<int>(g.ropes.size()) - 1;
@@ -217,6 +286,40 @@ void ReevingSubsystem::setModalRates(State& s, int rope, const Vector& qdot) con
     if (qdot.size() != r.numModal)
         invalid("setModalRates: size " + std::to_string(qdot.size()) + " differs from " + std::to_string(r.numModal));
     getGuts().updZ(s)(r.zOffset + r.numModal, r.numModal) = qdot;
+}
+
+void ReevingSubsystem::setFrameChangeAlignment(double alignment) {
+    if (!std::isfinite(alignment) || alignment < 0.01 || alignment > 1.99) {
+        std::ostringstream o;
+        o << "frame change alignment 1 + i0 . i_e = " << alignment << " must be in [0.01, 1.99]";
+        invalid(o.str());
+    }
+    updGuts().frameChangeAlignment = alignment;
+}
+double ReevingSubsystem::getFrameChangeAlignment() const { return getGuts().frameChangeAlignment; }
+
+int ReevingSubsystem::getNumFrameChanges(const State& s, int rope) const {
+    ropeAt(getGuts(), rope);
+    return getGuts().spatialFrames(s).changes[rope];
+}
+
+SimTK::Mat33 ReevingSubsystem::getSpanReferenceFrame(const State& s, int rope, int span) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (r.planar) invalid("rope '" + r.spec.name + "' is planar: its spans have no reference frame");
+    if (span < 0 || span >= r.numSpans())
+        invalid("span index = " + std::to_string(span) + " is outside 0.." + std::to_string(r.numSpans() - 1));
+    g.positionCache(s);  // Stage::Position: the frames exist
+    const Eigen::Matrix3d& A0 = g.spatialModel(s, r).span(span).referenceFrame();
+    SimTK::Mat33 out;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) out(i, j) = A0(i, j);
+    return out;
+}
+
+void ReevingSubsystem::resetSpanFrames(State& s) const {
+    const Guts& g = getGuts();
+    for (int i = 0; i < getNumRopes(); ++i) g.changeSpanFrames(s, i, false);
 }
 
 void ReevingSubsystem::setDecorationResolution(int pointsPerSpan) {

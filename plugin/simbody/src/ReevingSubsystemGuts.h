@@ -42,7 +42,8 @@ inline std::string str(const SimTK::Vec3& v) {
     return o.str();
 }
 
-/// Model (fixed for a simulation; the spatial model is built once, lazily):
+/// Model (fixed for a simulation; the planar model is built at realizeTopology, the spatial one is
+/// state, see SpatialFrames):
 /// One rope: its spec, its model (planar or spatial) and where its state lives.
 struct RopeRecord {
     RopeSpec spec;
@@ -50,10 +51,10 @@ struct RopeRecord {
     Eigen::Vector3d e1, e2, normal;  // plane basis (planar ropes)
     Eigen::Matrix<double, 3, 2> planeBasis = Eigen::Matrix<double, 3, 2>::Zero();  // [e1 e2]
     std::vector<SpanOptions> spanOptions;
-    std::shared_ptr<const RopeModel<2>> planarModel;
-    // Spatial spans take their reference frames from the first configuration the rope is
-    // evaluated in (after realizeTopology); built lazily, then fixed.
-    mutable std::shared_ptr<const RopeModel<3>> spatialModel;
+    std::shared_ptr<const RopeModel<2>> planarModel;  // built at realizeTopology
+    // Spatial ropes: the model (its spans' reference frames A0) is part of the State, see
+    // SpatialFrames.
+    int index = 0;  // in ReevingSubsystem::Guts::ropes
     int numModal = 0;
     int zOffset = 0;  // first Z entry (modal coordinates), rates follow
 
@@ -96,6 +97,17 @@ struct RopeRecord {
     }
     /// Number of the rope's external coordinates (RopeModel::numExternalCoordinates).
     int numExternal() const { return dim() * numNodes() + static_cast<int>(driven.size()); }
+};
+
+/// State (a discrete variable of the subsystem, invalidating Stage::Position): the spatial ropes'
+/// models, which carry their spans' reference frames A0 (ChordFrame). Per rope (nullptr for planar
+/// ropes, and for spatial ones until the state is first realized to Stage::Position, when the
+/// frames are built from the chords of that configuration: makeReferenceFrame(chord)). An event
+/// (or ReevingSubsystem::resetSpanFrames) replaces a rope's model by one whose references are the
+/// current element frames, rotating the transverse modal coordinates and rates with it.
+struct SpatialFrames {
+    std::vector<std::shared_ptr<const RopeModel<3>>> models;
+    std::vector<int> changes;  // per rope: reference changes since the frames were first built
 };
 
 /// Cache (per evaluation) of one rope:
@@ -169,8 +181,11 @@ struct RopeCoupling {
 /// cache entry) of a ReevingSubsystem: the SimTK::ForceSubsystem::Guts behind the handle.
 class ReevingSubsystem::Guts : public SimTK::ForceSubsystem::Guts {
 public:
-    explicit Guts(const SimTK::Vec3& gravity)
-        : SimTK::ForceSubsystem::Guts("ReevingSubsystem", "0.1"), gravity_(gravity) {}
+    /// gravityFromSystem: the ropes' gravity is the system's (taken at realizeTopology);
+    /// otherwise `gravity`, checked against the system's there.
+    Guts(const SimTK::Vec3& gravity, bool gravityFromSystem)
+        : SimTK::ForceSubsystem::Guts("ReevingSubsystem", "0.1"), gravity_(gravity),
+          gravityFromSystem_(gravityFromSystem) {}
     Guts* cloneImpl() const override {
         Guts* copy = new Guts(*this);
         copy->system_ = nullptr;  // a clone belongs to another System
@@ -192,11 +207,30 @@ public:
         return *matter_;
     }
     const SimTK::Vec3& gravity() const { return gravity_; }
+    bool gravityFromSystem() const { return gravityFromSystem_; }
+    /// Finds the Force::Gravity and Force::UniformGravity elements of the system's
+    /// GeneralForceSubsystems (at realizeTopology; their handles live as long as the topology).
+    void findGravityForces();
+    /// The gravity the bodies feel: the sum of the gravity vectors of those elements, with their
+    /// defaults (state == nullptr: elements not disabled by default) or as set in `state`
+    /// (elements not disabled there; Force::Gravity's magnitude and direction there, parameters
+    /// that invalidate Stage::Dynamics). Returns how many elements were summed. Does not allocate.
+    int systemGravity(const SimTK::State* state, SimTK::Vec3& sum) const;
+    /// Throws std::logic_error (both vectors in the message) unless systemGravity(&s) equals the
+    /// ropes' gravity (checked at every realizeDynamics when the system has gravity forces).
+    void checkStateGravity(const SimTK::State& s) const;
 
     // ---- realization (ReevingRealization.cpp) ----------------------------------------------
     int realizeSubsystemTopologyImpl(SimTK::State& s) const override;
     int realizeSubsystemInstanceImpl(const SimTK::State& s) const override;
     int realizeSubsystemPositionImpl(const SimTK::State& s) const override;
+    /// Strain scale eps_ref of the axial modal coordinates' error weights (see setZWeights) [-].
+    static constexpr double kAxialWeightStrain = 1e-3;
+    /// Sets rope r's integrator error weights of Z (State::updZWeights) from its spans' material
+    /// lengths l_j = s_{j+1} - s_j (materialCoordinates: the rope's s at its nodes), or from the mean
+    /// span length L / (number of spans) when materialCoordinates is nullptr.
+    void setZWeights(const SimTK::State& s, const detail::RopeRecord& r,
+                     const Eigen::VectorXd* materialCoordinates) const;
     int realizeSubsystemVelocityImpl(const SimTK::State& s) const override;
 
     /// Refreshes rope i's cache if Z changed after it was computed (see realizeSubsystemPositionImpl).
@@ -214,7 +248,26 @@ public:
     int calcDecorativeGeometryAndAppendImpl(const SimTK::State& s, SimTK::Stage stage,
                                             SimTK::Array_<SimTK::DecorativeGeometry>& geometry) const override;
 
-    const RopeModel<3>& spatialModel(const detail::RopeRecord& r, const Eigen::Matrix3Xd& nodes) const;
+    /// The spatial rope r's model in state s; if the state has none yet, builds it from the chords
+    /// of `nodes` (the state's configuration) and stores it in the state (see SpatialFrames).
+    const RopeModel<3>& spatialModel(const SimTK::State& s, const detail::RopeRecord& r,
+                                     const Eigen::Matrix3Xd& nodes) const;
+    /// The spatial rope r's model in state s (Stage::Position or later).
+    const RopeModel<3>& spatialModel(const SimTK::State& s, const detail::RopeRecord& r) const;
+    const detail::SpatialFrames& spatialFrames(const SimTK::State& s) const;
+    /// Builds a spatial rope model with these span reference frames.
+    std::shared_ptr<const RopeModel<3>> makeSpatialModel(const detail::RopeRecord& r,
+                                                         const std::vector<Eigen::Matrix3d>& references) const;
+    /// Changes the reference frames of rope `rope`'s spans to their current element frames (all
+    /// spans, or only those with 1 + i0 . i_e <= frameChangeAlignment when onlyDue), rotating
+    /// their transverse modal coordinates and rates so that the rope's configuration and velocity
+    /// field stay the same (reReferenceTransverseModes). Realizes s to Stage::Velocity first.
+    /// Returns the number of spans changed.
+    int changeSpanFrames(SimTK::State& s, int rope, bool onlyDue) const;
+    /// Smallest 1 + i0 . i_e over rope r's spans in state s, minus frameChangeAlignment (the
+    /// witness of the frame-change event; Stage::Position).
+    double frameChangeMargin(const SimTK::State& s, int rope) const;
+    double frameChangeAlignment = 0.5;
 
     // Defined in ReevingRealization.cpp, its only user (calcPotentialEnergy).
     template <int Dim>
@@ -290,6 +343,14 @@ public:
 
 private:
     SimTK::Vec3 gravity_;
+    bool gravityFromSystem_ = false;
+    // Fixed at realizeTopology: the system's gravity elements (uniform: nullptr for Force::Gravity).
+    struct GravityForce {
+        const SimTK::Force* force = nullptr;
+        const SimTK::Force::Gravity* gravity = nullptr;        // a Force::Gravity, or
+        const SimTK::Force::UniformGravity* uniform = nullptr;  // a Force::UniformGravity
+    };
+    std::vector<GravityForce> gravityForces_;
     // Fixed at realizeTopology: the mobile nodes of all ropes, in rope and node order, then the
     // driven material coordinates, and each rope's place in the coupled vector.
     std::vector<detail::MobileNode> mobileNodes_;
@@ -304,6 +365,7 @@ private:
     mutable int numEvaluationFailures_ = 0;
 
     mutable SimTK::CacheEntryIndex positionCache_;
+    mutable SimTK::DiscreteVariableIndex framesVariable_;
     mutable const SimTK::MultibodySystem* system_ = nullptr;
     mutable const SimTK::SimbodyMatterSubsystem* matter_ = nullptr;
 };
@@ -313,6 +375,10 @@ namespace detail {
 /// Adds to `system` the event handler that ends a run at a rope limit (span at its minimum
 /// length, drum out of rope) of the ReevingSubsystem with index `reeving` (ReevingLimits.cpp).
 void installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving);
+
+/// Adds to `system` the event handler that changes the span reference frames of spatial rope
+/// `rope` when a chord nears reversal against its reference (ReevingRealization.cpp).
+void installFrameChangeHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope);
 
 /// Helper: rope `rope` of g; throws std::invalid_argument if the index is out of range.
 inline const RopeRecord& ropeAt(const ReevingSubsystem::Guts& g, int rope) {

@@ -26,7 +26,10 @@ namespace SimbodyReeving {
 ///   chord and reference (bounded by 1 + tan(theta/2) per radian of chord rotation), so a span whose
 ///   chord swings far from its reference should be given a reference near its working direction.
 ///   Evaluation throws std::domain_error when 1 + c < kMinReferenceAlignment (chord turned more than
-///   about 179 degrees away from its reference direction).
+///   about 179 degrees away from its reference direction). A span whose chord turns without limit
+///   (a slewing crane) therefore changes its reference before that: reReferenceTransverseModes
+///   re-expresses its transverse modal coordinates and rates in a new reference exactly (the
+///   ReevingSubsystem does it by an event, see ReevingSubsystem::setFrameChangeAlignment).
 ///
 /// Derivatives (all with respect to the chord e):
 /// - dA[m]   = dA/de_m
@@ -52,6 +55,36 @@ inline constexpr double kMinReferenceAlignment = 1e-4;
 template <int Dim>
 void computeChordFrame(const Eigen::Matrix<double, Dim, 1>& e, const Eigen::Matrix<double, Dim, 1>& edot,
                        const Eigen::Matrix<double, Dim, Dim>& reference, ChordFrame<Dim>& out);
+
+/// 1 + i0 . i_e for chord e and reference frame A0 (its first column i0) [-], in [0, 2]: 2 when the
+/// chord points along the reference direction, 0 when it is reversed (ChordFrame's singularity).
+/// @throws std::domain_error for a zero or non-finite chord.
+double referenceAlignment(const Eigen::Vector3d& e, const Eigen::Matrix3d& reference);
+
+/// Re-expresses the transverse modal coordinates of a spatial span in a new reference frame, so
+/// that the span's configuration and its velocity field stay exactly the same.
+///
+/// Both transverse directions share the mode shapes S_i, so mode i contributes the displacement
+/// w_i = [j_e k_e] (b_i, c_i) normal to the chord, and the element frames A_e, A_e' built from the
+/// two references at the same chord differ by a rotation about the chord only: the new amplitudes
+/// are (b_i', c_i') = [j_e' k_e']^T w_i, exactly. Rates: the velocity field of the span is
+/// continuous if the velocity of w_i is: with VelocityModel::Complete that is
+/// d/dt w_i = [jdot_e kdot_e] (b_i, c_i) + [j_e k_e] (bdot_i, cdot_i) (the frames' twist rates
+/// about the chord differ, so the rates also change by the difference of twist times the
+/// amplitudes); with VelocityModel::Simplified (which drops the frame-rotation term) it is
+/// [j_e k_e] (bdot_i, cdot_i). The axial amplitudes (along i_e, the same in both frames) are
+/// unchanged.
+/// @param e, edot   chord r2 - r1 [m] and its rate [m/s] (non-zero chord).
+/// @param oldReference, newReference orthonormal right-handed A0 and A0', neither reversed against
+///        the chord (1 + i0 . i_e >= kMinReferenceAlignment).
+/// @param completeVelocity the span's VelocityModel is Complete.
+/// @param b, c      amplitudes along j_e and k_e [m], n_t each (updated in place).
+/// @param bdot, cdot their rates [m/s] (updated in place).
+/// @throws std::domain_error as computeChordFrame; std::invalid_argument if the sizes differ.
+void reReferenceTransverseModes(const Eigen::Vector3d& e, const Eigen::Vector3d& edot,
+                                const Eigen::Matrix3d& oldReference, const Eigen::Matrix3d& newReference,
+                                bool completeVelocity, Eigen::Ref<Eigen::VectorXd> b, Eigen::Ref<Eigen::VectorXd> c,
+                                Eigen::Ref<Eigen::VectorXd> bdot, Eigen::Ref<Eigen::VectorXd> cdot);
 
 /// Builds a right-handed orthonormal reference frame [i0 j0 k0] whose first column is the unit
 /// vector along `chordDirection`. If `normalHint` is non-zero and not parallel to the chord, k0 is

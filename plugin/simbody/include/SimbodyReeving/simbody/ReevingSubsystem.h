@@ -176,10 +176,30 @@ struct RopeSpec {
 /// calcMechanicalEnergy returns the whole system's T + U.
 class ReevingSubsystem : public SimTK::ForceSubsystem {
 public:
-    /// @param gravity the gravitational acceleration acting on the ropes [m/s^2] (give the same
-    ///        vector as the system's Force::Gravity).
+    /// Gravity on the ropes (both constructors): the ropes must feel the gravity the bodies feel,
+    /// the sum g_sys of the gravity vectors of every Force::Gravity and Force::UniformGravity in the
+    /// system's GeneralForceSubsystems that is not disabled (several such forces add up on the
+    /// bodies, so they add up here too). The rope models are built with one gravity vector, fixed
+    /// at realizeTopology; Force::Gravity's magnitude and direction can also be set per State
+    /// (parameters that invalidate Stage::Dynamics) and forces disabled per State, so every
+    /// realizeDynamics checks that the state's g_sys (enabled forces, their current magnitude and
+    /// direction) still equals it and throws std::logic_error (both vectors in the message) if it
+    /// does not: change gravity through the defaults (Force::Gravity::setDefaultGravityVector, ...)
+    /// and realizeTopology again, not per state.
+    ///
+    /// This constructor takes the ropes' gravity from the system: g_sys of the forces' defaults at
+    /// realizeTopology (zero when the system has no gravity force, as its bodies then feel none).
+    explicit ReevingSubsystem(SimTK::MultibodySystem& system);
+    /// This constructor gives the ropes' gravity explicitly [m/s^2]. If the system has a gravity
+    /// force (see above), realizeTopology throws std::logic_error unless `gravity` equals g_sys of
+    /// the defaults (to 1e-12 |g|, round-off of a sum); with no gravity force in the system the
+    /// given vector is used as is (bodies loaded by some other force).
     /// @throws std::invalid_argument for non-finite gravity.
     ReevingSubsystem(SimTK::MultibodySystem& system, const SimTK::Vec3& gravity);
+
+    /// The gravitational acceleration acting on the ropes [m/s^2]: the constructor's, or (the
+    /// one-argument constructor) the system's, taken at realizeTopology (zero before).
+    SimTK::Vec3 getGravity() const;
 
     /// Adds a rope; returns its index. Must be called before realizeTopology.
     /// @throws std::invalid_argument naming the problem: empty node body, a body of another
@@ -187,7 +207,9 @@ public:
     ///         WinchDrum or TurningSheave whose body is not a MobilizedBody::Pin or whose point is
     ///         off the pin axis, sense not +-1, negative ropeOnDrum, non-positive or non-finite
     ///         radius, rope length or minimumSpanLength, bad rope properties or mode counts, a span
-    ///         override index out of range, non-finite plane normal, gravity out of the rope plane.
+    ///         override index out of range, non-finite plane normal, gravity out of the rope plane
+    ///         (gravity given to the constructor; with the system's gravity, realizeTopology checks
+    ///         the plane and throws std::logic_error).
     int addRope(const RopeSpec& spec);
 
     int getNumRopes() const;
@@ -296,6 +318,43 @@ public:
     /// Returns the achieved relative residual.
     /// @throws std::runtime_error if it does not converge in maxIterations.
     double findStaticEquilibrium(SimTK::State& state, double relativeTolerance = 1e-10, int maxIterations = 50) const;
+
+    // ---- span frames of spatial ropes ---------------------------------------------------------
+    // A spatial span's transverse modes are expressed in its element frame A_e = R(i0 -> i_e) A0,
+    // the minimal rotation of a reference frame A0 = [i0 j0 k0] onto the chord (ChordFrame); A0 is
+    // part of the State (a discrete variable of this subsystem):
+    //   - defined when the state is first realized to Stage::Position, from that configuration:
+    //     A0 = makeReferenceFrame(chord) for every span (i0 along the chord, j0 the world axis least
+    //     aligned with it). A state from getDefaultState() has none yet; copies of a state keep
+    //     its frames. So a run's frames come from its initial state's configuration (set the
+    //     initial q before realizing; findStaticEquilibrium keeps the frames of the configuration
+    //     it starts from). resetSpanFrames redefines them from the current chords at any time.
+    //   - changed by an event when a chord turns far from its reference: when 1 + i0 . i_e falls to
+    //     getFrameChangeAlignment() (default 0.5: 120 degrees), A0 becomes the current element
+    //     frame and the span's transverse modal coordinates and rates are rotated into it, so the
+    //     rope's configuration and velocity field are unchanged (exactly, to round-off; with
+    //     VelocityModel::Simplified the field of that model). Chords may thus turn without limit
+    //     (a slewing crane); without the change ChordFrame is singular at chord reversal.
+    //   Planar ropes have no reference frame (their frame is the plane's).
+
+    /// Sets the alignment a = 1 + i0 . i_e at which a spatial span's reference frame is changed
+    /// [-], in [0.01, 1.99] (0.01: the chord about 172 degrees from its reference; 1.99: 8 degrees).
+    /// The frame's twist rate about the chord grows like tan(theta / 2) with the angle theta
+    /// between chord and reference, so small values let it grow (14 per radian at 0.01).
+    /// @throws std::invalid_argument outside the range.
+    void setFrameChangeAlignment(double alignment);
+    double getFrameChangeAlignment() const;
+    /// Number of reference-frame changes of a rope's spans in this state's history (0 for planar
+    /// ropes and before the first change).
+    /// @throws std::invalid_argument if rope is out of range.
+    int getNumFrameChanges(const SimTK::State& state, int rope) const;
+    /// The reference frame A0 = [i0 j0 k0] of a spatial rope's span in this state (Stage::Position).
+    /// @throws std::invalid_argument if rope or span is out of range or the rope is planar.
+    SimTK::Mat33 getSpanReferenceFrame(const SimTK::State& state, int rope, int span) const;
+    /// Redefines the reference frames of every spatial span from the current chords (A0 = the
+    /// current element frame), rotating the transverse modal coordinates and rates so that the
+    /// ropes' configuration and velocity field are unchanged. Realizes the state to Stage::Velocity.
+    void resetSpanFrames(SimTK::State& state) const;
 
     /// Number of rope node pairs drawn per span by the decorations (default 20).
     void setDecorationResolution(int pointsPerSpan);
