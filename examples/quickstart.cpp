@@ -29,7 +29,7 @@ int run(double tEnd) {
     SimbodyMatterSubsystem matter(system);
     GeneralForceSubsystem forces(system);                   // every other force subsystem first
     Force::Gravity gravity(forces, matter, Vec3(0, -9.81, 0));
-    SimbodyReeving::ReevingSubsystem reeving(system, Vec3(0, -9.81, 0));  // then the ropes
+    SimbodyReeving::ReevingSubsystem reeving(system);  // then the ropes (gravity: the system's)
 
     // A 1000 kg payload on a free mobilizer (quaternions), inertia 36 kg m^2 about its centre.
     const Body::Rigid payloadBody(MassProperties(1000, Vec3(0), Inertia(36)));
