@@ -32,4 +32,4 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
                           n, dx[n], df[n] / rows }' "$out/pendulum/comparison.csv"
 s="$out/crane/summary.json"
 echo "crane (reeving-crane defaults)"
-grep -o '"[a-z_]*\(energy_residual\|motion_work\|steps\|wall_seconds\|real_time_factor\)[a-z_]*": *[-0-9.eE+]*' "$s" | sed 's/^/  /'
+grep -o '"[a-zA-Z_]*\(energy_residual\|motion_work\|steps\|wall_seconds\|real_time_factor\)[a-zA-Z_]*": *[-0-9.eE+]*' "$s" | sed 's/^/  /'
