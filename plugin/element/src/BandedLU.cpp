@@ -1,0 +1,82 @@
+#include "SimbodyReeving/element/BandedLU.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace SimbodyReeving {
+
+void BandedLU::reset(int n, int kl, int ku) {
+    if (n < 0 || kl < 0 || ku < 0)
+        throw std::invalid_argument("BandedLU::reset: n = " + std::to_string(n) + ", kl = " + std::to_string(kl) +
+                                    ", ku = " + std::to_string(ku) + " must all be >= 0");
+    n_ = n;
+    kl_ = kl;
+    ku_ = ku;
+    width_ = 2 * kl + ku + 1;
+    const std::size_t need = static_cast<std::size_t>(n) * width_;
+    if (w_.size() < need) w_.resize(need);
+    std::fill(w_.begin(), w_.begin() + static_cast<std::ptrdiff_t>(need), 0.0);
+    if (pivot_.size() < static_cast<std::size_t>(n)) pivot_.resize(n);
+}
+
+void BandedLU::add(int i, int j, double value) {
+    if (i < 0 || j < 0 || i >= n_ || j >= n_ || j - i > ku_ || i - j > kl_)
+        throw std::out_of_range("BandedLU::add: entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                                ") is outside the " + std::to_string(n_) + " x " + std::to_string(n_) +
+                                " band matrix (kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_) + ")");
+    at(i, j) += value;
+}
+
+double BandedLU::entry(int i, int j) const {
+    if (i < 0 || j < 0 || i >= n_ || j >= n_ || j - i > ku_ + kl_ || i - j > kl_) return 0.0;
+    return at(i, j);
+}
+
+bool BandedLU::factor() {
+    const int band = kl_ + ku_;  // upper bandwidth of U
+    for (int k = 0; k < n_; ++k) {
+        const int last = std::min(n_ - 1, k + kl_);
+        int p = k;
+        double best = std::abs(at(k, k));
+        for (int i = k + 1; i <= last; ++i)
+            if (std::abs(at(i, k)) > best) {
+                best = std::abs(at(i, k));
+                p = i;
+            }
+        pivot_[k] = p;
+        if (best == 0.0) return false;
+        const int right = std::min(n_ - 1, k + band);
+        if (p != k)
+            for (int j = k; j <= right; ++j) std::swap(at(k, j), at(p, j));
+        const double inv = 1.0 / at(k, k);
+        for (int i = k + 1; i <= last; ++i) {
+            const double l = at(i, k) * inv;
+            at(i, k) = l;
+            if (l == 0.0) continue;
+            for (int j = k + 1; j <= right; ++j) at(i, j) -= l * at(k, j);
+        }
+    }
+    return true;
+}
+
+void BandedLU::solve(double* b) const {
+    const int band = kl_ + ku_;
+    for (int k = 0; k < n_; ++k) {  // L y = P b
+        const int p = pivot_[k];
+        if (p != k) std::swap(b[k], b[p]);
+        const double bk = b[k];
+        if (bk == 0.0) continue;
+        const int last = std::min(n_ - 1, k + kl_);
+        for (int i = k + 1; i <= last; ++i) b[i] -= at(i, k) * bk;
+    }
+    for (int k = n_ - 1; k >= 0; --k) {  // U x = y
+        const int right = std::min(n_ - 1, k + band);
+        double sum = b[k];
+        for (int j = k + 1; j <= right; ++j) sum -= at(k, j) * b[j];
+        b[k] = sum / at(k, k);
+    }
+}
+
+}  // namespace SimbodyReeving

@@ -1,0 +1,84 @@
+// BandedLU: solutions of random band systems (symmetric indefinite ones with zero diagonal blocks,
+// as the rope's KKT systems, included) against Eigen's dense partial-pivoting LU; singularity;
+// range checks.
+#include "SimbodyReeving/element/BandedLU.h"
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <random>
+#include <stdexcept>
+
+using namespace SimbodyReeving;
+
+namespace {
+double solveError(int n, int kl, int ku, bool zeroDiagonal, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+        for (int j = std::max(0, i - kl); j <= std::min(n - 1, i + ku); ++j) A(i, j) = u(rng);
+    if (zeroDiagonal)
+        for (int i = 1; i < n; i += 2) A(i, i) = 0;  // pivoting needed
+    BandedLU lu;
+    lu.reset(n, kl, ku);
+    for (int i = 0; i < n; ++i)
+        for (int j = std::max(0, i - kl); j <= std::min(n - 1, i + ku); ++j) lu.add(i, j, A(i, j));
+    EXPECT_EQ(lu.entry(0, 0), A(0, 0));
+    EXPECT_TRUE(lu.factor());
+    Eigen::VectorXd b = Eigen::VectorXd::NullaryExpr(n, [&] { return u(rng); });
+    Eigen::VectorXd x = b;
+    lu.solve(x.data());
+    // Backward error |A x - b| / (|A| |x| + |b|) (random band matrices, triangular ones especially,
+    // can be badly conditioned, so forward errors would measure the matrix, not the solver), and
+    // the dense LU's for comparison.
+    const Eigen::VectorXd ref = A.partialPivLu().solve(b);
+    auto backward = [&](const Eigen::VectorXd& y) {
+        return (A * y - b).cwiseAbs().maxCoeff() /
+               (A.cwiseAbs().rowwise().sum().maxCoeff() * y.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
+    };
+    EXPECT_LE(backward(ref), 1e-13);
+    return backward(x);
+}
+}  // namespace
+
+TEST(BandedLU, MatchesDenseLuOnRandomBandSystems) {
+    std::mt19937 rng(7);
+    double worst = 0;
+    for (int n : {1, 2, 5, 17, 60})
+        for (int kl : {0, 1, 3, 8})
+            for (int ku : {0, 2, 8})
+                for (bool zero : {false, true}) {
+                    if (zero && (kl == 0 || ku == 0)) continue;  // structurally singular then
+                    const double e = solveError(n, kl, ku, zero, rng);
+                    worst = std::max(worst, e);
+                }
+    // Measured 7.9e-17 (backward error: round-off, as Eigen's dense LU); bound about 100x.
+    EXPECT_LE(worst, 1e-14);
+}
+
+TEST(BandedLU, ReportsExactlySingularMatricesAndReusesStorage) {
+    BandedLU lu;
+    lu.reset(3, 1, 1);
+    lu.add(0, 0, 1.0);
+    lu.add(2, 2, 1.0);  // row and column 1 are zero
+    EXPECT_FALSE(lu.factor());
+    lu.reset(2, 0, 0);  // smaller: zeroed, reused
+    EXPECT_EQ(lu.entry(0, 0), 0.0);
+    lu.add(0, 0, 2.0);
+    lu.add(1, 1, 4.0);
+    ASSERT_TRUE(lu.factor());
+    double b[2] = {2.0, 2.0};
+    lu.solve(b);
+    EXPECT_EQ(b[0], 1.0);
+    EXPECT_EQ(b[1], 0.5);
+}
+
+TEST(BandedLU, RejectsEntriesOutsideTheBandAndBadSizes) {
+    BandedLU lu;
+    lu.reset(4, 1, 0);
+    EXPECT_THROW(lu.add(0, 1, 1.0), std::out_of_range);
+    EXPECT_THROW(lu.add(3, 1, 1.0), std::out_of_range);
+    EXPECT_THROW(lu.add(4, 4, 1.0), std::out_of_range);
+    EXPECT_THROW(lu.reset(-1, 0, 0), std::invalid_argument);
+    EXPECT_THROW(lu.reset(3, 0, -2), std::invalid_argument);
+}
