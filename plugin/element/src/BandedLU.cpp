@@ -21,12 +21,10 @@ void BandedLU::reset(int n, int kl, int ku) {
     if (pivot_.size() < static_cast<std::size_t>(n)) pivot_.resize(n);
 }
 
-void BandedLU::add(int i, int j, double value) {
-    if (i < 0 || j < 0 || i >= n_ || j >= n_ || j - i > ku_ || i - j > kl_)
-        throw std::out_of_range("BandedLU::add: entry (" + std::to_string(i) + ", " + std::to_string(j) +
+void BandedLU::outOfBand(int i, int j) const {
+    throw std::out_of_range("BandedLU::add: entry (" + std::to_string(i) + ", " + std::to_string(j) +
                                 ") is outside the " + std::to_string(n_) + " x " + std::to_string(n_) +
                                 " band matrix (kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_) + ")");
-    at(i, j) += value;
 }
 
 double BandedLU::entry(int i, int j) const {

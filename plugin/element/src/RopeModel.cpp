@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -102,6 +103,135 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         map[sp.s2Index()] = materialIndex(j + 1);
         spanToRope_.push_back(std::move(map));
     }
+    buildChainOrder();
+    stationaryColumn_.assign(numExternalCoordinates(), 0);
+}
+
+template <int Dim>
+void RopeModel<Dim>::buildChainOrder() {
+    const int N = numSpans(), nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
+    const int nqc = numCondensed_, nc = numSliding_;
+    const int nz = nw + nd + (N + 1 - nc - numDriven_);
+    // Keys along the rope: span j -> 2 j + 1 (its free modes, condensed amplitudes and their
+    // stationarity rows), node k -> 2 k (its material coordinate, multiplier and rows).
+    std::vector<int> zKey(nz, -1), rowKey(nd, -1), rowSpan(nd, -1), rowNode(nd, -1);
+    for (int j = 0; j < N; ++j) {
+        const int na = isCondensed(j) ? spans_[j].axialModes() : 0;
+        for (int i = 0; i < spans_[j].numModalCoordinates() - na; ++i) zKey[nx + modalOffset_[j] + i] = 2 * j + 1;
+        for (int i = 0; i < na; ++i) {
+            zKey[nw + condensedOffset_[j] + i] = 2 * j + 1;
+            rowKey[condensedOffset_[j] + i] = 2 * j + 1;
+            rowSpan[condensedOffset_[j] + i] = j;
+        }
+    }
+    for (int ki = 0; ki < nc; ++ki) {
+        const int k = slidingNode_[ki];
+        zKey[nw + nqc + ki] = 2 * k;
+        rowKey[nqc + ki] = 2 * k;
+        rowNode[nqc + ki] = k;
+        if (numMultipliers_ > 0) {
+            zKey[nw + nqc + nc + ki] = 2 * k;
+            rowKey[nqc + nc + ki] = 2 * k;
+            rowNode[nqc + nc + ki] = k;
+        }
+    }
+    // Positions: stable order by key (unknowns before rows within a key).
+    struct Item {
+        int key, kind, index;
+    };
+    std::vector<Item> items;
+    for (int z = nx; z < nw + nd; ++z) items.push_back({zKey[z], 0, z});
+    for (int r = 0; r < nd; ++r) items.push_back({rowKey[r], 1, r});
+    auto order = [](const Item& a, const Item& b) {
+        return a.key != b.key ? a.key < b.key : (a.kind != b.kind ? a.kind < b.kind : a.index < b.index);
+    };
+    std::sort(items.begin(), items.end(), order);
+    kktPos_.assign(nz, -1);
+    kktRowPos_.assign(nd, -1);
+    for (int p = 0; p < static_cast<int>(items.size()); ++p)
+        (items[p].kind == 0 ? kktPos_[items[p].index] : kktRowPos_[items[p].index]) = p;
+    kktSize_ = static_cast<int>(items.size());
+    std::vector<Item> cols, rows;
+    for (int d = 0; d < nd; ++d) cols.push_back({zKey[nw + d], 0, d});
+    for (int r = 0; r < nd; ++r) rows.push_back({rowKey[r], 1, r});
+    std::sort(cols.begin(), cols.end(), order);
+    std::sort(rows.begin(), rows.end(), order);
+    dependentColPos_.assign(nd, -1);
+    dependentRowPos_.assign(nd, -1);
+    for (int p = 0; p < nd; ++p) {
+        dependentColPos_[cols[p].index] = p;
+        dependentRowPos_[rows[p].index] = p;
+    }
+    // Bandwidths from the structure: row r reads the coordinates of its spans (tension equality and
+    // stationarity in s_k: spans k - 1 and k; stationarity in a_j: span j) and the multipliers of
+    // its neighbouring sheaves (stationarity in a_j: nodes j, j + 1; in s_k: nodes k - 1..k + 1).
+    dependentKl_ = dependentKu_ = kktBand_ = 0;
+    auto touch = [&](int r, int z) {
+        if (z < nx || z >= nw + nd) return;
+        kktBand_ = std::max(kktBand_, std::abs(kktRowPos_[r] - kktPos_[z]));
+        if (z >= nw) {
+            dependentKl_ = std::max(dependentKl_, dependentRowPos_[r] - dependentColPos_[z - nw]);
+            dependentKu_ = std::max(dependentKu_, dependentColPos_[z - nw] - dependentRowPos_[r]);
+        }
+    };
+    for (int r = 0; r < nd; ++r) {
+        int firstSpan, lastSpan, firstNode = 0, lastNode = -1;
+        if (rowSpan[r] >= 0) {
+            firstSpan = lastSpan = rowSpan[r];
+            firstNode = rowSpan[r];
+            lastNode = rowSpan[r] + 1;
+        } else {
+            const int k = rowNode[r];
+            firstSpan = k - 1;
+            lastSpan = k;
+            if (r >= nqc + nc) {
+                firstNode = k - 1;
+                lastNode = k + 1;
+            }
+        }
+        for (int j = firstSpan; j <= lastSpan; ++j)
+            for (int z : spanToRope_[j]) touch(r, z);
+        for (int m = std::max(firstNode, 1); m <= std::min(lastNode, N - 1); ++m)
+            if (numMultipliers_ > 0 && slidingIndex_[m] >= 0) touch(r, nw + nqc + nc + slidingIndex_[m]);
+    }
+    for (int j = 0; j < N; ++j)
+        for (int a : spanToRope_[j])
+            for (int b : spanToRope_[j])
+                if (kktPos_[a] >= 0 && kktPos_[b] >= 0) kktBand_ = std::max(kktBand_, std::abs(kktPos_[a] - kktPos_[b]));
+    externalSpans_.assign(nx, {-1, -1, -1, -1});
+    for (int j = 0; j < N; ++j)
+        for (int a = 0; a < static_cast<int>(spanToRope_[j].size()); ++a) {
+            const int z = spanToRope_[j][a];
+            if (z >= nx) continue;
+            auto& e = externalSpans_[z];
+            const int slot = e[0] < 0 ? 0 : 2;
+            e[slot] = j;
+            e[slot + 1] = a;
+        }
+}
+
+template <int Dim>
+void RopeModel<Dim>::factorDependentJacobian(RopeData<Dim>& data) const {
+    const int nw = numExternalCoordinates() + numModal_, nd = numDependent();
+    BandedLU& lu = data.ws().dependentLu;
+    lu.reset(nd, dependentKl_, dependentKu_);
+    for (const detail::JacobianEntry& e : data.ws().jacobian)
+        if (e.col >= nw) lu.add(dependentRowPos_[e.row], dependentColPos_[e.col - nw], e.value);
+    if (!lu.factor())
+        throw std::runtime_error(
+            "RopeModel: the Jacobian of the sheave and quasi-static constraints on the dependent coordinates is "
+            "singular at this configuration (a rope that carries no axial stiffness anywhere?)");
+}
+
+template <int Dim>
+void RopeModel<Dim>::solveDependent(RopeData<Dim>& data, const Eigen::VectorXd& rows, Eigen::VectorXd& out) const {
+    const int nd = numDependent();
+    Eigen::VectorXd& t = data.ws().dependentScratch;
+    t.resize(nd);
+    for (int r = 0; r < nd; ++r) t[dependentRowPos_[r]] = rows[r];
+    data.ws().dependentLu.solve(t.data());
+    out.resize(nd);
+    for (int d = 0; d < nd; ++d) out[d] = t[dependentColPos_[d]];
 }
 
 template <int Dim>
@@ -118,6 +248,16 @@ void RopeModel<Dim>::setStoredRope(int node, double lengthAtZero) {
             return;
         }
     storage_.push_back({node, lengthAtZero, node == 0 ? 1.0 : -1.0});
+}
+
+template <int Dim>
+void RopeModel<Dim>::setStationaryNodes(const std::vector<bool>& stationary) {
+    if (static_cast<int>(stationary.size()) != numNodes())
+        throw std::invalid_argument("RopeModel::setStationaryNodes: " + std::to_string(stationary.size()) +
+                                    " flags given for " + std::to_string(numNodes()) + " nodes");
+    stationaryColumn_.assign(numExternalCoordinates(), 0);
+    for (int k = 0; k < numNodes(); ++k)
+        for (int d = 0; d < Dim; ++d) stationaryColumn_[Dim * k + d] = stationary[k] ? 1 : 0;
 }
 
 template <int Dim>
@@ -170,19 +310,16 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     fillSpanCoordinates(nodes, qm, data);
     Eigen::VectorXd& C = data.ws().newtonResidual;
     data.ws().bias.setZero(nd);
+    std::vector<detail::JacobianEntry>& jac = data.ws().jacobian;
     if (!withRates || kernels_.empty()) {
         C.setZero(nd);
-        data.ws().Cw.setZero(nd, nw);
-        data.ws().Cd.setZero(nd, nd);
+        jac.clear();
     }
     auto scatter = [&](int row, int j, const auto& gradient, double coef) {
         const auto& map = spanToRope_[j];
         for (int i = 0; i < static_cast<int>(map.size()); ++i) {
             const int zi = map[i];
-            if (zi < nw)
-                data.ws().Cw(row, zi) += coef * gradient[i];
-            else if (zi < nw + nd)
-                data.ws().Cd(row, zi - nw) += coef * gradient[i];
+            if (zi < nw + nd) jac.push_back({row, zi, coef * gradient[i]});
         }
     };
 
@@ -241,7 +378,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         }
         C[row] += coef * nu * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef * nu);
-        data.ws().Cd(row, nqc + nc + mi) += coef * K.value[quantity];
+        jac.push_back({row, nw + nqc + nc + mi, coef * K.value[quantity]});
     };
     for (int j = 0; j < N; ++j) {
         if (!isCondensed(j)) continue;
@@ -421,9 +558,9 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         previousMerit = merit;
         if (iter == kMaxIterations && !coldRetry) break;
         if (iter == kMaxIterations) continue;  // the cold retry starts at the top of the loop
-        data.ws().newtonLu.compute(data.ws().Cd);
+        factorDependentJacobian(data);
         Eigen::VectorXd& step = data.ws().newtonStep;
-        step = data.ws().newtonLu.solve(C);
+        solveDependent(data, C, step);
         step *= -1.0;
         // Halve the step until the material coordinates stay ordered (every span keeps l > 0).
         auto stepped = [&](int k, double a) {
@@ -542,73 +679,158 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     };
     data.ws().spanQdot.resize(N);
     // Velocity transformation zdot = G w, zddot = G wdot + c: G is the identity on w, zero for the
-    // Fixed material coordinates, and Gd = -C_d^-1 C_w for the dependents d; c is nonzero only there.
+    // Fixed material coordinates; for the dependents d, C_d ddot = -C_w w and c_d = -C_d^-1 bias,
+    // solved with the band LU of C_d (chain order), never formed as a dense Gd = -C_d^-1 C_w.
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    ws.model = this;
+    ws.reducedValid = false;
     if (nd > 0) {
-        data.ws().constraintLu.compute(data.ws().Cd);
-        data.ws().Gd = data.ws().constraintLu.solve(data.ws().Cw);
-        data.ws().Gd *= -1.0;  // ddot = Gd w
-        data.ws().cd.noalias() = data.ws().Gd * data.ws().w;  // (scratch: ddot)
-        data.condensedRates = data.ws().cd.head(nqc);
-        for (int ki = 0; ki < nc; ++ki) data.materialRates[slidingNode_[ki]] = data.ws().cd[nqc + ki];
-        data.multiplierRates = data.ws().cd.tail(numMultipliers_);
+        factorDependentJacobian(data);
+        ws.rowScratch.setZero(nd);
+        for (const detail::JacobianEntry& e : ws.jacobian)
+            if (e.col < nw) ws.rowScratch[e.row] -= e.value * ws.w[e.col];
+        solveDependent(data, ws.rowScratch, ws.cd);  // (scratch: ddot)
+        data.condensedRates = ws.cd.head(nqc);
+        for (int ki = 0; ki < nc; ++ki) data.materialRates[slidingNode_[ki]] = ws.cd[nqc + ki];
+        data.multiplierRates = ws.cd.tail(numMultipliers_);
         // Biases (second time derivatives of the constraints at wdot = 0) with the complete
         // velocities, dependent rates included.
         fillSpanVelocities();
         evaluateConstraints(nodes, qm, data, true);
-        data.ws().cd = data.ws().constraintLu.solve(data.ws().bias);
-        data.ws().cd *= -1.0;
+        solveDependent(data, ws.bias, ws.cd);
+        ws.cd *= -1.0;
     } else {
         fillSpanVelocities();
+        ws.cd.resize(0);
     }
 
-    // Span evaluations scattered into the rope's M and Q (the multipliers carry no mass).
-    data.ws().Mz.setZero(nz, nz);
-    data.ws().Qz.setZero(nz);
+    // Span evaluations; their forces scattered into Q_z (the multipliers carry no mass).
+    ws.Qz.setZero(nz);
     data.inertialCorrectionValid = false;
-    if (nqc > 0) data.ws().velocityForcesZ.setZero(nz);
+    if (nqc > 0) ws.velocityForcesZ.setZero(nz);
     data.kineticEnergy = data.strainEnergy = data.gravityEnergy = 0;
     for (int j = 0; j < N; ++j) {
-        SpanData<Dim>& d = data.ws().spans[j];
-        spans_[j].evaluate(data.ws().spanQ[j], data.ws().spanQdot[j], d);
+        SpanData<Dim>& d = ws.spans[j];
+        spans_[j].evaluate(ws.spanQ[j], ws.spanQdot[j], d);
         const auto& map = spanToRope_[j];
         const int n = spans_[j].numCoordinates();
         for (int a = 0; a < n; ++a) {
-            data.ws().Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a];
-            if (nqc > 0) data.ws().velocityForcesZ[map[a]] += d.velocityForces[a];
-            for (int b = 0; b < n; ++b) data.ws().Mz(map[a], map[b]) += d.massMatrix(a, b);
+            ws.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a];
+            if (nqc > 0) ws.velocityForcesZ[map[a]] += d.velocityForces[a];
         }
         data.kineticEnergy += d.kineticEnergy;
         data.strainEnergy += d.strainEnergy();
         data.gravityEnergy += d.gravityEnergy;
     }
-    // Mbar = G^T Mz G = M_ww + M_wd Gd + Gd^T M_dw + Gd^T M_dd Gd,
-    // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gd^T (Q_d - M_dd c_d).
-    data.ws().Mbar = data.ws().Mz.topLeftCorner(nw, nw);
-    data.ws().Qbar = data.ws().Qz.head(nw);
-    if (nd > 0) {
-        const auto Mwd = data.ws().Mz.block(0, nw, nw, nd);
-        const auto Mdd = data.ws().Mz.block(nw, nw, nd, nd);
-        data.ws().MwdGd.noalias() = Mwd * data.ws().Gd;  // nw x nw
-        data.ws().Mbar += data.ws().MwdGd;
-        data.ws().Mbar += data.ws().MwdGd.transpose();
-        data.ws().MddGd.noalias() = Mdd * data.ws().Gd;  // nd x nw
-        data.ws().Mbar.noalias() += data.ws().Gd.transpose() * data.ws().MddGd;
-        data.ws().Qbar.noalias() -= Mwd * data.ws().cd;
-        data.ws().Qd = data.ws().Qz.segment(nw, nd);
-        data.ws().Qd.noalias() -= Mdd * data.ws().cd;
-        data.ws().Qbar.noalias() += data.ws().Gd.transpose() * data.ws().Qd;
-    }
 
-    // Reduce to the external coordinates: S = Mbar_xx - Mbar_xm Mbar_mm^-1 Mbar_mx,
-    // h = Qbar_x - Mbar_xm Mbar_mm^-1 Qbar_m.
-    data.nodeMass = data.ws().Mbar.topLeftCorner(nx, nx);
-    data.nodeForce = data.ws().Qbar.head(nx);
-    if (nm > 0) {
-        data.ws().modalMass.compute(data.ws().Mbar.bottomRightCorner(nm, nm));
-        data.ws().modalCoupling = data.ws().modalMass.solve(data.ws().Mbar.bottomLeftCorner(nm, nx));
-        data.ws().modalFree = data.ws().modalMass.solve(data.ws().Qbar.tail(nm));
-        data.nodeMass.noalias() -= data.ws().Mbar.topRightCorner(nx, nm) * data.ws().modalCoupling;
-        data.nodeForce.noalias() -= data.ws().Mbar.topRightCorner(nx, nm) * data.ws().modalFree;
+    // The rope's equations at given external accelerations xddot, with y = [q_free, d] and
+    // multipliers mu of the constraints (M zddot = Q - C_z^T mu + E^T f, f the supports' force on x):
+    //     [M_yy  C_y^T] [yddot]   [Q_y - M_yx xddot]
+    //     [C_y   0    ] [mu   ] = [-bias - C_x xddot],      f = M_xx xddot + M_xy yddot - Q_x + C_x^T mu,
+    // a band matrix in chain order (span by span, node by node): the same equations as
+    // G^T M G wddot = G^T (Q - M c) (G spans the null space of C_z), solved in O(spans). Then
+    // f = S xddot - h: h = -f(0) from one solve, S column by column from one solve per external
+    // coordinate; qddot_m = modalFree - modalCoupling xddot.
+    const int nk = kktSize_;
+    BandedLU& kkt = ws.kktLu;
+    kkt.reset(nk, kktBand_, kktBand_);
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const auto& M = ws.spans[j].massMatrix;
+        const int n = spans_[j].numCoordinates();
+        for (int b = 0; b < n; ++b) {
+            const int pb = kktPos_[map[b]];
+            if (pb < 0) continue;
+            for (int a = 0; a < n; ++a) {
+                const int pa = kktPos_[map[a]];
+                if (pa >= 0) kkt.add(pa, pb, M(a, b));
+            }
+        }
+    }
+    // C_x by column (counting sort), C_y into the band.
+    ws.externalColumnStart.assign(nx + 1, 0);
+    for (const detail::JacobianEntry& e : ws.jacobian) {
+        if (e.col < nx) {
+            ++ws.externalColumnStart[e.col + 1];
+        } else {
+            const int pr = kktRowPos_[e.row], pc = kktPos_[e.col];
+            kkt.add(pr, pc, e.value);
+            kkt.add(pc, pr, e.value);
+        }
+    }
+    for (int i = 0; i < nx; ++i) ws.externalColumnStart[i + 1] += ws.externalColumnStart[i];
+    ws.externalColumnRow.resize(ws.externalColumnStart[nx]);
+    ws.externalColumnValue.resize(ws.externalColumnStart[nx]);
+    {
+        std::vector<int>& next = ws.externalColumnStart;  // shifted while filling, restored below
+        for (const detail::JacobianEntry& e : ws.jacobian)
+            if (e.col < nx) {
+                const int at = next[e.col]++;
+                ws.externalColumnRow[at] = e.row;
+                ws.externalColumnValue[at] = e.value;
+            }
+        for (int i = nx; i > 0; --i) next[i] = next[i - 1];
+        next[0] = 0;
+    }
+    if (nk > 0 && !kkt.factor())
+        throw std::runtime_error("RopeModel::computeDynamics: the rope's equations of motion are singular at this state");
+
+    // out += sign (M_xy yddot + C_x^T mu) for the solution [yddot, mu] in ws.chainSolution.
+    auto addSupportForce = [&](double* out, double sign) {
+        for (int j = 0; j < N; ++j) {
+            const auto& map = spanToRope_[j];
+            const auto& M = ws.spans[j].massMatrix;
+            const int n = spans_[j].numCoordinates();
+            for (int a = 0; a < n; ++a) {
+                if (map[a] >= nx) continue;
+                double sum = 0;
+                for (int b = 0; b < n; ++b) {
+                    const int pb = kktPos_[map[b]];
+                    if (pb >= 0) sum += M(a, b) * ws.chainSolution[pb];
+                }
+                out[map[a]] += sign * sum;
+            }
+        }
+        for (int i = 0; i < nx; ++i)
+            for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
+                out[i] += sign * ws.externalColumnValue[at] * ws.chainSolution[kktRowPos_[ws.externalColumnRow[at]]];
+    };
+    // h = Q_x - M_xy y0 - C_x^T mu0 with [y0, mu0] the solution at xddot = 0.
+    data.nodeForce = ws.Qz.head(nx);
+    ws.chainSolution.setZero(nk);
+    for (int z = nx; z < nw + nd; ++z) ws.chainSolution[kktPos_[z]] = ws.Qz[z];
+    for (int r = 0; r < nd; ++r) ws.chainSolution[kktRowPos_[r]] = -ws.bias[r];
+    if (nk > 0) kkt.solve(ws.chainSolution.data());
+    addSupportForce(data.nodeForce.data(), -1.0);
+    ws.modalFree.resize(nm);
+    for (int i = 0; i < nm; ++i) ws.modalFree[i] = ws.chainSolution[kktPos_[nx + i]];
+    // S e_i = M_xx e_i + M_xy dy + C_x^T dmu with [dy, dmu] solving the system for -[M_yx e_i; C_x e_i].
+    data.nodeMass.setZero(nx, nx);
+    ws.modalCoupling.resize(nm, nx);
+    ws.modalCoupling.setZero();
+    for (int i = 0; i < nx; ++i) {
+        if (!stationaryColumn_.empty() && stationaryColumn_[i]) continue;  // xddot_i = 0 always
+        ws.chainSolution.setZero(nk);
+        const auto& spansAt = externalSpans_[i];
+        for (int slot = 0; slot < 4; slot += 2) {
+            const int j = spansAt[slot];
+            if (j < 0) continue;
+            const int a = spansAt[slot + 1];
+            const auto& map = spanToRope_[j];
+            const auto& M = ws.spans[j].massMatrix;
+            for (int b = 0; b < spans_[j].numCoordinates(); ++b) {
+                const int pb = kktPos_[map[b]];
+                if (pb >= 0)
+                    ws.chainSolution[pb] -= M(b, a);
+                else if (map[b] < nx)
+                    data.nodeMass(map[b], i) += M(b, a);
+            }
+        }
+        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
+            ws.chainSolution[kktRowPos_[ws.externalColumnRow[at]]] -= ws.externalColumnValue[at];
+        if (nk > 0) kkt.solve(ws.chainSolution.data());
+        addSupportForce(&data.nodeMass(0, i), 1.0);
+        for (int m = 0; m < nm; ++m) ws.modalCoupling(m, i) = -ws.chainSolution[kktPos_[nx + m]];
     }
 
     // Rope stored on drums (setStoredRope): L_st = 1/2 rhoA l(s) (|rdot|^2 + sdot^2) + rhoA l(s) g.r,
@@ -652,20 +874,39 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     if (numCondensed_ == 0) return;
     const int N = numSpans(), nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
     const int nqc = numCondensed_, nc = numSliding_;
-    Eigen::VectorXd& zdd = data.ws().zddot;
-    zdd.setZero(nw + nd + (N + 1 - nc - numDriven_));
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    Eigen::VectorXd& zdd = ws.zddot;
+    const int nz = nw + nd + (N + 1 - nc - numDriven_);
+    zdd.setZero(nz);
     zdd.head(nx) = nodeAccelerations;
     zdd.segment(nx, numModal_) = qmddot;
-    zdd.segment(nw, nd).noalias() = data.ws().Gd * zdd.head(nw);
-    zdd.segment(nw, nd) += data.ws().cd;
+    // ddot = -C_d^-1 (C_w wddot + bias)
+    ws.rowScratch = ws.bias;
+    for (const detail::JacobianEntry& e : ws.jacobian)
+        if (e.col < nw) ws.rowScratch[e.row] += e.value * zdd[e.col];
+    solveDependent(data, ws.rowScratch, ws.dependentAccelerations);
+    zdd.segment(nw, nd) = -ws.dependentAccelerations;
+    // (M zddot) at the condensed amplitudes and the Sliding material coordinates, span by span.
+    Eigen::VectorXd& Mzdd = ws.massTimesAcceleration;
+    Mzdd.setZero(nz);
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const auto& M = ws.spans[j].massMatrix;
+        const int n = spans_[j].numCoordinates();
+        for (int a = 0; a < n; ++a) {
+            if (map[a] < nw || map[a] >= nw + nqc + nc) continue;
+            double sum = 0;
+            for (int b = 0; b < n; ++b) sum += M(a, b) * zdd[map[b]];
+            Mzdd[map[a]] += sum;
+        }
+    }
     const double invEA = 1.0 / properties().axialStiffness;
-    Eigen::VectorXd& load = data.ws().inertialLoad;
+    Eigen::VectorXd& load = ws.inertialLoad;
     load.setZero(nd);
-    for (int r = 0; r < nqc; ++r)
-        load[r] = invEA * (data.ws().Mz.row(nw + r).dot(zdd) - data.ws().velocityForcesZ[nw + r]);
+    for (int r = 0; r < nqc; ++r) load[r] = invEA * (Mzdd[nw + r] - ws.velocityForcesZ[nw + r]);
     for (int k = 0; k < nc; ++k)
-        load[nqc + nc + k] = invEA * (data.ws().Mz.row(nw + nqc + k).dot(zdd) - data.ws().velocityForcesZ[nw + nqc + k]);
-    data.inertialCorrection = data.ws().constraintLu.solve(load);
+        load[nqc + nc + k] = invEA * (Mzdd[nw + nqc + k] - ws.velocityForcesZ[nw + nqc + k]);
+    solveDependent(data, load, data.inertialCorrection);
     data.inertialCorrection *= -1.0;
     data.inertialCorrectionValid = true;
 }
@@ -703,9 +944,56 @@ RopeData<Dim>::RopeData(RopeData&&) noexcept = default;
 template <int Dim>
 RopeData<Dim>& RopeData<Dim>::operator=(RopeData&&) noexcept = default;
 template <int Dim>
-const Eigen::MatrixXd& RopeData<Dim>::reducedMass() const { return ws().Mbar; }
+const Eigen::MatrixXd& RopeData<Dim>::reducedMass() const {
+    detail::RopeWorkspace<Dim>& w = *workspace_;  // computed on demand (the workspace is scratch)
+    if (!w.reducedValid && w.model) w.model->assembleReduced(const_cast<RopeData<Dim>&>(*this));
+    return w.Mbar;
+}
 template <int Dim>
-const Eigen::VectorXd& RopeData<Dim>::reducedForce() const { return ws().Qbar; }
+const Eigen::VectorXd& RopeData<Dim>::reducedForce() const {
+    reducedMass();
+    return ws().Qbar;
+}
+
+template <int Dim>
+void RopeModel<Dim>::assembleReduced(RopeData<Dim>& data) const {
+    // The dense route of the reduced equations (as computeDynamics did before the chain solve):
+    // Gd = -C_d^-1 C_w, Mbar = G^T Mz G = M_ww + M_wd Gd + Gd^T M_dw + Gd^T M_dd Gd,
+    // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gd^T (Q_d - M_dd c_d).
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    const int N = numSpans(), nw = numExternalCoordinates() + numModal_, nd = numDependent();
+    const int nz = nw + nd + (N + 1 - numSliding_ - numDriven_);
+    ws.Mz.setZero(nz, nz);
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const int n = spans_[j].numCoordinates();
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b) ws.Mz(map[a], map[b]) += ws.spans[j].massMatrix(a, b);
+    }
+    ws.Mbar = ws.Mz.topLeftCorner(nw, nw);
+    ws.Qbar = ws.Qz.head(nw);
+    if (nd > 0) {
+        ws.Cw.setZero(nd, nw);
+        ws.Cd.setZero(nd, nd);
+        for (const detail::JacobianEntry& e : ws.jacobian)
+            (e.col < nw ? ws.Cw(e.row, e.col) : ws.Cd(e.row, e.col - nw)) += e.value;
+        ws.constraintLu.compute(ws.Cd);
+        ws.Gd = ws.constraintLu.solve(ws.Cw);
+        ws.Gd *= -1.0;
+        const auto Mwd = ws.Mz.block(0, nw, nw, nd);
+        const auto Mdd = ws.Mz.block(nw, nw, nd, nd);
+        ws.MwdGd.noalias() = Mwd * ws.Gd;
+        ws.Mbar += ws.MwdGd;
+        ws.Mbar += ws.MwdGd.transpose();
+        ws.MddGd.noalias() = Mdd * ws.Gd;
+        ws.Mbar.noalias() += ws.Gd.transpose() * ws.MddGd;
+        ws.Qbar.noalias() -= Mwd * ws.cd;
+        ws.Qd = ws.Qz.segment(nw, nd);
+        ws.Qd.noalias() -= Mdd * ws.cd;
+        ws.Qbar.noalias() += ws.Gd.transpose() * ws.Qd;
+    }
+    ws.reducedValid = true;
+}
 template <int Dim>
 const Eigen::VectorXd& RopeData<Dim>::spanCoordinates(int span) const { return ws().spanQ[span]; }
 

@@ -3,6 +3,7 @@
 /// Internal to the element layer (not installed): the scratch of a RopeModel evaluation, held by
 /// RopeData behind a pointer so it stays out of the public headers.
 
+#include "SimbodyReeving/element/BandedLU.h"
 #include "SimbodyReeving/element/RopeModel.h"
 
 #include <Eigen/Cholesky>
@@ -13,28 +14,44 @@
 
 namespace SimbodyReeving::detail {
 
+/// One structural entry of the constraint Jacobian C_z: dC_row / dz_col (col < nw + nd: independent or
+/// dependent coordinates; the Fixed material coordinates carry no column).
+struct JacobianEntry {
+    int row = 0, col = 0;
+    double value = 0;
+};
+
 template <int Dim>
 struct RopeWorkspace {
+    const RopeModel<Dim>* model = nullptr;  ///< the model of the last computeDynamics (lazy reduction)
     Eigen::VectorXd velocityForcesZ;  ///< Q_v of all spans scattered into z (for the recovery)
-    Eigen::VectorXd zddot, inertialLoad;  ///< scratch of the recovery
+    Eigen::VectorXd zddot, inertialLoad, massTimesAcceleration;  ///< scratch of the recovery
     std::vector<SpanData<Dim>> spans;
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
     std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
-    Eigen::VectorXd w;                    ///< independent velocities [rdot; qdot_m]
+    Eigen::VectorXd w;                    ///< independent velocities [rdot; sdot_driven; qdot_m]
+    // ---- the chain solve (every evaluation)
+    std::vector<JacobianEntry> jacobian;  ///< C_z, row by row as the spans produce it
+    /// Entries of C_z on the external coordinates x, by column (counting sort of `jacobian`).
+    std::vector<int> externalColumnStart, externalColumnRow;
+    std::vector<double> externalColumnValue;
+    BandedLU dependentLu;  ///< C_d in chain order (RopeModel::dependentRowPos_ / dependentColPos_)
+    BandedLU kktLu;        ///< [M_yy C_y^T; C_y 0] in chain order (RopeModel::kktPos_ / kktRowPos_)
+    Eigen::VectorXd chainSolution, rowScratch, dependentScratch, dependentAccelerations;
+    Eigen::VectorXd Qz, bias;
+    Eigen::VectorXd cd;                   ///< dependent accelerations at wdot = 0: -C_d^-1 bias
+    Eigen::VectorXd newtonResidual, newtonStep;         ///< dependent-coordinate Newton
+    Eigen::VectorXd newtonStart;                        ///< the iterate a damped step starts from
+    Eigen::MatrixXd modalCoupling;  ///< qddot_m = modalFree - modalCoupling xddot
+    Eigen::VectorXd modalFree;
+    // ---- the dense reduced equations (RopeData::reducedMass / reducedForce, computed on demand)
+    bool reducedValid = false;
     Eigen::MatrixXd Mz, Mbar, Cd, Cw;     ///< rope mass; constraint Jacobian on dependents / independents
     Eigen::MatrixXd Gd;                   ///< rates of the dependent coordinates = Gd w
     Eigen::MatrixXd MwdGd, MddGd;         ///< products in G^T Mz G
-    Eigen::VectorXd Qz, Qbar, Qd, bias;
-    Eigen::VectorXd cd;                   ///< dependent accelerations at wdot = 0
-    Eigen::PartialPivLU<Eigen::MatrixXd> constraintLu;  ///< of C_d
-    Eigen::VectorXd newtonResidual, newtonStep;         ///< dependent-coordinate Newton
-    Eigen::VectorXd newtonStart;                        ///< the iterate a damped step starts from
-    Eigen::MatrixXd newtonJacobian;
-    Eigen::PartialPivLU<Eigen::MatrixXd> newtonLu;
-    Eigen::LDLT<Eigen::MatrixXd> modalMass;
-    Eigen::MatrixXd modalCoupling;  ///< Mbar_mm^-1 Mbar_mn
-    Eigen::VectorXd modalFree;      ///< Mbar_mm^-1 Qbar_m
+    Eigen::VectorXd Qbar, Qd;
+    Eigen::PartialPivLU<Eigen::MatrixXd> constraintLu;  ///< of the dense C_d
 };
 
 }  // namespace SimbodyReeving::detail

@@ -73,6 +73,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         for (int j = 0; j < r.numSpans(); ++j) spans.emplace_back(r.spec.properties, r.spanOptions[j], g2);
         auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
         r.addStoredRope(*model);
+        model->setStationaryNodes(r.stationaryNodes());
         r.planarModel = std::move(model);
     }
     for (RopeRecord& r : self.ropes) {
@@ -513,6 +514,7 @@ std::shared_ptr<const RopeModel<3>> ReevingSubsystem::Guts::makeSpatialModel(
         spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_), references[j]);
     auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
     r.addStoredRope(*model);
+    model->setStationaryNodes(r.stationaryNodes());
     return model;
 }
 

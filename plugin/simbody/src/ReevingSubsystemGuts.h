@@ -95,6 +95,12 @@ struct RopeRecord {
         for (const DrivenNode& d : driven)
             if (d.drum) model.setStoredRope(d.node, d.node == 0 ? d.ropeOnDrum : d.ropeOnDrum + spec.unstretchedLength);
     }
+    /// The nodes on Ground (RopeModel::setStationaryNodes: their columns of the node mass are skipped).
+    std::vector<bool> stationaryNodes() const {
+        std::vector<bool> out(numNodes());
+        for (int k = 0; k < numNodes(); ++k) out[k] = nodeSpec(k).body.isGround();
+        return out;
+    }
     /// Number of the rope's external coordinates (RopeModel::numExternalCoordinates).
     int numExternal() const { return dim() * numNodes() + static_cast<int>(driven.size()); }
 };

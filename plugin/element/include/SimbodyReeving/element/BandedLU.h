@@ -24,7 +24,10 @@ public:
 
     /// A(i, j) += value (before factor()).
     /// @throws std::out_of_range if (i, j) is outside the matrix or its band (-kl <= j - i <= ku).
-    void add(int i, int j, double value);
+    void add(int i, int j, double value) {
+        if (i < 0 || j < 0 || i >= n_ || j >= n_ || j - i > ku_ || i - j > kl_) outOfBand(i, j);
+        at(i, j) += value;
+    }
     /// A(i, j) (before factor(): the assembled entry; 0 outside the band).
     double entry(int i, int j) const;
 
@@ -35,6 +38,7 @@ public:
     void solve(double* b) const;
 
 private:
+    [[noreturn]] void outOfBand(int i, int j) const;
     double& at(int i, int j) { return w_[static_cast<std::size_t>(i) * width_ + (j - i + kl_)]; }
     double at(int i, int j) const { return w_[static_cast<std::size_t>(i) * width_ + (j - i + kl_)]; }
     int n_ = 0, kl_ = 0, ku_ = 0, width_ = 1;

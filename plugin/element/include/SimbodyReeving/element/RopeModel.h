@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -95,9 +96,12 @@ struct RopeData {
 
 
     /// Reduced mass Mbar = G^T M G of the last computeDynamics, on the independent velocities
-    /// w = [xdot, qdot_m] (external coordinates, then modal state coordinates).
+    /// w = [xdot, qdot_m] (external coordinates, then modal state coordinates). Dense, O(n^3): formed
+    /// on first request after each computeDynamics (static equilibrium, tests), not by the dynamics
+    /// themselves, which solve the rope's chain-structured equations directly. The model that ran
+    /// computeDynamics must still exist.
     const Eigen::MatrixXd& reducedMass() const;
-    /// Reduced force Qbar = G^T (Q - M c) of the last computeDynamics, on w [N].
+    /// Reduced force Qbar = G^T (Q - M c) of the last computeDynamics, on w [N] (as reducedMass).
     const Eigen::VectorXd& reducedForce() const;
     /// Coordinates q of span j (SpanModel layout) at the last evaluation.
     const Eigen::VectorXd& spanCoordinates(int span) const;
@@ -179,6 +183,12 @@ public:
     /// Added to nodeMass, nodeForce and the energies by computeDynamics.
     /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
     void setStoredRope(int node, double lengthAtZero);
+    /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
+    /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
+    /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
+    /// (the reaction h - S xddot at a fixed node is still right). Default: no node is stationary.
+    /// @throws std::invalid_argument if stationary does not have numNodes() entries.
+    void setStationaryNodes(const std::vector<bool>& stationary);
     /// Gravity energy of the stored rope at these node positions and material coordinates [J].
     double storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
@@ -259,6 +269,18 @@ public:
     double constraintError(const RopeData<Dim>& data, int k) const;
 
 private:
+    friend struct RopeData<Dim>;
+    /// Orders the dependent coordinates, the constraint rows and the modal state coordinates along
+    /// the rope (span j, then node j + 1, ...) so that C_d and the dynamics' KKT matrix are band
+    /// matrices, and finds their bandwidths (constructor).
+    void buildChainOrder();
+    /// Band LU of C_d from data's Jacobian entries (ws().dependentLu).
+    /// @throws std::runtime_error if C_d is singular.
+    void factorDependentJacobian(RopeData<Dim>& data) const;
+    /// out = C_d^-1 rows (rows indexed as the constraint rows, out as the dependents d).
+    void solveDependent(RopeData<Dim>& data, const Eigen::VectorXd& rows, Eigen::VectorXd& out) const;
+    /// The dense Mbar, Qbar of the last computeDynamics (RopeData::reducedMass).
+    void assembleReduced(RopeData<Dim>& data) const;
     void fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
     /// Evaluates the constraint functions at data.spanQ (and data.spanQdot when withRates): values
     /// into data.newtonResidual, Jacobians into data.Cw / data.Cd, biases into data.bias.
@@ -284,6 +306,13 @@ private:
         double lengthAtZero = 0, slope = 0;  // l = lengthAtZero + slope s_node
     };
     std::vector<Storage> storage_;                 // rope stored at Driven end nodes (drums)
+    // Chain order (buildChainOrder): positions in the KKT system of the coordinates z (-1: external
+    // or Fixed) and of the constraint rows; positions in C_d of its rows and of the dependents.
+    std::vector<int> kktPos_, kktRowPos_, dependentRowPos_, dependentColPos_;
+    int kktSize_ = 0, kktBand_ = 0, dependentKl_ = 0, dependentKu_ = 0;
+    // External coordinate i -> the (span, local coordinate) pairs it is, up to 2 (-1: none).
+    std::vector<std::array<int, 4>> externalSpans_;
+    std::vector<char> stationaryColumn_;  // per external coordinate: its node never moves
     int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0, numSliding_ = 0, numDriven_ = 0;
     double length_ = 0;
 };
