@@ -12,7 +12,7 @@
 #             trolley_force.
 # The other columns (energy, constraint error, energy residual, powers, ...) are printed, not
 # checked: at 1e-10 some are round-off (e.g. the constraint error, ~1e-9 N).
-# Takes about 1.5 minutes per build (the crane at 1e-10: ~40 s).
+# Takes about 1 minute of CPU per build (the crane at 1e-10: ~40 s of it, on the current main).
 #
 # usage: bench/compare_timeseries.sh BASELINE_BIN_DIR NEW_BIN_DIR
 #   each dir holds reeving-pendulum and reeving-crane (e.g. /work/baseline, build/examples);

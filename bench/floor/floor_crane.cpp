@@ -30,10 +30,11 @@
 // Not the same physics, so compare costs per right-hand side, not steps: the reeved rope slides
 // over the hook's sheaves, so its falls carry one tension and the hook block turns against gravity
 // alone, while n separate springs on the sheave centres hold its rotation with sum k_f x^2 (x the
-// sheave's offset), a mode of order 100 Hz for 12 falls that RK-Merson resolves: measured, 13 469
-// steps over the 36 s (the demo: 2 651), 360 of them in the first second, at rest. (All hook ends at the block's frame
-// origin instead: 3 567 steps, but the fanned springs then hold the hook horizontally and their
-// forces swing by +-20 kN in the traverse.)
+// sheave's offset; 1.3e7 N m/rad for 12 falls, against ~25 kg m^2: a mode of order 100 Hz) that
+// RK-Merson resolves: measured, 13 469 steps over the 36 s (the demo: 2 667), 360 of them in the
+// first second, at rest; with 1 fall, 45 steps in the first 2 s. (All hook ends at the block's
+// frame origin instead: 3 567 steps, but the fanned springs then hold the hook horizontally and
+// their forces swing by +-20 kN in the traverse.)
 //
 // Initial state (the demo's: hook hanging at rest): prescribed motions at t = 0 (at rest), the
 // hook block from its rest offset below the trolley and the payload hanging, then Newton on the
