@@ -82,3 +82,23 @@ TEST(BandedLU, RejectsEntriesOutsideTheBandAndBadSizes) {
     EXPECT_THROW(lu.reset(-1, 0, 0), std::invalid_argument);
     EXPECT_THROW(lu.reset(3, 0, -2), std::invalid_argument);
 }
+
+TEST(BandedLU, BlockSolveEqualsColumnByColumnSolvesExactly) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 23, kl = 4, ku = 5, nr = 7;
+    BandedLU lu;
+    lu.reset(n, kl, ku);
+    for (int i = 0; i < n; ++i)
+        for (int j = std::max(0, i - kl); j <= std::min(n - 1, i + ku); ++j) lu.add(i, j, i % 3 == 1 && i == j ? 0.0 : u(rng));
+    ASSERT_TRUE(lu.factor());
+    std::vector<double> block(n * nr), column(n);
+    for (double& b : block) b = u(rng);
+    std::vector<double> original = block;
+    lu.solve(block.data(), nr);
+    for (int r = 0; r < nr; ++r) {
+        for (int i = 0; i < n; ++i) column[i] = original[i * nr + r];
+        lu.solve(column.data());
+        for (int i = 0; i < n; ++i) EXPECT_EQ(block[i * nr + r], column[i]) << i << " " << r;
+    }
+}

@@ -1,5 +1,7 @@
 #include "SimbodyReeving/element/BandedLU.h"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -52,8 +54,8 @@ bool BandedLU::factor() {
         for (int i = k + 1; i <= last; ++i) {
             const double l = at(i, k) * inv;
             at(i, k) = l;
-            if (l == 0.0) continue;
-            for (int j = k + 1; j <= right; ++j) at(i, j) -= l * at(k, j);
+            if (l == 0.0 || right == k) continue;
+            Eigen::Map<Eigen::ArrayXd>(&at(i, k + 1), right - k) -= l * Eigen::Map<const Eigen::ArrayXd>(&at(k, k + 1), right - k);
         }
     }
     return true;
@@ -65,7 +67,6 @@ void BandedLU::solve(double* b) const {
         const int p = pivot_[k];
         if (p != k) std::swap(b[k], b[p]);
         const double bk = b[k];
-        if (bk == 0.0) continue;
         const int last = std::min(n_ - 1, k + kl_);
         for (int i = k + 1; i <= last; ++i) b[i] -= at(i, k) * bk;
     }
@@ -74,6 +75,26 @@ void BandedLU::solve(double* b) const {
         double sum = b[k];
         for (int j = k + 1; j <= right; ++j) sum -= at(k, j) * b[j];
         b[k] = sum / at(k, k);
+    }
+}
+
+void BandedLU::solve(double* B, int numRhs) const {
+    const int band = kl_ + ku_, nr = numRhs;
+    for (int k = 0; k < n_; ++k) {  // L Y = P B
+        const int p = pivot_[k];
+        double* bk = B + static_cast<std::size_t>(k) * nr;
+        if (p != k) std::swap_ranges(bk, bk + nr, B + static_cast<std::size_t>(p) * nr);
+        const int last = std::min(n_ - 1, k + kl_);
+        const Eigen::Map<const Eigen::ArrayXd> rowK(bk, nr);
+        for (int i = k + 1; i <= last; ++i)
+            Eigen::Map<Eigen::ArrayXd>(B + static_cast<std::size_t>(i) * nr, nr) -= at(i, k) * rowK;
+    }
+    for (int k = n_ - 1; k >= 0; --k) {  // U X = Y
+        const int right = std::min(n_ - 1, k + band);
+        Eigen::Map<Eigen::ArrayXd> rowK(B + static_cast<std::size_t>(k) * nr, nr);
+        for (int j = k + 1; j <= right; ++j)
+            rowK -= at(k, j) * Eigen::Map<const Eigen::ArrayXd>(B + static_cast<std::size_t>(j) * nr, nr);
+        rowK /= at(k, k);
     }
 }
 

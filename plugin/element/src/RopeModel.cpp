@@ -775,42 +775,20 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     if (nk > 0 && !kkt.factor())
         throw std::runtime_error("RopeModel::computeDynamics: the rope's equations of motion are singular at this state");
 
-    // out += sign (M_xy yddot + C_x^T mu) for the solution [yddot, mu] in ws.chainSolution.
-    auto addSupportForce = [&](double* out, double sign) {
-        for (int j = 0; j < N; ++j) {
-            const auto& map = spanToRope_[j];
-            const auto& M = ws.spans[j].massMatrix;
-            const int n = spans_[j].numCoordinates();
-            for (int a = 0; a < n; ++a) {
-                if (map[a] >= nx) continue;
-                double sum = 0;
-                for (int b = 0; b < n; ++b) {
-                    const int pb = kktPos_[map[b]];
-                    if (pb >= 0) sum += M(a, b) * ws.chainSolution[pb];
-                }
-                out[map[a]] += sign * sum;
-            }
-        }
-        for (int i = 0; i < nx; ++i)
-            for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
-                out[i] += sign * ws.externalColumnValue[at] * ws.chainSolution[kktRowPos_[ws.externalColumnRow[at]]];
-    };
-    // h = Q_x - M_xy y0 - C_x^T mu0 with [y0, mu0] the solution at xddot = 0.
-    data.nodeForce = ws.Qz.head(nx);
-    ws.chainSolution.setZero(nk);
-    for (int z = nx; z < nw + nd; ++z) ws.chainSolution[kktPos_[z]] = ws.Qz[z];
-    for (int r = 0; r < nd; ++r) ws.chainSolution[kktRowPos_[r]] = -ws.bias[r];
-    if (nk > 0) kkt.solve(ws.chainSolution.data());
-    addSupportForce(data.nodeForce.data(), -1.0);
-    ws.modalFree.resize(nm);
-    for (int i = 0; i < nm; ++i) ws.modalFree[i] = ws.chainSolution[kktPos_[nx + i]];
-    // S e_i = M_xx e_i + M_xy dy + C_x^T dmu with [dy, dmu] solving the system for -[M_yx e_i; C_x e_i].
+    // All right-hand sides in one block solve (row-major, nk x nc): column 0 at xddot = 0 (-> h), then
+    // one per moving external coordinate i: -[M_yx e_i; C_x e_i] (-> S e_i).
+    std::vector<int>& columns = ws.solvedColumns;
+    columns.clear();
+    for (int i = 0; i < nx; ++i)
+        if (stationaryColumn_.empty() || !stationaryColumn_[i]) columns.push_back(i);
+    const int ncol = 1 + static_cast<int>(columns.size());
+    Eigen::VectorXd& B = ws.chainSolution;
+    B.setZero(static_cast<Eigen::Index>(nk) * ncol);
     data.nodeMass.setZero(nx, nx);
-    ws.modalCoupling.resize(nm, nx);
-    ws.modalCoupling.setZero();
-    for (int i = 0; i < nx; ++i) {
-        if (!stationaryColumn_.empty() && stationaryColumn_[i]) continue;  // xddot_i = 0 always
-        ws.chainSolution.setZero(nk);
+    for (int z = nx; z < nw + nd; ++z) B[kktPos_[z] * ncol] = ws.Qz[z];
+    for (int r = 0; r < nd; ++r) B[kktRowPos_[r] * ncol] = -ws.bias[r];
+    for (int c = 1; c < ncol; ++c) {
+        const int i = columns[c - 1];
         const auto& spansAt = externalSpans_[i];
         for (int slot = 0; slot < 4; slot += 2) {
             const int j = spansAt[slot];
@@ -821,16 +799,51 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             for (int b = 0; b < spans_[j].numCoordinates(); ++b) {
                 const int pb = kktPos_[map[b]];
                 if (pb >= 0)
-                    ws.chainSolution[pb] -= M(b, a);
+                    B[pb * ncol + c] -= M(b, a);
                 else if (map[b] < nx)
-                    data.nodeMass(map[b], i) += M(b, a);
+                    data.nodeMass(map[b], i) += M(b, a);  // M_xx e_i
             }
         }
         for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
-            ws.chainSolution[kktRowPos_[ws.externalColumnRow[at]]] -= ws.externalColumnValue[at];
-        if (nk > 0) kkt.solve(ws.chainSolution.data());
-        addSupportForce(&data.nodeMass(0, i), 1.0);
-        for (int m = 0; m < nm; ++m) ws.modalCoupling(m, i) = -ws.chainSolution[kktPos_[nx + m]];
+            B[kktRowPos_[ws.externalColumnRow[at]] * ncol + c] -= ws.externalColumnValue[at];
+    }
+    if (nk > 0) kkt.solve(B.data(), ncol);
+    // F = M_xy Y + C_x^T Mu (nx x ncol, row-major) for the solutions [Y; Mu] in B.
+    Eigen::VectorXd& F = ws.supportBlock;
+    F.setZero(static_cast<Eigen::Index>(nx) * ncol);
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const auto& M = ws.spans[j].massMatrix;
+        const int n = spans_[j].numCoordinates();
+        for (int a = 0; a < n; ++a) {
+            if (map[a] >= nx) continue;
+            Eigen::Map<Eigen::ArrayXd> f(F.data() + static_cast<std::ptrdiff_t>(map[a]) * ncol, ncol);
+            for (int b = 0; b < n; ++b) {
+                const int pb = kktPos_[map[b]];
+                if (pb < 0) continue;
+                f += M(a, b) * Eigen::Map<const Eigen::ArrayXd>(B.data() + static_cast<std::ptrdiff_t>(pb) * ncol, ncol);
+            }
+        }
+    }
+    for (int i = 0; i < nx; ++i) {
+        Eigen::Map<Eigen::ArrayXd> f(F.data() + static_cast<std::ptrdiff_t>(i) * ncol, ncol);
+        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
+            f += ws.externalColumnValue[at] *
+                 Eigen::Map<const Eigen::ArrayXd>(
+                     B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * ncol, ncol);
+    }
+    // h = Q_x - M_xy y0 - C_x^T mu0;  S e_i = M_xx e_i + M_xy dy_i + C_x^T dmu_i.
+    data.nodeForce = ws.Qz.head(nx);
+    for (int i = 0; i < nx; ++i) {
+        data.nodeForce[i] -= F[i * ncol];
+        for (int c = 1; c < ncol; ++c) data.nodeMass(i, columns[c - 1]) += F[i * ncol + c];
+    }
+    ws.modalFree.resize(nm);
+    ws.modalCoupling.setZero(nm, nx);
+    for (int m = 0; m < nm; ++m) {
+        const double* y = B.data() + static_cast<std::ptrdiff_t>(kktPos_[nx + m]) * ncol;
+        ws.modalFree[m] = y[0];
+        for (int c = 1; c < ncol; ++c) ws.modalCoupling(m, columns[c - 1]) = -y[c];
     }
 
     // Rope stored on drums (setStoredRope): L_st = 1/2 rhoA l(s) (|rdot|^2 + sdot^2) + rhoA l(s) g.r,

@@ -38,7 +38,10 @@ struct RopeWorkspace {
     std::vector<double> externalColumnValue;
     BandedLU dependentLu;  ///< C_d in chain order (RopeModel::dependentRowPos_ / dependentColPos_)
     BandedLU kktLu;        ///< [M_yy C_y^T; C_y 0] in chain order (RopeModel::kktPos_ / kktRowPos_)
-    Eigen::VectorXd chainSolution, rowScratch, dependentScratch, dependentAccelerations;
+    Eigen::VectorXd chainSolution;  ///< right-hand sides / solutions of the KKT system, row-major
+    Eigen::VectorXd supportBlock;   ///< M_xy Y + C_x^T Mu for them, row-major
+    std::vector<int> solvedColumns; ///< the external coordinates whose column of S is formed
+    Eigen::VectorXd rowScratch, dependentScratch, dependentAccelerations;
     Eigen::VectorXd Qz, bias;
     Eigen::VectorXd cd;                   ///< dependent accelerations at wdot = 0: -C_d^-1 bias
     Eigen::VectorXd newtonResidual, newtonStep;         ///< dependent-coordinate Newton

@@ -36,6 +36,10 @@ public:
     bool factor();
     /// Solves A x = b in place (b has size() entries) with the factors of the last factor().
     void solve(double* b) const;
+    /// Solves A X = B in place for numRhs right-hand sides stored row by row (B(i, r) at
+    /// B[i * numRhs + r]): the factors are read once for all of them. Each column's result equals
+    /// solve() on that column exactly (same operations in the same order).
+    void solve(double* B, int numRhs) const;
 
 private:
     [[noreturn]] void outOfBand(int i, int j) const;
