@@ -1,6 +1,5 @@
 #include "SimbodyReeving/element/BandedLU.h"
 
-#include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +7,12 @@
 #include <string>
 
 namespace SimbodyReeving {
+namespace {
+// y += a x over n entries (x, y not overlapping): y[r] + (a x[r]), the rounding of y - l x with a = -l.
+inline void axpy(double a, const double* __restrict x, double* __restrict y, int n) {
+    for (int r = 0; r < n; ++r) y[r] += a * x[r];
+}
+}  // namespace
 
 void BandedLU::reset(int n, int kl, int ku) {
     if (n < 0 || kl < 0 || ku < 0)
@@ -54,8 +59,8 @@ bool BandedLU::factor() {
         for (int i = k + 1; i <= last; ++i) {
             const double l = at(i, k) * inv;
             at(i, k) = l;
-            if (l == 0.0 || right == k) continue;
-            Eigen::Map<Eigen::ArrayXd>(&at(i, k + 1), right - k) -= l * Eigen::Map<const Eigen::ArrayXd>(&at(k, k + 1), right - k);
+            if (l == 0.0) continue;
+            for (int j = k + 1; j <= right; ++j) at(i, j) -= l * at(k, j);
         }
     }
     return true;
@@ -85,16 +90,14 @@ void BandedLU::solve(double* B, int numRhs) const {
         double* bk = B + static_cast<std::size_t>(k) * nr;
         if (p != k) std::swap_ranges(bk, bk + nr, B + static_cast<std::size_t>(p) * nr);
         const int last = std::min(n_ - 1, k + kl_);
-        const Eigen::Map<const Eigen::ArrayXd> rowK(bk, nr);
-        for (int i = k + 1; i <= last; ++i)
-            Eigen::Map<Eigen::ArrayXd>(B + static_cast<std::size_t>(i) * nr, nr) -= at(i, k) * rowK;
+        for (int i = k + 1; i <= last; ++i) axpy(-at(i, k), bk, B + static_cast<std::size_t>(i) * nr, nr);
     }
     for (int k = n_ - 1; k >= 0; --k) {  // U X = Y
         const int right = std::min(n_ - 1, k + band);
-        Eigen::Map<Eigen::ArrayXd> rowK(B + static_cast<std::size_t>(k) * nr, nr);
-        for (int j = k + 1; j <= right; ++j)
-            rowK -= at(k, j) * Eigen::Map<const Eigen::ArrayXd>(B + static_cast<std::size_t>(j) * nr, nr);
-        rowK /= at(k, k);
+        double* bk = B + static_cast<std::size_t>(k) * nr;
+        for (int j = k + 1; j <= right; ++j) axpy(-at(k, j), B + static_cast<std::size_t>(j) * nr, bk, nr);
+        const double d = at(k, k);
+        for (int r = 0; r < nr; ++r) bk[r] /= d;
     }
 }
 

@@ -211,9 +211,8 @@ void RopeModel<Dim>::buildChainOrder() {
 }
 
 template <int Dim>
-void RopeModel<Dim>::factorDependentJacobian(RopeData<Dim>& data) const {
+void RopeModel<Dim>::factorDependentJacobian(RopeData<Dim>& data, BandedLU& lu) const {
     const int nw = numExternalCoordinates() + numModal_, nd = numDependent();
-    BandedLU& lu = data.ws().dependentLu;
     lu.reset(nd, dependentKl_, dependentKu_);
     for (const detail::JacobianEntry& e : data.ws().jacobian)
         if (e.col >= nw) lu.add(dependentRowPos_[e.row], dependentColPos_[e.col - nw], e.value);
@@ -224,12 +223,13 @@ void RopeModel<Dim>::factorDependentJacobian(RopeData<Dim>& data) const {
 }
 
 template <int Dim>
-void RopeModel<Dim>::solveDependent(RopeData<Dim>& data, const Eigen::VectorXd& rows, Eigen::VectorXd& out) const {
+void RopeModel<Dim>::solveDependent(RopeData<Dim>& data, const BandedLU& lu, const Eigen::VectorXd& rows,
+                                    Eigen::VectorXd& out) const {
     const int nd = numDependent();
     Eigen::VectorXd& t = data.ws().dependentScratch;
     t.resize(nd);
     for (int r = 0; r < nd; ++r) t[dependentRowPos_[r]] = rows[r];
-    data.ws().dependentLu.solve(t.data());
+    lu.solve(t.data());
     out.resize(nd);
     for (int d = 0; d < nd; ++d) out[d] = t[dependentColPos_[d]];
 }
@@ -478,13 +478,56 @@ template <int Dim>
 void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
     const int N = numSpans(), nqc = numCondensed_, nd = numDependent();
+    const int nn = Dim * (N + 1), nx = numExternalCoordinates(), nw = nx + numModal_;
     Eigen::VectorXd& s = data.materialCoordinates;
     const bool warm = s.size() == N + 1 && s.allFinite();
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    // The independent positions w (node positions, driven material coordinates, modal states).
+    ws.positionW.resize(nw);
+    for (int k = 0; k <= N; ++k) ws.positionW.template segment<Dim>(Dim * k) = nodes.col(k);
+    if (drivenS.size() == numDriven_) ws.positionW.segment(nn, numDriven_) = drivenS;
+    if (qm.size() == numModal_) ws.positionW.tail(numModal_) = qm;
+    const bool predict = warm && nd > 0 && ws.predictorValid && ws.predictorW.size() == nw &&
+                         data.condensedAmplitudes.size() == nqc && data.multipliers.size() == numMultipliers_;
     setKnownMaterialCoordinates(nodes, drivenS, data);
     if (data.condensedAmplitudes.size() != nqc || !data.condensedAmplitudes.allFinite())
         data.condensedAmplitudes.setZero(nqc);
     if (data.multipliers.size() != numMultipliers_ || !data.multipliers.allFinite())
         data.multipliers.setZero(numMultipliers_);
+    // Tangent predictor: the dependents move with the independents as d(w) ~ d(w0) - C_d^-1 C_w (w - w0),
+    // with the Jacobian entries of the last converged solve and the last factorization of C_d (an
+    // iterate of that solve): Newton then starts O(|w - w0|^2) from the solution, so it usually
+    // needs one step less. Node and modal moves only (material moved by a drum is mapped by
+    // setKnownMaterialCoordinates); not used if it would disorder the material coordinates.
+    ws.predictorValid = false;
+    bool tookStep = false;  // newtonLu holds a factorization from this solve
+    if (predict) {
+        ws.rowScratch.setZero(nd);
+        bool moved = false;
+        for (const detail::JacobianEntry& e : ws.jacobian) {
+            if (e.col >= nw || (e.col >= nn && e.col < nx)) continue;
+            const double dw = ws.positionW[e.col] - ws.predictorW[e.col];
+            if (dw != 0.0) {
+                ws.rowScratch[e.row] -= e.value * dw;
+                moved = true;
+            }
+        }
+        if (moved) {
+            solveDependent(data, ws.predictorUsesDynamicsLu ? ws.dependentLu : ws.newtonLu, ws.rowScratch, ws.newtonStep);
+            bool ordered = ws.newtonStep.allFinite();
+            for (int ki = 0; ki < numSliding_ && ordered; ++ki) {
+                const int k = slidingNode_[ki];
+                const double sk = s[k] + ws.newtonStep[nqc + ki];
+                ordered = sk > s[k - 1] + (slidingIndex_[k - 1] >= 0 ? ws.newtonStep[nqc + slidingIndex_[k - 1]] : 0.0) &&
+                          sk < s[k + 1] + (slidingIndex_[k + 1] >= 0 ? ws.newtonStep[nqc + slidingIndex_[k + 1]] : 0.0);
+            }
+            if (ordered) {
+                data.condensedAmplitudes += ws.newtonStep.head(nqc);
+                for (int ki = 0; ki < numSliding_; ++ki) s[slidingNode_[ki]] += ws.newtonStep[nqc + ki];
+                data.multipliers += ws.newtonStep.tail(numMultipliers_);
+            }
+        }
+    }
     data.multiplierRates.setZero(numMultipliers_);
     data.newtonIterations = 0;
     for (auto& v : data.ws().spanQdot) v.setZero();
@@ -538,6 +581,9 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         const bool stagnating = err > 0.5 * previous;
         if (err <= 1e-15 || (stagnating && err <= 1e-12) || (stagnating && iter >= 4 && err <= 1e-9)) {
             data.newtonIterations = iter;
+            ws.predictorW = ws.positionW;
+            ws.predictorValid = tookStep;
+            ws.predictorUsesDynamicsLu = false;
             return;
         }
         // Damping: if the last step did not reduce |C|_2 (Newton overshooting a sharp change of
@@ -558,9 +604,10 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         previousMerit = merit;
         if (iter == kMaxIterations && !coldRetry) break;
         if (iter == kMaxIterations) continue;  // the cold retry starts at the top of the loop
-        factorDependentJacobian(data);
+        factorDependentJacobian(data, ws.newtonLu);
+        tookStep = true;
         Eigen::VectorXd& step = data.ws().newtonStep;
-        solveDependent(data, C, step);
+        solveDependent(data, ws.newtonLu, C, step);
         step *= -1.0;
         // Halve the step until the material coordinates stay ordered (every span keeps l > 0).
         auto stepped = [&](int k, double a) {
@@ -685,11 +732,16 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     ws.model = this;
     ws.reducedValid = false;
     if (nd > 0) {
-        factorDependentJacobian(data);
+        factorDependentJacobian(data, ws.dependentLu);
+        // (the predictor of the next solve starts from this converged point and this factorization)
+        if (ws.positionW.size() == nw) {
+            ws.predictorW = ws.positionW;
+            ws.predictorValid = ws.predictorUsesDynamicsLu = true;
+        }
         ws.rowScratch.setZero(nd);
         for (const detail::JacobianEntry& e : ws.jacobian)
             if (e.col < nw) ws.rowScratch[e.row] -= e.value * ws.w[e.col];
-        solveDependent(data, ws.rowScratch, ws.cd);  // (scratch: ddot)
+        solveDependent(data, ws.dependentLu, ws.rowScratch, ws.cd);  // (scratch: ddot)
         data.condensedRates = ws.cd.head(nqc);
         for (int ki = 0; ki < nc; ++ki) data.materialRates[slidingNode_[ki]] = ws.cd[nqc + ki];
         data.multiplierRates = ws.cd.tail(numMultipliers_);
@@ -697,7 +749,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         // velocities, dependent rates included.
         fillSpanVelocities();
         evaluateConstraints(nodes, qm, data, true);
-        solveDependent(data, ws.bias, ws.cd);
+        solveDependent(data, ws.dependentLu, ws.bias, ws.cd);
         ws.cd *= -1.0;
     } else {
         fillSpanVelocities();
@@ -897,7 +949,7 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     ws.rowScratch = ws.bias;
     for (const detail::JacobianEntry& e : ws.jacobian)
         if (e.col < nw) ws.rowScratch[e.row] += e.value * zdd[e.col];
-    solveDependent(data, ws.rowScratch, ws.dependentAccelerations);
+    solveDependent(data, ws.dependentLu, ws.rowScratch, ws.dependentAccelerations);
     zdd.segment(nw, nd) = -ws.dependentAccelerations;
     // (M zddot) at the condensed amplitudes and the Sliding material coordinates, span by span.
     Eigen::VectorXd& Mzdd = ws.massTimesAcceleration;
@@ -919,7 +971,7 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     for (int r = 0; r < nqc; ++r) load[r] = invEA * (Mzdd[nw + r] - ws.velocityForcesZ[nw + r]);
     for (int k = 0; k < nc; ++k)
         load[nqc + nc + k] = invEA * (Mzdd[nw + nqc + k] - ws.velocityForcesZ[nw + nqc + k]);
-    solveDependent(data, load, data.inertialCorrection);
+    solveDependent(data, ws.dependentLu, load, data.inertialCorrection);
     data.inertialCorrection *= -1.0;
     data.inertialCorrectionValid = true;
 }

@@ -5,6 +5,7 @@
 /// dynamics reduced to its node accelerations (for an exact coupling with rigid bodies).
 
 #include "SimbodyReeving/element/AxialCondensation.h"
+#include "SimbodyReeving/element/BandedLU.h"
 #include "SimbodyReeving/element/SpanModel.h"
 
 #include <Eigen/Core>
@@ -274,11 +275,11 @@ private:
     /// the rope (span j, then node j + 1, ...) so that C_d and the dynamics' KKT matrix are band
     /// matrices, and finds their bandwidths (constructor).
     void buildChainOrder();
-    /// Band LU of C_d from data's Jacobian entries (ws().dependentLu).
+    /// Band LU of C_d from data's Jacobian entries into lu.
     /// @throws std::runtime_error if C_d is singular.
-    void factorDependentJacobian(RopeData<Dim>& data) const;
-    /// out = C_d^-1 rows (rows indexed as the constraint rows, out as the dependents d).
-    void solveDependent(RopeData<Dim>& data, const Eigen::VectorXd& rows, Eigen::VectorXd& out) const;
+    void factorDependentJacobian(RopeData<Dim>& data, BandedLU& lu) const;
+    /// out = C_d^-1 rows with lu (rows indexed as the constraint rows, out as the dependents d).
+    void solveDependent(RopeData<Dim>& data, const BandedLU& lu, const Eigen::VectorXd& rows, Eigen::VectorXd& out) const;
     /// The dense Mbar, Qbar of the last computeDynamics (RopeData::reducedMass).
     void assembleReduced(RopeData<Dim>& data) const;
     void fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
