@@ -23,9 +23,10 @@ struct Case {
     bool drivenStart = false, drivenMiddle = false;
 };
 
-// Largest relative differences (S, h, qddot_m) of the chain solve against the dense reduction.
+// Largest relative differences (S, h, qddot_m) of the chain solve against the dense reduction, and of
+// multiplyByNodeMass against the formed S.
 template <int Dim>
-Eigen::Vector3d chainAgainstDense(const Case<Dim>& c, std::mt19937& rng) {
+Eigen::Vector4d chainAgainstDense(const Case<Dim>& c, std::mt19937& rng) {
     using NodeMatrix = typename RopeModel<Dim>::NodeMatrix;
     const RopeProperties props{0.6205, 16.5e6, 30.9};
     SpanOptions o;
@@ -86,15 +87,21 @@ Eigen::Vector3d chainAgainstDense(const Case<Dim>& c, std::mt19937& rng) {
     Eigen::VectorXd qmdd;
     rope.modalAccelerations(data, xdd, qmdd);
     auto rel = [](const auto& a, const auto& b) { return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff(); };
+    // multiplyByNodeMass: S X without S, against the formed S (3 columns).
+    const Eigen::MatrixXd X = Eigen::MatrixXd::NullaryExpr(nx, 3, [&] { return u(rng); });
+    Eigen::MatrixXd SX;
+    rope.multiplyByNodeMass(data, X, SX);
+    const Eigen::MatrixXd SXref = data.nodeMass * X;
+    const double product = rel(SX, SXref);
     // The stored rope of drums is added after the reduction in both; none here.
-    return {rel(data.nodeMass, S), rel(data.nodeForce, h), nm > 0 ? rel(qmdd, qmddDense) : 0.0};
+    return {rel(data.nodeMass, S), rel(data.nodeForce, h), nm > 0 ? rel(qmdd, qmddDense) : 0.0, product};
 }
 
 }  // namespace
 
 TEST(RopeChainSolve, MatchesTheDenseReductionOnPlanarAndSpatialRopes) {
     std::mt19937 rng(11);
-    Eigen::Vector3d worst = Eigen::Vector3d::Zero();
+    Eigen::Vector4d worst = Eigen::Vector4d::Zero();
     for (int sheaves : {1, 2, 5, 9})
         for (int na : {0, 1, 3}) {
             Case<2> c;
@@ -114,10 +121,11 @@ TEST(RopeChainSolve, MatchesTheDenseReductionOnPlanarAndSpatialRopes) {
         c.nt = 2;
         worst = worst.cwiseMax(chainAgainstDense(c, rng));
     }
-    std::printf("chain vs dense: S %.3g, h %.3g, qddot_m %.3g\n", worst[0], worst[1], worst[2]);
-    // Measured S 4.4e-13, h 9.6e-13, qddot_m 3.7e-12 (round-off of two different eliminations);
-    // bounds about 100x.
-    EXPECT_LE(worst[0], 5e-11);
+    std::printf("chain vs dense: S %.3g, h %.3g, qddot_m %.3g; S X %.3g\n", worst[0], worst[1], worst[2], worst[3]);
+    // Measured S 2.9e-13, h 1.3e-12, qddot_m 2.2e-12 (round-off of two different eliminations), S X
+    // 4.7e-15; bounds about 100x.
+    EXPECT_LE(worst[0], 3e-11);
     EXPECT_LE(worst[1], 1e-10);
-    EXPECT_LE(worst[2], 4e-10);
+    EXPECT_LE(worst[2], 2e-10);
+    EXPECT_LE(worst[3], 5e-13);
 }

@@ -923,6 +923,73 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
 }
 
 template <int Dim>
+void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::MatrixXd& X, Eigen::MatrixXd& SX) const {
+    const int N = numSpans(), nx = numExternalCoordinates();
+    if (X.rows() != nx)
+        throw std::invalid_argument("RopeModel::multiplyByNodeMass: X has " + std::to_string(X.rows()) +
+                                    " rows for " + std::to_string(nx) + " external coordinates");
+    detail::RopeWorkspace<Dim>& ws = data.scratch();
+    const int p = static_cast<int>(X.cols()), nk = kktSize_;
+    SX.setZero(nx, p);
+    if (p == 0) return;
+    // Right-hand sides -[M_yx X; C_x X] (row-major), and M_xx X into SX.
+    Eigen::VectorXd& B = ws.productBlock;
+    B.setZero(static_cast<Eigen::Index>(nk) * p);
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const auto& M = ws.spans[j].massMatrix;
+        const int n = spans_[j].numCoordinates();
+        for (int a = 0; a < n; ++a) {
+            if (map[a] >= nx) continue;
+            for (int b = 0; b < n; ++b) {
+                const int pb = kktPos_[map[b]];
+                if (pb >= 0) {
+                    for (int c = 0; c < p; ++c) B[pb * p + c] -= M(b, a) * X(map[a], c);
+                } else if (map[b] < nx) {
+                    for (int c = 0; c < p; ++c) SX(map[b], c) += M(b, a) * X(map[a], c);
+                }
+            }
+        }
+    }
+    for (int i = 0; i < nx; ++i)
+        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at) {
+            const int pr = kktRowPos_[ws.externalColumnRow[at]];
+            const double v = ws.externalColumnValue[at];
+            for (int c = 0; c < p; ++c) B[pr * p + c] -= v * X(i, c);
+        }
+    if (nk > 0) ws.kktLu.solve(B.data(), p);
+    // + M_xy Y + C_x^T Mu
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const auto& M = ws.spans[j].massMatrix;
+        const int n = spans_[j].numCoordinates();
+        for (int a = 0; a < n; ++a) {
+            if (map[a] >= nx) continue;
+            for (int b = 0; b < n; ++b) {
+                const int pb = kktPos_[map[b]];
+                if (pb < 0) continue;
+                for (int c = 0; c < p; ++c) SX(map[a], c) += M(a, b) * B[pb * p + c];
+            }
+        }
+    }
+    for (int i = 0; i < nx; ++i)
+        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at) {
+            const int pr = kktRowPos_[ws.externalColumnRow[at]];
+            const double v = ws.externalColumnValue[at];
+            for (int c = 0; c < p; ++c) SX(i, c) += v * B[pr * p + c];
+        }
+    // Stored rope: mass rhoA l on the drum node's position and material coordinate.
+    const double rhoA = properties().massPerLength;
+    const int nn = Dim * (N + 1);
+    for (const Storage& st : storage_) {
+        const int k = st.node, xs = nn + drivenIndex_[k];
+        const double l = st.lengthAtZero + st.slope * data.materialCoordinates[k];
+        for (int d = 0; d < Dim; ++d) SX.row(Dim * k + d) += rhoA * l * X.row(Dim * k + d);
+        SX.row(xs) += rhoA * l * X.row(xs);
+    }
+}
+
+template <int Dim>
 void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                                         Eigen::VectorXd& qmddot) const {
     if (numModal_ == 0) {

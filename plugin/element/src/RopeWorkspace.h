@@ -41,6 +41,7 @@ struct RopeWorkspace {
     BandedLU kktLu;        ///< [M_yy C_y^T; C_y 0] in chain order (RopeModel::kktPos_ / kktRowPos_)
     Eigen::VectorXd chainSolution;  ///< right-hand sides / solutions of the KKT system, row-major
     Eigen::VectorXd supportBlock;   ///< M_xy Y + C_x^T Mu for them, row-major
+    Eigen::VectorXd productBlock;   ///< right-hand sides / solutions of multiplyByNodeMass
     std::vector<int> solvedColumns; ///< the external coordinates whose column of S is formed
     Eigen::VectorXd rowScratch, dependentScratch, dependentAccelerations;
     Eigen::VectorXd Qz, bias;

@@ -117,6 +117,7 @@ struct RopeData {
 private:
     friend class RopeModel<Dim>;
     detail::RopeWorkspace<Dim>& ws() { return *workspace_; }
+    detail::RopeWorkspace<Dim>& scratch() const { return *workspace_; }  // (evaluation scratch)
     const detail::RopeWorkspace<Dim>& ws() const { return *workspace_; }
     detail::ClonedPtr<detail::RopeWorkspace<Dim>> workspace_;
 };
@@ -240,6 +241,14 @@ public:
     /// As above for ropes without Driven nodes.
     void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& qm,
                          const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
+
+    /// S X for the effective mass S (RopeData::nodeMass) of the last computeDynamics on data and
+    /// X (numExternalCoordinates() rows, any number of columns): one block solve of the rope's
+    /// chain-structured equations, O(spans) per column, without forming S. For a coupling that
+    /// needs S only along a few directions (the motions of the bodies that carry the nodes).
+    /// Stored rope (setStoredRope) included.
+    /// @throws std::invalid_argument if X has the wrong number of rows.
+    void multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::MatrixXd& X, Eigen::MatrixXd& SX) const;
 
     /// Modal accelerations for given accelerations of the external coordinates x (node positions,
     /// then Driven material coordinates): qddot_m = Mbar_mm^-1 (Qbar_m - Mbar_mx xddot).
