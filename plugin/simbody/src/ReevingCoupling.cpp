@@ -4,6 +4,8 @@
 
 #include "ReevingSubsystemGuts.h"
 
+#include <algorithm>
+
 using SimTK::MobilizedBody;
 using SimTK::SimbodyMatterSubsystem;
 using SimTK::SpatialVec;
@@ -27,7 +29,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     // Force::Gravity's magnitude and direction are State parameters (they invalidate
     // Stage::Dynamics); the ropes were built with gravity_.
     checkStateGravity(s);
-    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    PositionCache& pc = updPositionCache(s);
     refreshFromZ(s, pc, true);
     CouplingWorkspace& ws = pc.coupling;
     Vector_<SpatialVec>& bodyForces = mbs().updRigidBodyForces(s, Stage::Dynamics);
@@ -54,76 +56,58 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     ws.f.setZero(n);
     ws.rdd.setZero(n);
     if (n > 0) {
+        // Per evaluation, once: each mobile node's offset R_GB station from its body's origin (in
+        // Ground, from the body transforms of this realization) and each pin's u index.
+        ws.nodeOffsets.resize(m);
+        for (int a = 0; a < m; ++a) ws.nodeOffsets[a] = pc.bodyX[mobileNodes_[a].slot].R() * mobileNodes_[a].station;
+        ws.angleU.resize(na);
+        for (int a = 0; a < na; ++a) ws.angleU[a] = static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s));
         // Free accelerations a0 under every force applied so far (prescribed motion included).
-        matter().calcAcceleration(s, mobilityForces, bodyForces, ws.udot, ws.A_GB);
-        couplingAccelerations(s, ws.A_GB, ws.udot, ws.a0);
+        // Without an enabled constraint calcAcceleration is the tree operator itself.
+        const bool constrained = anyConstraintEnabled(s);
+        if (constrained)
+            matter().calcAcceleration(s, mobilityForces, bodyForces, ws.udot, ws.A_GB);
+        else
+            matter().calcAccelerationIgnoringConstraints(s, mobilityForces, bodyForces, ws.udot, ws.A_GB);
+        couplingAccelerations(pc, ws.A_GB, ws.udot, ws.a0);
         // Mobility Lambda: accelerations of y per unit force on y.
         ws.Lambda.resize(n, n);
-        if (!anyConstraintEnabled(s)) {
-            // No constraint: Lambda = J M^-1 J^T with J the Jacobian of y (station rows from
-            // calcStationJacobian, driven rows dsdTheta at the pin's mobility), one O(n)
-            // multiplyByMInv per column. multiplyByMInv leaves prescribed mobilities' udot at 0,
-            // as prescribed (and locked) motion does not respond to forces.
-            const int nu = s.getNU();
-            ws.J.setZero(n, nu);
-            if (m > 0) {
-                matter().calcStationJacobian(s, mobileBodies_, mobileStations_, ws.stationJacobian);
-                for (int row = 0; row < ns; ++row) {
-                    const auto [a, d] = rowOwner_[row];
-                    const Eigen::Vector3d dir = mobileNodes_[a].directions.col(d);
-                    for (int i = 0; i < nu; ++i)
-                        ws.J(row, i) = dir[0] * ws.stationJacobian(3 * a, i) + dir[1] * ws.stationJacobian(3 * a + 1, i) +
-                                       dir[2] * ws.stationJacobian(3 * a + 2, i);
-                }
-            }
-            for (int a = 0; a < na; ++a)
-                ws.J(ns + a, static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s))) = mobileAngles_[a].dsdTheta;
-            ws.generalizedForce.resize(nu);
-            for (int col = 0; col < n; ++col) {
-                for (int i = 0; i < nu; ++i) ws.generalizedForce[i] = ws.J(col, i);
-                matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
-                for (int row = 0; row <= col; ++row) {
-                    double acc = 0;
-                    for (int i = 0; i < nu; ++i) acc += ws.J(row, i) * ws.udotUnit[i];
-                    ws.Lambda(row, col) = ws.Lambda(col, row) = acc;  // symmetric
-                }
-            }
+        if (!constrained) {
+            mobilityLambda(s, ws);
         } else {
             // Constraints: calcAcceleration honours them; Lambda by differences, one call per column.
             for (int col = 0; col < n; ++col) {
                 ws.bodyForcesUnit = bodyForces;
                 ws.mobilityForcesUnit = mobilityForces;
                 if (col < ns) {
-                    const MobileNode& mn = mobileNodes_[rowOwner_[col].first];
-                    mn.body->applyForceToBodyPoint(s, mn.station, toSimTK(mn.directions.col(rowOwner_[col].second)),
-                                                   ws.bodyForcesUnit);
+                    const auto [a, d] = rowOwner_[col];
+                    const Vec3 dir = toSimTK(mobileNodes_[a].directions.col(d));
+                    ws.bodyForcesUnit[mobileNodes_[a].bodyIndex] += SpatialVec(ws.nodeOffsets[a] % dir, dir);
                 } else {
-                    const MobileAngle& ma = mobileAngles_[col - ns];
-                    ma.body->applyOneMobilityForce(s, 0, ma.dsdTheta, ws.mobilityForcesUnit);
+                    ws.mobilityForcesUnit[ws.angleU[col - ns]] += mobileAngles_[col - ns].dsdTheta;
                 }
                 matter().calcAcceleration(s, ws.mobilityForcesUnit, ws.bodyForcesUnit, ws.udot, ws.A_GB);
-                couplingAccelerations(s, ws.A_GB, ws.udot, ws.aUnit);
+                couplingAccelerations(pc, ws.A_GB, ws.udot, ws.aUnit);
                 ws.Lambda.col(col) = ws.aUnit - ws.a0;
             }
         }
         // Support forces on the rope: (I + S Lambda) f = S a0 - h; the bodies receive -f.
-        ws.lhs.noalias() = ws.S * ws.Lambda;
-        ws.lhs.diagonal().array() += 1.0;
         ws.rhs.noalias() = ws.S * ws.a0;
         ws.rhs -= ws.h;
+        ws.rdd = ws.a0;
+        ws.lhs.noalias() = ws.S * ws.Lambda;
+        ws.lhs.diagonal().array() += 1.0;
         ws.lu.compute(ws.lhs);
         ws.f = ws.lu.solve(ws.rhs);
-        ws.rdd = ws.a0;
         ws.rdd.noalias() -= ws.Lambda * ws.f;
+        // MobilizedBody::applyForceToBodyPoint / applyOneMobilityForce, with this evaluation's
+        // offsets and u indices.
         for (int a = 0; a < m; ++a) {
             const MobileNode& mn = mobileNodes_[a];
-            const Eigen::Vector3d force = mn.directions.leftCols(mn.dims) * ws.f.segment(mn.row, mn.dims);
-            mn.body->applyForceToBodyPoint(s, mn.station, -toSimTK(force), bodyForces);
+            const Vec3 force = -toSimTK(mn.directions.leftCols(mn.dims) * ws.f.segment(mn.row, mn.dims));
+            bodyForces[mn.bodyIndex] += SpatialVec(ws.nodeOffsets[a] % force, force);
         }
-        for (int a = 0; a < na; ++a) {
-            const MobileAngle& ma = mobileAngles_[a];
-            ma.body->applyOneMobilityForce(s, 0, -ma.dsdTheta * ws.f[ns + a], mobilityForces);
-        }
+        for (int a = 0; a < na; ++a) mobilityForces[ws.angleU[a]] -= mobileAngles_[a].dsdTheta * ws.f[ns + a];
     }
 
     // Modal accelerations of every rope from its external accelerations x_dd = T^T y_dd (zero at
@@ -159,6 +143,86 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     return 0;
 }
 
+// Lambda = J M^-1 J^T without Simbody constraints, J the Jacobian of y (n rows). J is nonzero only
+// at the mobilities U of the mobile bodies' paths to Ground (the pins' included), so
+// Lambda = J_U (M^-1)_UU J_U^T exactly, (M^-1)_UU the U block of the whole tree's inverse (the
+// other bodies' inertia enters through it). multiplyByMInv leaves prescribed mobilities' udot at 0
+// and ignores their forces, as prescribed (and locked) motion does not respond to forces, so their
+// rows and columns of (M^-1)_UU are 0. With k = |U|, each of the two ways costs O(size of the tree)
+// Simbody operations (no station Jacobian filled element by element):
+//  - k <= n (e.g. the 12-fall crane: 27 rows, k = 5): per mobility i of U, one multiplyBySystemJacobian
+//    of the unit speed e_i gives every body's spatial velocity V_i, hence column i of J_U for all
+//    rows at once (row (node, direction d) = d . (v + w x p), p = R_GB station: one body pass), and
+//    one multiplyByMInv(e_i) gives column i of (M^-1)_UU; then two small dense products. (Keeping
+//    Lambda factored and solving the k x k Woodbury form of (I + S Lambda) f = S a0 - h instead of
+//    the n x n one was tried: about 2 digits less accurate, e.g. the crane's motor torque moved by
+//    6e-13 relative with the height datum, and static equilibria stalled at a 1e-12 residual.)
+//  - n < k (e.g. the pendulum: 2 rows on a 6-mobility free body): per row r, one
+//    multiplyBySystemJacobianTranspose of the row's unit spatial force (p x d, d) at its body gives
+//    J_r^T, one multiplyByMInv of it gives M^-1 J_r^T, and Lambda's column r is J_U times that.
+void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& ws) const {
+    const int ns = numStationRows_, na = static_cast<int>(mobileAngles_.size()), n = ns + na;
+    const int nu = s.getNU();
+    // U: the mobilities the coupled coordinates depend on (sorted, unique).
+    ws.U.clear();
+    ws.U.reserve(nu);  // capacity kept: no allocation per evaluation
+    for (const MobilizedBody* body : bodySlots_)  // every node's body (the pins' included), once
+        for (const MobilizedBody* b = body; b->getMobilizedBodyIndex() != SimTK::GroundIndex;
+             b = &b->getParentMobilizedBody()) {  // (by index: isGround() is a dynamic_cast)
+            const int first = static_cast<int>(b->getFirstUIndex(s)), count = b->getNumU(s);
+            for (int j = 0; j < count; ++j) ws.U.push_back(first + j);
+        }
+    std::sort(ws.U.begin(), ws.U.end());
+    ws.U.erase(std::unique(ws.U.begin(), ws.U.end()), ws.U.end());
+    const int k = static_cast<int>(ws.U.size());
+    ws.JU.setZero(n, k);
+    ws.udotUnit.resize(nu);
+    for (int a = 0; a < na; ++a)  // driven rows: dsdTheta at the pin's mobility
+        ws.JU(ns + a, std::lower_bound(ws.U.begin(), ws.U.end(), ws.angleU[a]) - ws.U.begin()) = mobileAngles_[a].dsdTheta;
+    if (k <= n) {
+        ws.MinvUU.resize(k, k);
+        ws.generalizedForce.resize(nu);
+        ws.generalizedForce = 0;
+        for (int c = 0; c < k; ++c) {
+            ws.generalizedForce[ws.U[c]] = 1;
+            matter().multiplyBySystemJacobian(s, ws.generalizedForce, ws.bodyVelocities);
+            for (const MobileNode& mn : mobileNodes_) {
+                const SpatialVec& V = ws.bodyVelocities[mn.bodyIndex];
+                const Vec3 v = V[1] + V[0] % ws.nodeOffsets[&mn - mobileNodes_.data()];
+                for (int d = 0; d < mn.dims; ++d)
+                    ws.JU(mn.row + d, c) = mn.directions(0, d) * v[0] + mn.directions(1, d) * v[1] + mn.directions(2, d) * v[2];
+            }
+            matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
+            for (int r = 0; r < k; ++r) ws.MinvUU(r, c) = ws.udotUnit[ws.U[r]];
+            ws.generalizedForce[ws.U[c]] = 0;
+        }
+        ws.JUMinv.noalias() = ws.JU * ws.MinvUU;
+        ws.Lambda.noalias() = ws.JUMinv * ws.JU.transpose();
+        return;
+    }
+    // n < k: Lambda column by column.
+    ws.bodyForces.resize(matter().getNumBodies());
+    ws.bodyForces = SpatialVec(Vec3(0), Vec3(0));
+    for (int r = 0; r < ns; ++r) {
+        const auto [a, d] = rowOwner_[r];
+        const MobileNode& mn = mobileNodes_[a];
+        const Vec3 dir = toSimTK(mn.directions.col(d));
+        ws.bodyForces[mn.bodyIndex] = SpatialVec(ws.nodeOffsets[a] % dir, dir);
+        matter().multiplyBySystemJacobianTranspose(s, ws.bodyForces, ws.generalizedForce);
+        for (int c = 0; c < k; ++c) ws.JU(r, c) = ws.generalizedForce[ws.U[c]];
+        ws.bodyForces[mn.bodyIndex] = SpatialVec(Vec3(0), Vec3(0));
+    }
+    ws.generalizedForce.resize(nu);
+    ws.responseU.resize(k);
+    for (int col = 0; col < n; ++col) {
+        ws.generalizedForce = 0;
+        for (int c = 0; c < k; ++c) ws.generalizedForce[ws.U[c]] = ws.JU(col, c);
+        matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
+        for (int c = 0; c < k; ++c) ws.responseU[c] = ws.udotUnit[ws.U[c]];
+        ws.Lambda.col(col).noalias() = ws.JU * ws.responseU;
+    }
+}
+
 bool ReevingSubsystem::Guts::anyConstraintEnabled(const State& s) const {
     const SimbodyMatterSubsystem& mat = matter();
     for (SimTK::ConstraintIndex c(0); c < mat.getNumConstraints(); ++c)
@@ -173,21 +237,21 @@ Eigen::VectorXd ReevingSubsystem::Guts::ropeReaction(const RopeRecord& r, const 
     return f;
 }
 
-void ReevingSubsystem::Guts::couplingAccelerations(const State& s, const Vector_<SpatialVec>& A_GB,
+void ReevingSubsystem::Guts::couplingAccelerations(const PositionCache& pc, const Vector_<SpatialVec>& A_GB,
                                                    const Vector& udot, Eigen::VectorXd& a) const {
     const Eigen::Index ns = numStationRows_;
+    const CouplingWorkspace& ws = pc.coupling;
     a.resize(ns + static_cast<Eigen::Index>(mobileAngles_.size()));
-    for (const MobileNode& mn : mobileNodes_) {
-        const MobilizedBody& b = *mn.body;
-        const SpatialVec& A = A_GB[b.getMobilizedBodyIndex()];
-        const Vec3 p = b.getBodyRotation(s) * mn.station;
-        const Vec3& w = b.getBodyAngularVelocity(s);
+    for (size_t i = 0; i < mobileNodes_.size(); ++i) {
+        const MobileNode& mn = mobileNodes_[i];
+        const SpatialVec& A = A_GB[mn.bodyIndex];
+        const Vec3& p = ws.nodeOffsets[i];
+        const Vec3& w = pc.bodyV[mn.slot][0];
         const Eigen::Vector3d a3 = toEigen(A[1] + A[0] % p + w % (w % p));
         a.segment(mn.row, mn.dims).noalias() = mn.directions.leftCols(mn.dims).transpose() * a3;
     }
     for (size_t d = 0; d < mobileAngles_.size(); ++d)
-        a[ns + static_cast<Eigen::Index>(d)] =
-            mobileAngles_[d].dsdTheta * udot[static_cast<int>(mobileAngles_[d].body->getFirstUIndex(s))];
+        a[ns + static_cast<Eigen::Index>(d)] = mobileAngles_[d].dsdTheta * udot[ws.angleU[d]];
 }
 
 }  // namespace SimbodyReeving

@@ -91,22 +91,34 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     // coordinate (1 row each); each rope records which of its external coordinates each row is.
     self.mobileNodes_.clear();
     self.mobileAngles_.clear();
-    self.mobileBodies_.clear();
-    self.mobileStations_.clear();
+    self.bodySlots_.clear();
     self.ropeCoupling_.assign(ropes.size(), RopeCoupling{});
+    // Body slots: each body carrying a rope node once, so that its kinematics are read from Simbody
+    // once per stage rather than once per node.
+    // (By index: a RopeNode holds its own MobilizedBody handle, so handles of one body differ.)
+    auto slotOf = [&self](const MobilizedBody* body) {
+        for (size_t b = 0; b < self.bodySlots_.size(); ++b)
+            if (self.bodySlots_[b]->getMobilizedBodyIndex() == body->getMobilizedBodyIndex()) return static_cast<int>(b);
+        self.bodySlots_.push_back(body);
+        return static_cast<int>(self.bodySlots_.size()) - 1;
+    };
+    for (RopeRecord& r : self.ropes) {
+        r.nodeSlot.assign(r.numNodes(), 0);
+        for (int k = 0; k < r.numNodes(); ++k) r.nodeSlot[k] = slotOf(r.node(k).first);
+    }
     for (size_t i = 0; i < ropes.size(); ++i)
         for (int k = 0; k < ropes[i].numNodes(); ++k) {
             const auto [body, station] = ropes[i].node(k);
             if (body->isGround()) continue;
             MobileNode mn{static_cast<int>(i), k, body, station};
+            mn.slot = ropes[i].nodeSlot[k];
+            mn.bodyIndex = body->getMobilizedBodyIndex();
             mn.dims = ropes[i].dim();
             if (ropes[i].planar) {
                 mn.directions.setZero();
                 mn.directions.leftCols<2>() = ropes[i].planeBasis;
             }
             self.mobileNodes_.push_back(mn);
-            self.mobileBodies_.push_back(body->getMobilizedBodyIndex());
-            self.mobileStations_.push_back(station);
         }
     self.rowOwner_.clear();
     for (size_t a = 0; a < mobileNodes_.size(); ++a) {
@@ -200,10 +212,11 @@ int ReevingSubsystem::Guts::realizeSubsystemInstanceImpl(const State& s) const {
 // alone changes (Verlet refines z at fixed q, for one). So every stage checks that the rope's cached
 // position- and velocity-level quantities were computed from the current Z and refreshes them if not.
 int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
-    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    PositionCache& pc = updPositionCache(s);
     pc.ropes.resize(ropes.size());
+    updateBodyKinematics(s, pc, false);
     for (size_t i = 0; i < ropes.size(); ++i) {
-        updatePositionPart(s, ropes[i], pc.ropes[i]);
+        updatePositionPart(s, ropes[i], pc, pc.ropes[i]);
         if (ropes[i].numModal > 0)
             setZWeights(s, ropes[i],
                         ropes[i].planar ? &pc.ropes[i].planar.materialCoordinates : &pc.ropes[i].spatial.materialCoordinates);
@@ -213,22 +226,34 @@ int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
 }
 
 int ReevingSubsystem::Guts::realizeSubsystemVelocityImpl(const State& s) const {
-    PositionCache& pc = Value<PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+    PositionCache& pc = updPositionCache(s);
+    updateBodyKinematics(s, pc, true);
     for (size_t i = 0; i < ropes.size(); ++i) {
         if (!matchesZ(s, ropes[i], pc.ropes[i].modalCoordinates, false))
-            updatePositionPart(s, ropes[i], pc.ropes[i]);
-        updateVelocityPart(s, ropes[i], pc.ropes[i]);
+            updatePositionPart(s, ropes[i], pc, pc.ropes[i]);
+        updateVelocityPart(s, ropes[i], pc, pc.ropes[i]);
     }
     return 0;
+}
+
+void ReevingSubsystem::Guts::updateBodyKinematics(const State& s, PositionCache& pc, bool velocities) const {
+    const size_t n = bodySlots_.size();
+    if (velocities) {
+        pc.bodyV.resize(n);
+        for (size_t b = 0; b < n; ++b) pc.bodyV[b] = bodySlots_[b]->getBodyVelocity(s);
+    } else {
+        pc.bodyX.resize(n);
+        for (size_t b = 0; b < n; ++b) pc.bodyX[b] = bodySlots_[b]->getBodyTransform(s);
+    }
 }
 
 void ReevingSubsystem::Guts::refreshFromZ(const State& s, PositionCache& pc, bool velocityLevel) const {
     for (size_t i = 0; i < ropes.size(); ++i) {
         RopeCache& c = pc.ropes[i];
         const bool positionsCurrent = matchesZ(s, ropes[i], c.modalCoordinates, false);
-        if (!positionsCurrent) updatePositionPart(s, ropes[i], c);
+        if (!positionsCurrent) updatePositionPart(s, ropes[i], pc, c);
         if (velocityLevel && (!positionsCurrent || !matchesZ(s, ropes[i], c.modalRates, true)))
-            updateVelocityPart(s, ropes[i], c);
+            updateVelocityPart(s, ropes[i], pc, c);
     }
 }
 
@@ -242,12 +267,11 @@ bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const
     return true;
 }
 
-void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord& r, const PositionCache& pc,
+                                                RopeCache& c) const {
     c.nodes3.resize(3, r.numNodes());
-    for (int k = 0; k < r.numNodes(); ++k) {
-        const auto [body, station] = r.node(k);
-        c.nodes3.col(k) = toEigen(body->findStationLocationInGround(s, station));
-    }
+    for (int k = 0; k < r.numNodes(); ++k)  // MobilizedBody::findStationLocationInGround, per body
+        c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.node(k).second);
     modal(getZ(s), r, false, c.modalCoordinates);
     drivenCoordinates(s, r, c.drivenS, nullptr);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
@@ -280,11 +304,13 @@ void ReevingSubsystem::Guts::failEvaluation(const State& s, const RopeRecord& r,
     throw std::runtime_error(msg.str());
 }
 
-void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord& r, RopeCache& c) const {
+void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord& r, const PositionCache& pc,
+                                                RopeCache& c) const {
     c.nodeVelocities3.resize(3, r.numNodes());
-    for (int k = 0; k < r.numNodes(); ++k) {
-        const auto [body, station] = r.node(k);
-        c.nodeVelocities3.col(k) = toEigen(body->findStationVelocityInGround(s, station));
+    for (int k = 0; k < r.numNodes(); ++k) {  // MobilizedBody::findStationVelocityInGround, per body
+        const SimTK::SpatialVec& V = pc.bodyV[r.nodeSlot[k]];
+        const Vec3 p = pc.bodyX[r.nodeSlot[k]].R() * r.node(k).second;
+        c.nodeVelocities3.col(k) = toEigen(V[1] + V[0] % p);
     }
     modal(getZ(s), r, true, c.modalRates);
     drivenCoordinates(s, r, c.drivenS, &c.drivenSdot);

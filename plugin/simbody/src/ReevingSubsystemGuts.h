@@ -68,6 +68,7 @@ struct RopeRecord {
     };
     std::vector<DrivenNode> driven;
     std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
+    std::vector<int> nodeSlot;  // per node: its body's slot in ReevingSubsystem::Guts::bodySlots (realizeTopology)
 
     int numSpans() const { return static_cast<int>(spec.sheaves.size()) + 1; }
     int numNodes() const { return numSpans() + 1; }
@@ -135,20 +136,29 @@ struct RopeCache {
 };
 
 /// Cache (per evaluation, scratch of realizeSubsystemDynamicsImpl):
-/// Workspace of the coupled rope/body solve (sized once, reused every evaluation).
+/// Workspace of the coupled rope/body solve (sized at the first evaluation of a state, reused:
+/// no heap allocation per evaluation once the sizes are reached).
 struct CouplingWorkspace {
-    Eigen::MatrixXd S, Lambda, lhs, J;
-    Eigen::VectorXd h, f, rdd, a0, aUnit, rhs;
+    Eigen::MatrixXd S, Lambda, lhs;
+    // Lambda = J_U Minv_UU J_U^T: J_U the Jacobian of y restricted to the mobilities U the coupled
+    // coordinates depend on (ancestors of their bodies), Minv_UU that block of M^-1.
+    Eigen::MatrixXd JU, MinvUU, JUMinv;
+    Eigen::VectorXd h, f, rdd, a0, aUnit, rhs, responseU;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    std::vector<int> U;                    // mobilities (u indices), ascending
+    std::vector<int> angleU;               // per MobileAngle: its pin's u index
+    std::vector<SimTK::Vec3> nodeOffsets;  // per MobileNode: R_GB station [m], in Ground
     SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
-    SimTK::Matrix stationJacobian;
-    SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit;
+    SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit, bodyVelocities, bodyForces;
 };
 
-/// Cache (per evaluation): the subsystem's cache entry (Stage::Position), every rope's RopeCache
-/// and the coupling workspace.
+/// Cache (per evaluation): the subsystem's cache entry (Stage::Position), every rope's RopeCache,
+/// the kinematics of the bodies that carry rope nodes (one Simbody query per body and stage, not
+/// per node) and the coupling workspace.
 struct PositionCache {
     std::vector<RopeCache> ropes;
+    std::vector<SimTK::Transform> bodyX;   // per body slot: X_GB (Stage::Position)
+    std::vector<SimTK::SpatialVec> bodyV;  // per body slot: V_GB (set at Stage::Velocity)
     CouplingWorkspace coupling;
 };
 
@@ -159,6 +169,8 @@ struct MobileNode {
     int rope = 0, node = 0;
     const SimTK::MobilizedBody* body = nullptr;
     SimTK::Vec3 station{0};
+    int slot = 0;                                             // body slot (Guts::bodySlots)
+    SimTK::MobilizedBodyIndex bodyIndex = SimTK::MobilizedBodyIndex();
     int row = 0, dims = 3;                                    // rows row..row+dims-1 of y
     Eigen::Matrix3d directions = Eigen::Matrix3d::Identity();  // column d: row d's direction in Ground
 };
@@ -243,12 +255,20 @@ public:
     void refreshFromZ(const SimTK::State& s, detail::PositionCache& pc, bool velocityLevel) const;
     bool matchesZ(const SimTK::State& s, const detail::RopeRecord& r, const Eigen::VectorXd& cached,
                   bool rates) const;
-    void updatePositionPart(const SimTK::State& s, const detail::RopeRecord& r, detail::RopeCache& c) const;
+    /// Node positions from the body transforms of pc (set by realizeSubsystemPositionImpl), then
+    /// the rope's dependent coordinates.
+    void updatePositionPart(const SimTK::State& s, const detail::RopeRecord& r, const detail::PositionCache& pc,
+                            detail::RopeCache& c) const;
     /// Records an evaluation failure of rope r and rethrows it as std::runtime_error naming the
     /// rope and the time.
     [[noreturn]] void failEvaluation(const SimTK::State& s, const detail::RopeRecord& r,
                                      const std::exception& e) const;
-    void updateVelocityPart(const SimTK::State& s, const detail::RopeRecord& r, detail::RopeCache& c) const;
+    /// Node velocities from the body velocities of pc (set by realizeSubsystemVelocityImpl), then
+    /// the rope's dynamics.
+    void updateVelocityPart(const SimTK::State& s, const detail::RopeRecord& r, const detail::PositionCache& pc,
+                            detail::RopeCache& c) const;
+    /// Sets pc.bodyX (velocities: pc.bodyV) of every body slot from the state.
+    void updateBodyKinematics(const SimTK::State& s, detail::PositionCache& pc, bool velocities) const;
 
     SimTK::Real calcPotentialEnergy(const SimTK::State& s) const override;
     int calcDecorativeGeometryAndAppendImpl(const SimTK::State& s, SimTK::Stage stage,
@@ -292,8 +312,12 @@ public:
 
     /// Accelerations of the coupled vector y (mobile nodes in Ground, then driven material
     /// coordinates) from the bodies' spatial accelerations and the mobilities' udot.
-    void couplingAccelerations(const SimTK::State& s, const SimTK::Vector_<SimTK::SpatialVec>& A_GB,
+    /// Needs pc.coupling.nodeOffsets and angleU (set by realizeSubsystemDynamicsImpl).
+    void couplingAccelerations(const detail::PositionCache& pc, const SimTK::Vector_<SimTK::SpatialVec>& A_GB,
                                const SimTK::Vector& udot, Eigen::VectorXd& a) const;
+    /// The mobility Lambda of the coupled vector y (no Simbody constraint enabled), into ws.Lambda
+    /// (sized n x n by the caller); see ReevingCoupling.cpp.
+    void mobilityLambda(const SimTK::State& s, detail::CouplingWorkspace& ws) const;
 
     /// Material coordinates (and rates) of rope r's driven nodes in state s.
     void drivenCoordinates(const SimTK::State& s, const detail::RopeRecord& r, Eigen::VectorXd& sDriven,
@@ -314,11 +338,17 @@ public:
     /// The rope cache, valid for the current Z (see realizeSubsystemPositionImpl); velocity-level parts
     /// are refreshed too when the state is realized to Stage::Velocity.
     const detail::PositionCache& positionCache(const SimTK::State& s) const {
-        getCacheEntry(s, positionCache_);  // throws unless realized to Stage::Position
-        detail::PositionCache& pc =
-            SimTK::Value<detail::PositionCache>::updDowncast(updCacheEntry(s, positionCache_));
+        // getCacheEntry throws unless realized to Stage::Position. The entry is the
+        // Value<PositionCache> allocated at realizeTopology: a static_cast, not Value::downcast's
+        // dynamic_cast.
+        detail::PositionCache& pc = const_cast<detail::PositionCache&>(
+            static_cast<const SimTK::Value<detail::PositionCache>&>(getCacheEntry(s, positionCache_)).get());
         refreshFromZ(s, pc, s.getSystemStage() >= SimTK::Stage::Velocity);
         return pc;
+    }
+    /// The cache entry for realize*Impl (no stage check; one lookup per realization).
+    detail::PositionCache& updPositionCache(const SimTK::State& s) const {
+        return static_cast<SimTK::Value<detail::PositionCache>&>(updCacheEntry(s, positionCache_)).upd();
     }
 
     void modal(const SimTK::Vector& z, const detail::RopeRecord& r, bool rates, Eigen::VectorXd& q) const {
@@ -364,8 +394,9 @@ private:
     std::vector<std::pair<int, int>> rowOwner_;  // y row -> (mobile node, direction), station rows
     std::vector<detail::MobileAngle> mobileAngles_;
     std::vector<detail::RopeCoupling> ropeCoupling_;
-    SimTK::Array_<SimTK::MobilizedBodyIndex> mobileBodies_;
-    SimTK::Array_<SimTK::Vec3> mobileStations_;
+    // Fixed at realizeTopology: every body that carries a rope node (Ground included), once; the
+    // rope nodes, mobile nodes and angles refer to it by slot.
+    std::vector<const SimTK::MobilizedBody*> bodySlots_;
     mutable std::string limitReached_;
     mutable std::string lastEvaluationFailure_;
     mutable int numEvaluationFailures_ = 0;

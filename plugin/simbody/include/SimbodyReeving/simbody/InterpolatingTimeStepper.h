@@ -20,12 +20,12 @@ namespace SimbodyReeving {
 /// cubic Hermite interpolation of y from the step's end values and derivatives (the same
 /// interpolation as Simbody's AbstractIntegratorRep::createInterpolatedState), with prescribed
 /// motion applied and q and u projected onto the constraint manifold at the integrator's
-/// constraint tolerance, realized to Stage::Velocity (Z included). Unlike Simbody's interpolation,
-/// which copies the whole advanced State into its interpolated State at every report (about 0.5 M
-/// instructions, ~170 us, for the Table 1 pendulum: more than the steps cost at 100 reports per
-/// second), the report State here is copied once and then only gets t and Y. Events (scheduled,
-/// triggered, time-advanced, termination) are handled as TimeStepper handles them; the report
-/// State is refreshed by a full copy after each handled event.
+/// constraint tolerance, realized to Stage::Velocity (Z included; see setReportStage). Unlike
+/// Simbody's interpolation, which copies the whole advanced State into its interpolated State at
+/// every report (about 0.5 M instructions, ~170 us, for the Table 1 pendulum: more than the steps
+/// cost at 100 reports per second), the report State here is copied once and then only gets t
+/// and Y. Events (scheduled, triggered, time-advanced, termination) are handled as TimeStepper
+/// handles them; the report State is refreshed by a full copy after each handled event.
 ///
 /// Interpolated reports are exact at step ends and third-order accurate between them; a report
 /// that must be exactly on the integrated trajectory can use SimTK::TimeStepper instead.
@@ -53,8 +53,27 @@ public:
     /// @throws std::invalid_argument if n < 0.
     void setStepLimit(int n);
 
+    /// The stage an interpolated report is realized to (default Stage::Velocity, the behaviour
+    /// before this option existed): the stage the reporters read, so that reading costs no
+    /// realization beyond it.
+    /// - Stage::Position: q is prescribed and projected onto the position constraints (quaternion
+    ///   norms included) and realized to Position; u is interpolated and prescribed but *not*
+    ///   projected onto the velocity constraints (that needs Stage::Velocity). For reporters that
+    ///   read positions only (drawing, animation frames); a reporter that realizes such a report
+    ///   further sees unprojected velocities (they differ from projected ones by the
+    ///   interpolation's error, and not at all without constraints).
+    /// - Stage::Velocity: q and u prescribed and projected, realized to Velocity.
+    /// - Stage::Dynamics, Stage::Acceleration: as Velocity, then realized to that stage (forces,
+    ///   accelerations), as reporters reading forces would otherwise do themselves.
+    /// A report time on a step end gives the integrator's advanced state, realized to this stage
+    /// too (its next step needs Stage::Acceleration of it anyway).
+    /// @throws std::invalid_argument for a stage before Position or after Acceleration.
+    void setReportStage(SimTK::Stage stage);
+    SimTK::Stage getReportStage() const { return reportStage_; }
+
     /// The state at the last report time reached by stepTo (interpolated, or the integrator's
-    /// advanced state when the report fell on a step end), realized to Stage::Velocity.
+    /// advanced state when the report fell on a step end), realized to getReportStage() (default
+    /// Stage::Velocity).
     const SimTK::State& getState() const;
     const SimTK::Integrator& getIntegrator() const { return integrator_; }
     /// Right-hand-side evaluations (realizations through Stage::Acceleration) since initialize():
@@ -72,6 +91,8 @@ private:
     SimTK::Integrator& integrator_;
     double lastEventTime_ = -SimTK::Infinity, lastReportTime_ = -SimTK::Infinity;
     int stepLimit_ = 0;
+    SimTK::Stage reportStage_ = SimTK::Stage::Velocity;  // see setReportStage
+    SimTK::Vector noErrorEstimate_;     // empty: System::projectQ/projectU without an error estimate
     int ownRealizations_ = 0;           // realizations at step starts, see getNumRealizations
     SimTK::State report_;               // the reported state when reportIsInterpolated_
     bool reportIsInterpolated_ = false;
