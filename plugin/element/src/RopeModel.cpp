@@ -831,12 +831,16 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // one per moving external coordinate i: -[M_yx e_i; C_x e_i] (-> S e_i).
     std::vector<int>& columns = ws.solvedColumns;
     columns.clear();
-    for (int i = 0; i < nx; ++i)
+    for (int i = 0; data.formNodeMass && i < nx; ++i)
         if (stationaryColumn_.empty() || !stationaryColumn_[i]) columns.push_back(i);
+    ws.nodeMassFormed = data.formNodeMass;
     const int ncol = 1 + static_cast<int>(columns.size());
     Eigen::VectorXd& B = ws.chainSolution;
     B.setZero(static_cast<Eigen::Index>(nk) * ncol);
-    data.nodeMass.setZero(nx, nx);
+    if (data.formNodeMass)
+        data.nodeMass.setZero(nx, nx);
+    else
+        data.nodeMass.resize(0, 0);
     for (int z = nx; z < nw + nd; ++z) B[kktPos_[z] * ncol] = ws.Qz[z];
     for (int r = 0; r < nd; ++r) B[kktRowPos_[r] * ncol] = -ws.bias[r];
     for (int c = 1; c < ncol; ++c) {
@@ -891,7 +895,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         for (int c = 1; c < ncol; ++c) data.nodeMass(i, columns[c - 1]) += F[i * ncol + c];
     }
     ws.modalFree.resize(nm);
-    ws.modalCoupling.setZero(nm, nx);
+    ws.modalCoupling.setZero(nm, data.formNodeMass ? nx : 0);
     for (int m = 0; m < nm; ++m) {
         const double* y = B.data() + static_cast<std::ptrdiff_t>(kktPos_[nx + m]) * ncol;
         ws.modalFree[m] = y[0];
@@ -912,10 +916,10 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         const Vec rdot = nodeVelocities.col(k);
         const Vec& g = spans_.front().gravity();
         for (int d = 0; d < Dim; ++d) {
-            data.nodeMass(Dim * k + d, Dim * k + d) += rhoA * l;
+            if (data.formNodeMass) data.nodeMass(Dim * k + d, Dim * k + d) += rhoA * l;
             data.nodeForce[Dim * k + d] += rhoA * l * g[d] - rhoA * st.slope * sdot * rdot[d];
         }
-        data.nodeMass(xs, xs) += rhoA * l;
+        if (data.formNodeMass) data.nodeMass(xs, xs) += rhoA * l;
         data.nodeForce[xs] += rhoA * st.slope * (0.5 * rdot.squaredNorm() - 0.5 * sdot * sdot + g.dot(nodes.col(k)));
         data.kineticEnergy += 0.5 * rhoA * l * (rdot.squaredNorm() + sdot * sdot);
         data.gravityEnergy -= rhoA * l * g.dot(nodes.col(k));
@@ -923,7 +927,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
 }
 
 template <int Dim>
-void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::MatrixXd& X, Eigen::MatrixXd& SX) const {
+void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X, Eigen::MatrixXd& SX) const {
     const int N = numSpans(), nx = numExternalCoordinates();
     if (X.rows() != nx)
         throw std::invalid_argument("RopeModel::multiplyByNodeMass: X has " + std::to_string(X.rows()) +
@@ -996,8 +1000,17 @@ void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::
         qmddot.resize(0);
         return;
     }
-    qmddot = data.ws().modalFree;
-    qmddot.noalias() -= data.ws().modalCoupling * nodeAccelerations;
+    const detail::RopeWorkspace<Dim>& w = data.ws();
+    if (w.nodeMassFormed) {
+        qmddot = w.modalFree;
+        qmddot.noalias() -= w.modalCoupling * nodeAccelerations;
+        return;
+    }
+    // Without the formed columns: qddot_m = modalFree + (the solution for -[M_yx xddot; C_x xddot]).
+    multiplyByNodeMass(data, nodeAccelerations, data.scratch().modalProduct);  // leaves the solution in productBlock
+    const int nx = numExternalCoordinates();
+    qmddot.resize(numModal_);
+    for (int m = 0; m < numModal_; ++m) qmddot[m] = w.modalFree[m] + w.productBlock[kktPos_[nx + m]];
 }
 
 template <int Dim>

@@ -42,6 +42,8 @@ struct RopeWorkspace {
     Eigen::VectorXd chainSolution;  ///< right-hand sides / solutions of the KKT system, row-major
     Eigen::VectorXd supportBlock;   ///< M_xy Y + C_x^T Mu for them, row-major
     Eigen::VectorXd productBlock;   ///< right-hand sides / solutions of multiplyByNodeMass
+    Eigen::MatrixXd modalProduct;   ///< S xddot of modalAccelerations without the formed columns
+    bool nodeMassFormed = true;     ///< nodeMass and modalCoupling formed by the last computeDynamics
     std::vector<int> solvedColumns; ///< the external coordinates whose column of S is formed
     Eigen::VectorXd rowScratch, dependentScratch, dependentAccelerations;
     Eigen::VectorXd Qz, bias;

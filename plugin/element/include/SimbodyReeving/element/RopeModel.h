@@ -91,6 +91,10 @@ struct RopeData {
     /// f = S xddot - h (for a Driven s_k: the force [N] that holds the rope's material there).
     Eigen::MatrixXd nodeMass;
     Eigen::VectorXd nodeForce;
+    /// Set false before computeDynamics to skip forming nodeMass (left empty; one solve per moving
+    /// external coordinate saved): RopeModel::multiplyByNodeMass gives S X, and modalAccelerations
+    /// solves for its accelerations instead. Default true.
+    bool formNodeMass = true;
     double kineticEnergy = 0;    ///< T of all spans [J]
     double strainEnergy = 0;     ///< [J]
     double gravityEnergy = 0;    ///< [J]
@@ -248,7 +252,7 @@ public:
     /// needs S only along a few directions (the motions of the bodies that carry the nodes).
     /// Stored rope (setStoredRope) included.
     /// @throws std::invalid_argument if X has the wrong number of rows.
-    void multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::MatrixXd& X, Eigen::MatrixXd& SX) const;
+    void multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X, Eigen::MatrixXd& SX) const;
 
     /// Modal accelerations for given accelerations of the external coordinates x (node positions,
     /// then Driven material coordinates): qddot_m = Mbar_mm^-1 (Qbar_m - Mbar_mx xddot).
