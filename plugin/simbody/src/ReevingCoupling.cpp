@@ -37,21 +37,36 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
 
     const int m = static_cast<int>(mobileNodes_.size()), na = static_cast<int>(mobileAngles_.size());
     const int ns = numStationRows_, n = ns + na;
-    ws.S.setZero(n, n);
     ws.h.setZero(n);
     for (size_t i = 0; i < ropes.size(); ++i) {
         const RopeCoupling& rc = ropeCoupling_[i];
-        if (rc.rows.empty()) continue;
         const RopeCache& c = pc.ropes[i];
-        const RopeData<2>* d2 = ropes[i].planar ? &c.planar : nullptr;
-        const Eigen::MatrixXd& S = d2 ? d2->nodeMass : c.spatial.nodeMass;
-        const Eigen::VectorXd& h = d2 ? d2->nodeForce : c.spatial.nodeForce;
-        const int k = static_cast<int>(rc.rows.size());
-        for (int b = 0; b < k; ++b) {
-            ws.h[rc.rows[b]] = h[rc.external[b]];
-            for (int a = 0; a < k; ++a) ws.S(rc.rows[a], rc.rows[b]) = S(rc.external[a], rc.external[b]);
-        }
+        const Eigen::VectorXd& h = ropes[i].planar ? c.planar.nodeForce : c.spatial.nodeForce;
+        for (size_t b = 0; b < rc.rows.size(); ++b) ws.h[rc.rows[b]] = h[rc.external[b]];
     }
+    // S on the coupled rows, for the routes that need it whole (constraints; fewer rows than
+    // mobilities): each rope's nodeMass, formed now if computeDynamics skipped it.
+    auto assembleS = [&]() {
+        ws.S.setZero(n, n);
+        for (size_t i = 0; i < ropes.size(); ++i) {
+            const RopeCoupling& rc = ropeCoupling_[i];
+            if (rc.rows.empty()) continue;
+            RopeCache& c = pc.ropes[i];
+            if (ropes[i].planar ? c.planar.nodeMass.size() == 0 : c.spatial.nodeMass.size() == 0) {
+                const int nx = ropes[i].numExternal();
+                if (ropes[i].planar)
+                    ropes[i].planarModel->multiplyByNodeMass(c.planar, Eigen::MatrixXd::Identity(nx, nx), c.planar.nodeMass);
+                else
+                    spatialModel(s, ropes[i]).multiplyByNodeMass(c.spatial, Eigen::MatrixXd::Identity(nx, nx),
+                                                                c.spatial.nodeMass);
+            }
+            const Eigen::MatrixXd& S = ropes[i].planar ? c.planar.nodeMass : c.spatial.nodeMass;
+            const int k = static_cast<int>(rc.rows.size());
+            for (int b = 0; b < k; ++b)
+                for (int a = 0; a < k; ++a) ws.S(rc.rows[a], rc.rows[b]) = S(rc.external[a], rc.external[b]);
+        }
+    };
+    bool products = false;
 
     ws.f.setZero(n);
     ws.rdd.setZero(n);
@@ -74,7 +89,10 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         ws.Lambda.resize(n, n);
         if (!constrained) {
             mobilityLambda(s, ws);
+            products = static_cast<int>(ws.U.size()) <= n;
+            if (!products) assembleS();
         } else {
+            assembleS();
             // Constraints: calcAcceleration honours them; Lambda by differences, one call per column.
             for (int col = 0; col < n; ++col) {
                 ws.bodyForcesUnit = bodyForces;
@@ -91,11 +109,36 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                 ws.Lambda.col(col) = ws.aUnit - ws.a0;
             }
         }
-        // Support forces on the rope: (I + S Lambda) f = S a0 - h; the bodies receive -f.
-        ws.rhs.noalias() = ws.S * ws.a0;
-        ws.rhs -= ws.h;
+        // Support forces on the rope: (I + S Lambda) f = S a0 - h; the bodies receive -f. With
+        // Lambda = J_U Minv_UU J_U^T (k <= n mobilities), S Lambda = (S J_U) (J_U Minv_UU)^T and S a0
+        // come from k + 1 products per rope (one block solve of its chain), not from S itself.
+        if (products) {
+            const int k = static_cast<int>(ws.U.size());
+            ws.SJ.setZero(n, k + 1);
+            for (size_t i = 0; i < ropes.size(); ++i) {
+                const RopeCoupling& rc = ropeCoupling_[i];
+                if (rc.rows.empty()) continue;
+                const RopeRecord& r = ropes[i];
+                RopeCache& c = pc.ropes[i];
+                ws.ropeX.setZero(r.numExternal(), k + 1);
+                for (size_t a = 0; a < rc.rows.size(); ++a) {
+                    ws.ropeX.row(rc.external[a]).head(k) = ws.JU.row(rc.rows[a]);
+                    ws.ropeX(rc.external[a], k) = ws.a0[rc.rows[a]];
+                }
+                if (r.planar)
+                    r.planarModel->multiplyByNodeMass(c.planar, ws.ropeX, ws.ropeSX);
+                else
+                    spatialModel(s, r).multiplyByNodeMass(c.spatial, ws.ropeX, ws.ropeSX);
+                for (size_t a = 0; a < rc.rows.size(); ++a) ws.SJ.row(rc.rows[a]) = ws.ropeSX.row(rc.external[a]);
+            }
+            ws.rhs = ws.SJ.col(k) - ws.h;
+            ws.lhs.noalias() = ws.SJ.leftCols(k) * ws.JUMinv.transpose();
+        } else {
+            ws.rhs.noalias() = ws.S * ws.a0;
+            ws.rhs -= ws.h;
+            ws.lhs.noalias() = ws.S * ws.Lambda;
+        }
         ws.rdd = ws.a0;
-        ws.lhs.noalias() = ws.S * ws.Lambda;
         ws.lhs.diagonal().array() += 1.0;
         ws.lu.compute(ws.lhs);
         ws.f = ws.lu.solve(ws.rhs);
@@ -109,6 +152,8 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         }
         for (int a = 0; a < na; ++a) mobilityForces[ws.angleU[a]] -= mobileAngles_[a].dsdTheta * ws.f[ns + a];
     }
+
+    productCoupling_ = products;
 
     // Modal accelerations of every rope from its external accelerations x_dd = T^T y_dd (zero at
     // Ground nodes).
@@ -230,10 +275,19 @@ bool ReevingSubsystem::Guts::anyConstraintEnabled(const State& s) const {
     return false;
 }
 
-Eigen::VectorXd ReevingSubsystem::Guts::ropeReaction(const RopeRecord& r, const RopeCache& c) const {
+Eigen::VectorXd ReevingSubsystem::Guts::ropeReaction(const State& s, const RopeRecord& r, const RopeCache& c) const {
     const Eigen::MatrixXd& S = r.planar ? c.planar.nodeMass : c.spatial.nodeMass;
     Eigen::VectorXd f = r.planar ? c.planar.nodeForce : c.spatial.nodeForce;
-    f.noalias() -= S * c.externalAccelerations;
+    if (S.size() > 0) {
+        f.noalias() -= S * c.externalAccelerations;
+        return f;
+    }
+    Eigen::MatrixXd Sx;  // S not formed (product coupling): S xddot by one solve
+    if (r.planar)
+        r.planarModel->multiplyByNodeMass(c.planar, c.externalAccelerations, Sx);
+    else
+        spatialModel(s, r).multiplyByNodeMass(c.spatial, c.externalAccelerations, Sx);
+    f -= Sx.col(0);
     return f;
 }
 

@@ -108,7 +108,7 @@ double ReevingSubsystem::getDrivenNodeTorque(const State& s, int rope, int node)
     if (s.getSystemStage() < Stage::Dynamics)
         throw std::logic_error("ReevingSubsystem::getDrivenNodeTorque: realize the state to Stage::Dynamics first");
     const RopeCache& c = g.positionCache(s).ropes[rope];
-    const Eigen::VectorXd reaction = g.ropeReaction(r, c);
+    const Eigen::VectorXd reaction = g.ropeReaction(s, r, c);
     return d.dsdTheta * reaction[r.dim() * r.numNodes() + r.drivenIndex(node)];
 }
 

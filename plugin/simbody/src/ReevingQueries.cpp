@@ -129,7 +129,7 @@ Vec3 ReevingSubsystem::getNodeForce(const State& s, int rope, int node) const {
     const RopeCache& c = g.positionCache(s).ropes[rope];
     // The rope's equation at its external coordinates is S xdd - h = f (f: force on the rope); the
     // body receives -f = h - S xdd.
-    const Eigen::VectorXd reaction = g.ropeReaction(r, c);
+    const Eigen::VectorXd reaction = g.ropeReaction(s, r, c);
     if (r.planar) return toSimTK(r.planeBasis * reaction.segment<2>(2 * node));
     return toSimTK(Eigen::Vector3d(reaction.segment<3>(3 * node)));
 }

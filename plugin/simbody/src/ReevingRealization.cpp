@@ -314,6 +314,9 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
     }
     modal(getZ(s), r, true, c.modalRates);
     drivenCoordinates(s, r, c.drivenS, &c.drivenSdot);
+    // The coupled solve of the last realizeDynamics needed S only as products (productCoupling_):
+    // then the rope does not form it.
+    c.planar.formNodeMass = c.spatial.formNodeMass = !productCoupling_;
     try {
         if (r.planar) {
             c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;

@@ -143,6 +143,9 @@ struct CouplingWorkspace {
     // Lambda = J_U Minv_UU J_U^T: J_U the Jacobian of y restricted to the mobilities U the coupled
     // coordinates depend on (ancestors of their bodies), Minv_UU that block of M^-1.
     Eigen::MatrixXd JU, MinvUU, JUMinv;
+    // Product route (k <= n, no constraint): SJ = [S J_U | S a0] over all ropes (n x (k + 1)), from
+    // each rope's multiplyByNodeMass of X = its rows of [J_U | a0] (ropeX, ropeSX: per rope, scratch).
+    Eigen::MatrixXd SJ, ropeX, ropeSX;
     Eigen::VectorXd h, f, rdd, a0, aUnit, rhs, responseU;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     std::vector<int> U;                    // mobilities (u indices), ascending
@@ -308,7 +311,7 @@ public:
     /// The generalized force the rope exerts on its supports at its external coordinates,
     /// h - S xddot (the reaction of the coupled solve; Stage::Dynamics): rows Dim k.. for node k
     /// (plane basis for planar ropes), Dim (N + 1) + d for driven node d.
-    Eigen::VectorXd ropeReaction(const detail::RopeRecord& r, const detail::RopeCache& c) const;
+    Eigen::VectorXd ropeReaction(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeCache& c) const;
 
     /// Accelerations of the coupled vector y (mobile nodes in Ground, then driven material
     /// coordinates) from the bodies' spatial accelerations and the mobilities' udot.
@@ -397,6 +400,9 @@ private:
     // Fixed at realizeTopology: every body that carries a rope node (Ground included), once; the
     // rope nodes, mobile nodes and angles refer to it by slot.
     std::vector<const SimTK::MobilizedBody*> bodySlots_;
+    /// The last realizeDynamics coupled through products S J_U (RopeModel::multiplyByNodeMass): the
+    /// next realizeVelocity lets the ropes skip forming S (RopeData::formNodeMass).
+    mutable bool productCoupling_ = false;
     mutable std::string limitReached_;
     mutable std::string lastEvaluationFailure_;
     mutable int numEvaluationFailures_ = 0;
