@@ -1,7 +1,5 @@
 #include "SimbodyReeving/element/AxialCondensation.h"
 
-#include "SimbodyReeving/element/GaussLegendre.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,16 +52,16 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
     slackStiffness_ = span.slackRegularised() ? 0.5 * o.quasiStaticSlackStiffness * EA_ : 0.0;
     gravity_ = span.gravity();
     referenceFrame_ = span.referenceFrame();
-    const int nq = span.quadraturePoints(Integrand::Strain);
+    // The span's own strain rule (SpanModel::automaticStrainPoints or the explicit Gauss-Legendre
+    // count), so that Phi and dU/dl are the derivatives of the energy SpanModel::evaluate computes.
+    const Eigen::VectorXd& nodes = span.quadratureNodes(Integrand::Strain);
+    const int nq = static_cast<int>(nodes.size());
     const int maxMode = std::max(na_, nt_);
-    const GaussLegendreRule rule = makeGaussLegendreRule(nq);
     const double pi = std::acos(-1.0);
-    weights_.resize(nq);
+    weights_ = span.quadratureWeights(Integrand::Strain);
     slopes_.resize(nq, maxMode);
-    for (int k = 0; k < nq; ++k) {
-        weights_[k] = rule.weights[k];
-        for (int i = 0; i < maxMode; ++i) slopes_(k, i) = (i + 1) * pi * std::cos((i + 1) * pi * rule.nodes[k]);
-    }
+    for (int k = 0; k < nq; ++k)
+        for (int i = 0; i < maxMode; ++i) slopes_(k, i) = (i + 1) * pi * std::cos((i + 1) * pi * nodes[k]);
     sinMean_.resize(maxMode);
     bendFactor_.resize(maxMode);
     endSlope_[0].resize(maxMode);
