@@ -177,6 +177,8 @@ void SpanModel<Dim>::checkState(const Eigen::Ref<const Eigen::VectorXd>& q, cons
     if (q.size() != numCoordinates())
         throwInvalid("SpanModel", std::string("size of ") + name, q.size(),
                      "differs from numCoordinates() = " + std::to_string(numCoordinates()));
+    // x * 0 is 0 for finite x and NaN for inf or NaN: one vectorised sum tests every entry.
+    if (std::isfinite((q.array() * 0.0).sum())) return;
     for (int k = 0; k < q.size(); ++k)
         if (!std::isfinite(q[k]))
             throwInvalid("SpanModel", std::string(name) + "[" + std::to_string(k) + "]", q[k], "must be finite");
@@ -494,42 +496,54 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     d.kineticEnergy = 0.5 * rhoA * l * sumV2;
 
     // ---- axial strain energy: U_ax = 1/2 EA l sum w eps^2, eps = 1/2(|t|^2/l^2 - 1) ------------
-    for (int k = 0; k < strainTable_.xi.size(); ++k) {
-        const double w = strainTable_.w[k];
-        const auto dsinRow = strainTable_.dsin.row(k);
-        const Vec up = modesToLocal<Dim>(dsinRow, qm, na, nt);  // du/dxi
-        const Vec t = e + A * up;
-        Mat Wp;  // d(A u')/de
-        for (int m = 0; m < Dim; ++m) Wp.col(m) = F.dA[m] * up;
-        const double t2 = t.squaredNorm();
-        const double eps = 0.5 * (t2 / (l * l) - 1.0);
-        // Tension-only law: a slack point (eps <= 0) stores no energy and feels no axial force.
-        if (law_.slack(eps)) continue;
-        const double energyDensity = law_.F(eps);  // U_ax = EA l sum w F(eps), F' = f (AxialLaw)
-        d.axialEnergy += EA * l * w * energyDensity;
-        // d eps/dr2 = (I + W')^T t / l^2, d eps/dq_m = S'^T A^T t / l^2, d eps/dl = -|t|^2 / l^3
-        const Vec deps_de = (t + Wp.transpose() * t) / (l * l);
-        const Vec At = A.transpose() * t / (l * l);
-        const double deps_dl = -t2 / (l * l * l);
-        double coef = EA * l * w * law_.f(eps);  // dU/deps at this point
-        double dU_dl = EA * w * energyDensity;
-        if (literal) {
-            // U_str = EA/(2 l) w eps |u'_perp|^2
-            double h = 0;
-            for (int dd = 1; dd < Dim; ++dd) h += up[dd] * up[dd];
-            d.stringEnergy += 0.5 * EA / l * w * eps * h;
-            coef += 0.5 * EA / l * w * h;
-            dU_dl += -0.5 * EA / (l * l) * w * eps * h;
-            Vec uperp = up;
-            uperp[0] = 0;
-            addLocalToModes<Dim>(dsinRow, uperp, EA / l * w * eps, na, nt, gradU.segment(iM, nm));
+    {
+        const double l2 = l * l;
+        Vec gE = Vec::Zero();  // sum coef d eps/de (dU/dr2 = gE = -dU/dr1)
+        ModeVectors gModes;    // dU/dq_m per mode number, local directions
+        gModes.leftCols(m).setZero();
+        double gL = 0;         // dU/dl
+        for (int k = 0; k < strainTable_.xi.size(); ++k) {
+            const double w = strainTable_.w[k];
+            const double* dsinRow = strainTable_.dsin.data() + k * m;
+            Vec up = Vec::Zero();  // du/dxi
+            for (int i = 0; i < m; ++i) up += dsinRow[i] * U.col(i);
+            const Vec t = e + A * up;
+            const double t2 = t.squaredNorm();
+            const double eps = 0.5 * (t2 / l2 - 1.0);
+            // Tension-only law: a slack point (eps <= 0) stores no energy and feels no axial force.
+            if (law_.slack(eps)) continue;
+            const double energyDensity = law_.F(eps);  // U_ax = EA l sum w F(eps), F' = f (AxialLaw)
+            d.axialEnergy += EA * l * w * energyDensity;
+            // d eps/dr2 = (I + W')^T t / l^2 with W' col m = dA[m] u', d eps/dq_m = S'^T A^T t / l^2,
+            // d eps/dl = -|t|^2 / l^3
+            Vec deps_de = t;
+            for (int mm = 0; mm < Dim; ++mm) deps_de[mm] += (F.dA[mm] * up).dot(t);
+            double coef = EA * l * w * law_.f(eps);  // dU/deps at this point
+            double dU_dl = EA * w * energyDensity;
+            Vec modal = (coef / l2) * (A.transpose() * t);  // local vector multiplying S_i'
+            if (literal) {
+                // U_str = EA/(2 l) w eps |u'_perp|^2
+                double h = 0;
+                for (int dd = 1; dd < Dim; ++dd) h += up[dd] * up[dd];
+                d.stringEnergy += 0.5 * EA / l * w * eps * h;
+                coef += 0.5 * EA / l * w * h;
+                dU_dl += -0.5 * EA / l2 * w * eps * h;
+                modal = (coef / l2) * (A.transpose() * t);
+                for (int dd = 1; dd < Dim; ++dd) modal[dd] += EA / l * w * eps * up[dd];
+            }
+            gE += (coef / l2) * deps_de;
+            for (int i = 0; i < m; ++i) gModes.col(i) += dsinRow[i] * modal;
+            gL += dU_dl - coef * t2 / (l2 * l);
         }
-        gradU.template segment<Dim>(0) -= coef * deps_de;
-        gradU.template segment<Dim>(Dim) += coef * deps_de;
-        addLocalToModes<Dim>(dsinRow, Vec(At), coef, na, nt, gradU.segment(iM, nm));
-        dU_dl += coef * deps_dl;
-        gradU[iS1] -= dU_dl;
-        gradU[iS2] += dU_dl;
+        gradU.template segment<Dim>(0) -= gE;
+        gradU.template segment<Dim>(Dim) += gE;
+        for (int dir = 0; dir < Dim; ++dir)
+            for (int i = 0; i < m; ++i) {
+                const int b = modalIndex(dir, i);
+                if (b >= 0) gradU[b] += gModes(dir, i);
+            }
+        gradU[iS1] -= gL;
+        gradU[iS2] += gL;
     }
 
     // ---- bending, closed form: U_b = EI/(2 l^3) sum_i (i pi)^4/2 q_i^2 over transverse modes ----
@@ -581,8 +595,8 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
 
     // Finite inputs can still overflow (e.g. EA = 1e300 with a large strain): never return inf/NaN.
     if (!(std::isfinite(d.kineticEnergy + d.strainEnergy() + d.gravityEnergy) &&
-          d.massMatrix.allFinite() && d.velocityForces.allFinite() && d.elasticForces.allFinite() &&
-          d.gravityForces.allFinite()))
+          std::isfinite((d.massMatrix.array() * 0.0).sum() + (d.velocityForces.array() * 0.0).sum() +
+                        (d.elasticForces.array() * 0.0).sum() + (d.gravityForces.array() * 0.0).sum())))
         throw std::domain_error("SpanModel::evaluate: the result overflowed (non-finite energy, mass matrix or "
                                 "forces) for finite inputs; the state or the rope parameters are out of range");
 }
