@@ -211,7 +211,9 @@ struct SpanData {
     double potentialEnergy() const { return strainEnergy() + gravityEnergy; }
 
     ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
-    Jacobian velocityJacobian;  ///< scratch: B at the current quadrature point
+    /// Not written by evaluate() any more (M is assembled in closed form and Q_v without forming
+    /// B); kept so that code naming it still compiles.
+    Jacobian velocityJacobian;
 };
 
 /// The two ends of a span: node 1 at s1 (xi = 0) and node 2 at s2 (xi = 1).
@@ -244,7 +246,8 @@ struct EndStrain {
 /// **Dynamics** (eq 14-18). T = 1/2 int_0^1 rhoA l |v|^2 dxi with the material velocity
 /// v = B(xi, q) qdot of the chosen VelocityModel (the s-dependence of xi through s1, s2 included,
 /// so the span may gain or lose material over its ends). M and Q_v are derived from this same T,
-/// with the same quadrature, so T + U is an exact invariant of M qddot = Q_v + Q_elastic +
+/// with the same quadrature (M assembled in closed form from the kinetic rule's moments: the
+/// quadrature sum rearranged), so T + U is an exact invariant of M qddot = Q_v + Q_elastic +
 /// Q_gravity for either velocity model.
 ///
 /// **Elastic energy** (eq 19-22): see ElasticEnergyModel. Axial and string energies are integrated
