@@ -19,10 +19,11 @@ inline constexpr int kMaxModesPerDirection = 16;
 
 /// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
 ///
-/// The default is Complete (issue 19): it is exact, it costs 2.4-4.8 % more instructions per span
-/// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 22 296 against
-/// 21 276 at n_a = 0, n_t = 1; 54 451 against 53 159 at n_a = 3, n_t = 3; bench/RESULTS.md,
-/// "Axially moving string"), and Simplified misses the transport of the transverse motion by rope
+/// The default is Complete (issue 19): it is exact, it costs 27-29 % more instructions per span
+/// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 8 075 against
+/// 6 283 at n_a = 0, n_t = 1; 12 932 against 10 173 at n_a = 3, n_t = 3; bench/moving_string/cost.sh,
+/// issue 20; before issue 20's closed-form mass matrix both cost 21-54 k and differed by 2.4-4.8 %),
+/// and Simplified misses the transport of the transverse motion by rope
 /// flowing through a span (hoisting, a drum paying out, a belt) at a speed v that is not small
 /// against the wave speed c = sqrt(P / rhoA). Measured on the axially moving string (a taut span
 /// between fixed nodes, both material coordinates moving at v; tests/element/test_axially_moving_string.cpp),
@@ -127,7 +128,7 @@ struct SpanOptions {
     /// n_t: number of transverse sine modes per transverse direction, 0..16 (one direction in a
     /// planar span, two in a spatial one).
     int transverseModes = 1;
-    /// Complete (default: exact, 2.4-4.8 % more instructions per evaluation) or Simplified (the
+    /// Complete (default: exact, 27-29 % more instructions per evaluation) or Simplified (the
     /// paper's eq 13: misses the transport of transverse motion by rope flowing through the span;
     /// see VelocityModel for the measurements).
     VelocityModel velocityModel = VelocityModel::Complete;
