@@ -1,7 +1,5 @@
 #include "SimbodyReeving/element/AxialCondensation.h"
 
-#include "SimbodyReeving/element/GaussLegendre.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,16 +52,16 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
     slackStiffness_ = span.slackRegularised() ? 0.5 * o.quasiStaticSlackStiffness * EA_ : 0.0;
     gravity_ = span.gravity();
     referenceFrame_ = span.referenceFrame();
-    const int nq = span.quadraturePoints(Integrand::Strain);
+    // The span's own strain rule (SpanModel::automaticStrainPoints or the explicit Gauss-Legendre
+    // count), so that Phi and dU/dl are the derivatives of the energy SpanModel::evaluate computes.
+    const Eigen::VectorXd& nodes = span.quadratureNodes(Integrand::Strain);
+    const int nq = static_cast<int>(nodes.size());
     const int maxMode = std::max(na_, nt_);
-    const GaussLegendreRule rule = makeGaussLegendreRule(nq);
     const double pi = std::acos(-1.0);
-    weights_.resize(nq);
+    weights_ = span.quadratureWeights(Integrand::Strain);
     slopes_.resize(nq, maxMode);
-    for (int k = 0; k < nq; ++k) {
-        weights_[k] = rule.weights[k];
-        for (int i = 0; i < maxMode; ++i) slopes_(k, i) = (i + 1) * pi * std::cos((i + 1) * pi * rule.nodes[k]);
-    }
+    for (int k = 0; k < nq; ++k)
+        for (int i = 0; i < maxMode; ++i) slopes_(k, i) = (i + 1) * pi * std::cos((i + 1) * pi * nodes[k]);
     sinMean_.resize(maxMode);
     bendFactor_.resize(maxMode);
     endSlope_[0].resize(maxMode);
@@ -168,10 +166,11 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
     // then chained to the span coordinates.
     const int P = 3 + Dim + numModal_;
     const int xChord = 0, xLength = 1, xFrame = 2, xMean = 2 + Dim, xModal = 3 + Dim;
-    using Reduced = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, AxialCondensationData<Dim>::kMaxQuantities,
-                                  3 + Dim + Dim * kMaxModesPerDirection>;
-    Reduced G;
-    G.setZero(nQ, P);
+    // G(k, x) = d quantity_k / d x_x, row-major with a compile-time stride (cheap indexing).
+    constexpr int kStride = 3 + Dim + Dim * kMaxModesPerDirection;
+    double Gbuf[AxialCondensationData<Dim>::kMaxQuantities * kStride];
+    for (int k = 0; k < nQ; ++k) std::fill(Gbuf + k * kStride, Gbuf + k * kStride + P, 0.0);
+    auto G = [&Gbuf](int k, int x) -> double& { return Gbuf[k * kStride + x]; };
     d.value.setZero(nQ);
     double gA[Dim];
     for (int c = 0; c < Dim; ++c) gA[c] = gravity_.dot(F.A.col(c));
@@ -306,19 +305,25 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
     // Chain to the span coordinates: |e| and g.A_e through e = r2 - r1, g.r_mean through both
     // nodes, l = s2 - s1.
     const Vec unit = e / chord;
+    double gdA[Dim][Dim];  // g . dA/de_m col c
+    for (int m = 0; m < Dim; ++m)
+        for (int c = 0; c < Dim; ++c) gdA[m][c] = gravity_.dot(F.dA[m].col(c));
     d.gradient.resize(nQ, numCoordinates_);
     for (int k = 0; k < nQ; ++k) {
+        const double* Gk = Gbuf + k * kStride;
         for (int m = 0; m < Dim; ++m) {
-            double de = G(k, xChord) * unit[m];
-            for (int c = 0; c < Dim; ++c) de += G(k, xFrame + c) * gravity_.dot(F.dA[m].col(c));
-            const double dm = 0.5 * gravity_[m] * G(k, xMean);
+            double de = Gk[xChord] * unit[m];
+            for (int c = 0; c < Dim; ++c) de += Gk[xFrame + c] * gdA[m][c];
+            const double dm = 0.5 * gravity_[m] * Gk[xMean];
             d.gradient(k, m) = dm - de;
             d.gradient(k, Dim + m) = dm + de;
         }
-        for (int j = 0; j < numModal_; ++j) d.gradient(k, iM + j) = G(k, xModal + j);
-        d.gradient(k, iS1) = -G(k, xLength);
-        d.gradient(k, iS2) = G(k, xLength);
+        d.gradient(k, iS1) = -Gk[xLength];
+        d.gradient(k, iS2) = Gk[xLength];
     }
+    using RowMajorView = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>, 0,
+                                    Eigen::OuterStride<kStride>>;
+    d.gradient.block(0, iM, nQ, numModal_) = RowMajorView(Gbuf + xModal, nQ, numModal_);
     if (!withRates) {
         d.rate.setZero(nQ);
         d.accelerationBias.setZero(nQ);

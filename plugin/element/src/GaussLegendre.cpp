@@ -50,4 +50,15 @@ GaussLegendreRule makeGaussLegendreRule(int numPoints) {
     return rule;
 }
 
+GaussLegendreRule makeMidpointRule(int numPoints) {
+    if (numPoints < 1 || numPoints > 200)
+        throw std::invalid_argument("makeMidpointRule: numPoints = " + std::to_string(numPoints) +
+                                    " is outside 1..200");
+    GaussLegendreRule rule;
+    rule.nodes.resize(numPoints);
+    rule.weights.assign(numPoints, 1.0 / numPoints);
+    for (int j = 0; j < numPoints; ++j) rule.nodes[j] = (j + 0.5) / numPoints;
+    return rule;
+}
+
 }  // namespace SimbodyReeving

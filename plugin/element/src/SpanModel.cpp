@@ -57,6 +57,13 @@ int SpanModel<Dim>::automaticQuadraturePoints(int axialModes, int transverseMode
 }
 
 template <int Dim>
+int SpanModel<Dim>::automaticStrainPoints(int axialModes, int transverseModes) {
+    // Strain integrands are cosine series with at most 4 n_max half-waves; the N-point midpoint
+    // rule is exact for k < 2N (see the header).
+    return 2 * std::max(axialModes, transverseModes) + 1;
+}
+
+template <int Dim>
 SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
                           const Mat& referenceFrame)
     : properties_(properties), options_(options), gravity_(gravity), referenceFrame_(referenceFrame) {
@@ -102,10 +109,11 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
 
     const double pi = std::acos(-1.0);
     auto makeTable = [&](Integrand integrand, QuadratureTable& table) {
-        const int nq = options_.quadraturePoints > 0
-                           ? options_.quadraturePoints
-                           : automaticQuadraturePoints(options_.axialModes, options_.transverseModes, integrand);
-        const GaussLegendreRule rule = makeGaussLegendreRule(nq);
+        const bool midpoint = options_.quadraturePoints == 0 && integrand == Integrand::Strain;
+        const int nq = options_.quadraturePoints > 0 ? options_.quadraturePoints
+                       : midpoint ? automaticStrainPoints(options_.axialModes, options_.transverseModes)
+                                  : automaticQuadraturePoints(options_.axialModes, options_.transverseModes, integrand);
+        const GaussLegendreRule rule = midpoint ? makeMidpointRule(nq) : makeGaussLegendreRule(nq);
         table.xi = Eigen::Map<const Eigen::VectorXd>(rule.nodes.data(), nq);
         table.w = Eigen::Map<const Eigen::VectorXd>(rule.weights.data(), nq);
         table.sin.resize(nq, maxMode_);
@@ -119,6 +127,42 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     };
     makeTable(Integrand::Kinetic, kineticTable_);
     makeTable(Integrand::Strain, strainTable_);
+    // Moments of the kinetic rule for the closed-form mass matrix.
+    {
+        const int m = maxMode_;
+        KineticMoments& km = moments_;
+        km.alpha.setZero(m);
+        km.beta.setZero(m);
+        km.sinSin.setZero(m, m);
+        for (int p = 0; p < 3; ++p) {
+            km.slope[p].setZero(m);
+            km.slopeSlope[p].setZero(m, m);
+        }
+        for (int p = 0; p < 2; ++p) km.slopeSin[p].setZero(m, m);
+        const QuadratureTable& t = kineticTable_;
+        for (int k = 0; k < t.xi.size(); ++k) {
+            const double xi = t.xi[k], w = t.w[k];
+            const double omega[3] = {(1.0 - xi) * (1.0 - xi), xi * (1.0 - xi), xi * xi};
+            const double lin[2] = {1.0 - xi, xi};
+            for (int p = 0; p < 3; ++p) km.poly[p] += w * omega[p];
+            for (int i = 0; i < m; ++i) {
+                km.alpha[i] += w * lin[0] * t.sin(k, i);
+                km.beta[i] += w * lin[1] * t.sin(k, i);
+                for (int p = 0; p < 3; ++p) km.slope[p][i] += w * omega[p] * t.dsin(k, i);
+                for (int j = 0; j < m; ++j) {
+                    for (int p = 0; p < 2; ++p) km.slopeSin[p](i, j) += w * lin[p] * t.dsin(k, i) * t.sin(k, j);
+                    if (j < i) continue;  // symmetric moments: upper triangle, mirrored below
+                    km.sinSin(i, j) += w * t.sin(k, i) * t.sin(k, j);
+                    for (int p = 0; p < 3; ++p) km.slopeSlope[p](i, j) += w * omega[p] * t.dsin(k, i) * t.dsin(k, j);
+                }
+            }
+        }
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < i; ++j) {
+                km.sinSin(i, j) = km.sinSin(j, i);
+                for (int p = 0; p < 3; ++p) km.slopeSlope[p](i, j) = km.slopeSlope[p](j, i);
+            }
+    }
     sinMean_.resize(maxMode_);
     bendFactor_.resize(maxMode_);
     for (int i = 0; i < maxMode_; ++i) {
@@ -133,6 +177,8 @@ void SpanModel<Dim>::checkState(const Eigen::Ref<const Eigen::VectorXd>& q, cons
     if (q.size() != numCoordinates())
         throwInvalid("SpanModel", std::string("size of ") + name, q.size(),
                      "differs from numCoordinates() = " + std::to_string(numCoordinates()));
+    // x * 0 is 0 for finite x and NaN for inf or NaN: one vectorised sum tests every entry.
+    if (std::isfinite((q.array() * 0.0).sum())) return;
     for (int k = 0; k < q.size(); ++k)
         if (!std::isfinite(q[k]))
             throwInvalid("SpanModel", std::string(name) + "[" + std::to_string(k) + "]", q[k], "must be finite");
@@ -210,125 +256,294 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     computeChordFrame<Dim>(e, ed, referenceFrame_, F);
     const Mat& A = F.A;
 
-    d.massMatrix.setZero(n, n);
+    d.massMatrix.resize(n, n);
     d.velocityForces.setZero(n);
     d.elasticForces.setZero(n);  // accumulates dU/dq, negated at the end
     d.gravityForces.setZero(n);
     d.kineticEnergy = d.axialEnergy = d.bendingEnergy = d.stringEnergy = d.gravityEnergy = 0;
-    auto& B = d.velocityJacobian;
-    B.setZero(Dim, n);
     auto& Qv = d.velocityForces;
     auto& gradU = d.elasticForces;
 
+    // Modal amplitudes and rates as local vectors per mode number: U.col(i) = (a_i, b_i[, c_i])
+    // (zero where mode i + 1 exceeds n_a or n_t), so that u(xi) = sum_i S_i(xi) U.col(i).
+    const int m = maxMode_;
+    using ModeVectors = Eigen::Matrix<double, Dim, kMaxModesPerDirection>;
+    ModeVectors U, Ud;
+    U.leftCols(m).setZero();
+    Ud.leftCols(m).setZero();
+    for (int i = 0; i < na; ++i) {
+        U(0, i) = qm[i];
+        Ud(0, i) = qmd[i];
+    }
+    for (int dir = 1; dir < Dim; ++dir)
+        for (int i = 0; i < nt; ++i) {
+            U(dir, i) = qm[na + (dir - 1) * nt + i];
+            Ud(dir, i) = qmd[na + (dir - 1) * nt + i];
+        }
+    // Coordinate index of mode i in local direction dir, or -1 if the span has no such mode.
+    auto modalIndex = [&](int dir, int i) {
+        if (dir == 0) return i < na ? iM + i : -1;
+        return i < nt ? iM + na + (dir - 1) * nt + i : -1;
+    };
+
+    // ---- mass matrix M = rhoA l sum_k w_k B_k^T B_k, in closed form over the rule's moments ----
+    // B's columns are r1: (1 - xi) e_m - dA[m] u, r2: xi e_m + dA[m] u, mode (dir, i): S_i A_dir,
+    // s1: -(1 - xi) tv / l, s2: -xi tv / l, with tv = e + A u' (Complete; Simplified drops the
+    // dA[m] u terms and has tv = e). Every product is a sum of the moments of KineticMoments times
+    // coefficients of this state, so M is the quadrature sum rearranged (no per-point work).
+    {
+        const KineticMoments& km = moments_;
+        auto& M = d.massMatrix;
+        const double c = rhoA * l;
+        const Vec eLocal = A.transpose() * e;  // |e| (1, 0[, 0])
+        // Mode-mode block: delta_dir,dir' sum w S_i S_j.
+        for (int dir = 0; dir < Dim; ++dir)
+            for (int i = 0; i < m; ++i) {
+                const int a = modalIndex(dir, i);
+                if (a < 0) continue;
+                for (int dir2 = 0; dir2 < Dim; ++dir2)
+                    for (int j = 0; j < m; ++j) {
+                        const int b = modalIndex(dir2, j);
+                        if (b >= 0) M(a, b) = dir == dir2 ? c * km.sinSin(i, j) : 0.0;
+                    }
+            }
+        if (complete) {
+            Vec uA = Vec::Zero(), uB = Vec::Zero();                   // sum w (1 - xi) u, sum w xi u
+            Vec cs[3] = {Vec::Zero(), Vec::Zero(), Vec::Zero()};      // sum w omega_p u'
+            Mat Ut = Mat::Zero(), V0 = Mat::Zero(), V1 = Mat::Zero();  // sum w u u^T, sum w (1-xi) u u'^T, ...xi
+            double P[3] = {0, 0, 0};                                  // sum w omega_p |u'|^2
+            ModeVectors Um, H0, H1;  // Um.col(j) = sum w u S_j, H_p.col(j) = sum w lin_p u' S_j
+            for (int j = 0; j < m; ++j) {
+                const Vec uj = U.col(j);
+                uA += km.alpha[j] * uj;
+                uB += km.beta[j] * uj;
+                for (int p = 0; p < 3; ++p) cs[p] += km.slope[p][j] * uj;
+                Vec um = Vec::Zero(), h0 = Vec::Zero(), h1 = Vec::Zero();
+                for (int i = 0; i < m; ++i) {
+                    um += km.sinSin(i, j) * U.col(i);
+                    h0 += km.slopeSin[0](i, j) * U.col(i);
+                    h1 += km.slopeSin[1](i, j) * U.col(i);
+                    const double ui_uj = U.col(i).dot(uj);
+                    for (int p = 0; p < 3; ++p) P[p] += km.slopeSlope[p](i, j) * ui_uj;
+                }
+                Um.col(j) = um;
+                H0.col(j) = h0;
+                H1.col(j) = h1;
+                Ut.noalias() += um * uj.transpose();
+                V0.noalias() += uj * h0.transpose();
+                V1.noalias() += uj * h1.transpose();
+            }
+            Vec WA[Dim], WB[Dim];  // dA[m] sum w (1 - xi) u, dA[m] sum w xi u (global)
+            Mat DU[Dim];           // dA[m] Ut
+            double trV0[Dim], trV1[Dim];  // sum w (1 - xi) (A u') . (dA[m] u), ... xi
+            for (int mm = 0; mm < Dim; ++mm) {
+                WA[mm] = F.dA[mm] * uA;
+                WB[mm] = F.dA[mm] * uB;
+                DU[mm] = F.dA[mm] * Ut;
+                const Mat K = A.transpose() * F.dA[mm];
+                trV0[mm] = (K * V0).trace();
+                trV1[mm] = (K * V1).trace();
+            }
+            for (int mm = 0; mm < Dim; ++mm)
+                for (int nn = 0; nn < Dim; ++nn) {
+                    const double tr = DU[mm].cwiseProduct(F.dA[nn]).sum();  // sum w (dA[m] u) . (dA[n] u)
+                    const double delta = mm == nn ? 1.0 : 0.0;
+                    M(mm, Dim + nn) = c * (km.poly[1] * delta + WA[nn][mm] - WB[mm][nn] - tr);
+                    M(Dim + nn, mm) = M(mm, Dim + nn);
+                    if (nn < mm) continue;  // the diagonal blocks are symmetric: mirrored exactly
+                    M(mm, nn) = M(nn, mm) = c * (km.poly[0] * delta - WA[nn][mm] - WA[mm][nn] + tr);
+                    M(Dim + mm, Dim + nn) = M(Dim + nn, Dim + mm) =
+                        c * (km.poly[2] * delta + WB[nn][mm] + WB[mm][nn] + tr);
+                }
+            const Vec Ac[3] = {A * cs[0], A * cs[1], A * cs[2]};
+            for (int mm = 0; mm < Dim; ++mm) {
+                const double eWA = e.dot(WA[mm]), eWB = e.dot(WB[mm]);
+                M(iS1, mm) = -rhoA * (km.poly[0] * e[mm] + Ac[0][mm] - eWA - trV0[mm]);
+                M(iS1, Dim + mm) = -rhoA * (km.poly[1] * e[mm] + Ac[1][mm] + eWA + trV0[mm]);
+                M(iS2, mm) = -rhoA * (km.poly[1] * e[mm] + Ac[1][mm] - eWB - trV1[mm]);
+                M(iS2, Dim + mm) = -rhoA * (km.poly[2] * e[mm] + Ac[2][mm] + eWB + trV1[mm]);
+            }
+            for (int j = 0; j < m; ++j) {
+                Vec KU[Dim];  // A^T dA[m] Um_j (local)
+                for (int mm = 0; mm < Dim; ++mm) KU[mm] = A.transpose() * (F.dA[mm] * Um.col(j));
+                for (int dir = 0; dir < Dim; ++dir) {
+                    const int b = modalIndex(dir, j);
+                    if (b < 0) continue;
+                    for (int mm = 0; mm < Dim; ++mm) {
+                        M(mm, b) = c * (A(mm, dir) * km.alpha[j] - KU[mm][dir]);
+                        M(Dim + mm, b) = c * (A(mm, dir) * km.beta[j] + KU[mm][dir]);
+                    }
+                    M(iS1, b) = -rhoA * (eLocal[dir] * km.alpha[j] + H0(dir, j));
+                    M(iS2, b) = -rhoA * (eLocal[dir] * km.beta[j] + H1(dir, j));
+                }
+            }
+            const double e2 = e.squaredNorm();
+            M(iS1, iS1) = rhoA / l * (km.poly[0] * e2 + 2.0 * eLocal.dot(cs[0]) + P[0]);
+            M(iS2, iS1) = rhoA / l * (km.poly[1] * e2 + 2.0 * eLocal.dot(cs[1]) + P[1]);
+            M(iS2, iS2) = rhoA / l * (km.poly[2] * e2 + 2.0 * eLocal.dot(cs[2]) + P[2]);
+        } else {
+            for (int mm = 0; mm < Dim; ++mm)
+                for (int nn = 0; nn < Dim; ++nn) {
+                    const double delta = mm == nn ? 1.0 : 0.0;
+                    M(mm, nn) = c * km.poly[0] * delta;
+                    M(mm, Dim + nn) = M(Dim + nn, mm) = c * km.poly[1] * delta;
+                    M(Dim + mm, Dim + nn) = c * km.poly[2] * delta;
+                }
+            for (int mm = 0; mm < Dim; ++mm) {
+                M(iS1, mm) = -rhoA * km.poly[0] * e[mm];
+                M(iS1, Dim + mm) = -rhoA * km.poly[1] * e[mm];
+                M(iS2, mm) = -rhoA * km.poly[1] * e[mm];
+                M(iS2, Dim + mm) = -rhoA * km.poly[2] * e[mm];
+            }
+            for (int j = 0; j < m; ++j)
+                for (int dir = 0; dir < Dim; ++dir) {
+                    const int b = modalIndex(dir, j);
+                    if (b < 0) continue;
+                    for (int mm = 0; mm < Dim; ++mm) {
+                        M(mm, b) = c * A(mm, dir) * km.alpha[j];
+                        M(Dim + mm, b) = c * A(mm, dir) * km.beta[j];
+                    }
+                    M(iS1, b) = -rhoA * eLocal[dir] * km.alpha[j];
+                    M(iS2, b) = -rhoA * eLocal[dir] * km.beta[j];
+                }
+            const double e2 = e.squaredNorm();
+            M(iS1, iS1) = rhoA / l * km.poly[0] * e2;
+            M(iS2, iS1) = rhoA / l * km.poly[1] * e2;
+            M(iS2, iS2) = rhoA / l * km.poly[2] * e2;
+        }
+        // Mirror: the rows of s1, s2 and the node-mode block were written once.
+        for (int b = 0; b < iS1; ++b) {
+            M(b, iS1) = M(iS1, b);
+            M(b, iS2) = M(iS2, b);
+        }
+        M(iS1, iS2) = M(iS2, iS1);
+        for (int a = 0; a < 2 * Dim; ++a)
+            for (int b = iM; b < iS1; ++b) M(b, a) = M(a, b);
+    }
+
+    // ---- velocity forces and kinetic energy, by quadrature ----------------------------------
+    // Q_v = -sum_k rhoA w_k [ B^T (ldot v + l a) + l D ] + 1/2 rhoA sum_k w_k |v|^2 (d/ds2 - d/ds1)
+    // with v = B qdot, a = Bdot qdot and D the partial derivative of |v|^2 / 2 (at fixed qdot) that
+    // is not B^T-shaped; B^T is applied column block by column block (no B matrix is formed).
     double sumV2 = 0;  // sum_k w_k |v_k|^2
-    // ---- kinetic terms: M, Q_v, T ------------------------------------------------------------
+    Vec qR1 = Vec::Zero(), qR2 = Vec::Zero();  // accumulate -Q_v / rhoA on r1, r2
+    ModeVectors qModes;                        // ... and on the modes, per mode number
+    qModes.leftCols(m).setZero();
+    double qS1 = 0, qS2 = 0;
+    const Mat At = A.transpose();
     for (int k = 0; k < kineticTable_.xi.size(); ++k) {
         const double xi = kineticTable_.xi[k], w = kineticTable_.w[k];
-        const auto sinRow = kineticTable_.sin.row(k);
-        const auto dsinRow = kineticTable_.dsin.row(k);
-        const Vec u = modesToLocal<Dim>(sinRow, qm, na, nt);      // u(xi) in the element frame
-        const Vec up = modesToLocal<Dim>(dsinRow, qm, na, nt);    // du/dxi
-        const Vec ud = modesToLocal<Dim>(sinRow, qmd, na, nt);    // S qdot_m
-        const Vec upd = modesToLocal<Dim>(dsinRow, qmd, na, nt);  // S' qdot_m
-        const Vec t = e + A * up;  // r_xi, the (unnormalised) tangent
+        const double* sinRow = kineticTable_.sin.data() + k * m;
+        const double* dsinRow = kineticTable_.dsin.data() + k * m;
+        Vec u = Vec::Zero(), up = Vec::Zero(), ud = Vec::Zero(), upd = Vec::Zero();
+        for (int i = 0; i < m; ++i) {
+            u += sinRow[i] * U.col(i);
+            up += dsinRow[i] * U.col(i);
+            ud += sinRow[i] * Ud.col(i);
+            upd += dsinRow[i] * Ud.col(i);
+        }
         const double g1 = -(1.0 - xi) / l, g2 = -xi / l;  // xi_dot = g1 s1dot + g2 s2dot
         const double g1d = -g1 * ld / l, g2d = -g2 * ld / l;
         const double xid = g1 * s1d + g2 * s2d;
-        const Vec& tv = complete ? t : e;  // what the material flow xi_dot convects
-        Vec v, a;                           // material velocity and B_dot qdot
-        Vec dR1;                            // D-vector entries for r1 (r2 gets the negative)
-        Vec tvd;                            // d/dt of tv at fixed xi
         if (complete) {
-            Mat W;
-            for (int m = 0; m < Dim; ++m) W.col(m) = F.dA[m] * u;
-            v = (1.0 - xi) * r1d + xi * r2d + F.Adot * u + A * ud + xid * t;
-            tvd = ed + F.Adot * up + A * upd;
-            a = F.Addot * u + 2.0 * (F.Adot * ud) - xid * ld / l * t + xid * tvd;
-            B.template block<Dim, Dim>(0, 0) = (1.0 - xi) * Mat::Identity() - W;
-            B.template block<Dim, Dim>(0, Dim) = xi * Mat::Identity() + W;
-            Mat Wp;  // d(A u')/de
-            for (int m = 0; m < Dim; ++m) Wp.col(m) = F.dA[m] * up;
-            dR1 = xid * (v + Wp.transpose() * v);
-            // D_m = -xi_dot S'^T A^T v
-            addLocalToModes<Dim>(dsinRow, Vec(A.transpose() * v), rhoA * w * l * xid, na, nt, Qv.segment(iM, nm));
+            const Vec t = e + A * up;  // r_xi, the (unnormalised) tangent, convected by xi_dot
+            const Vec v = (1.0 - xi) * r1d + xi * r2d + F.Adot * u + A * ud + xid * t;
+            const Vec tvd = ed + F.Adot * up + A * upd;
+            const Vec a = F.Addot * u + 2.0 * (F.Adot * ud) - xid * ld / l * t + xid * tvd;
+            const Vec x = ld * v + l * a;
+            Vec Wx, Wpv;  // (dA[m] u) . x, (dA[m] u') . v
+            for (int mm = 0; mm < Dim; ++mm) {
+                Wx[mm] = (F.dA[mm] * u).dot(x);
+                Wpv[mm] = (F.dA[mm] * up).dot(v);
+            }
+            const Vec dR1 = xid * (v + Wpv);
+            qR1 += w * ((1.0 - xi) * x - Wx + l * dR1);
+            qR2 += w * (xi * x + Wx - l * dR1);
+            // modes: B^T x = S_i A^T x; D_m = -xi_dot S'^T A^T v
+            const Vec Ax = At * x, Av = (l * xid) * (At * v);
+            for (int i = 0; i < m; ++i) qModes.col(i) += w * (sinRow[i] * Ax - dsinRow[i] * Av);
+            const double tx = t.dot(x), tv_v = t.dot(v);
+            qS1 += w * (g1 * tx + l * ((g1d * t + g1 * tvd).dot(v) - xid * tv_v / l));
+            qS2 += w * (g2 * tx + l * ((g2d * t + g2 * tvd).dot(v) + xid * tv_v / l));
+            sumV2 += w * v.squaredNorm();
         } else {
-            v = (1.0 - xi) * r1d + xi * r2d + A * ud + xid * e;
-            tvd = ed;
-            a = F.Adot * ud - xid * ld / l * e + xid * ed;
-            B.template block<Dim, Dim>(0, 0) = (1.0 - xi) * Mat::Identity();
-            B.template block<Dim, Dim>(0, Dim) = xi * Mat::Identity();
-            for (int m = 0; m < Dim; ++m) dR1[m] = v.dot(F.dA[m] * ud);
+            const Vec v = (1.0 - xi) * r1d + xi * r2d + A * ud + xid * e;
+            const Vec a = F.Adot * ud - xid * ld / l * e + xid * ed;
+            const Vec x = ld * v + l * a;
+            Vec dR1;
+            for (int mm = 0; mm < Dim; ++mm) dR1[mm] = v.dot(F.dA[mm] * ud);
             dR1 += xid * v;
-            // D_m = S^T Adot^T v
-            addLocalToModes<Dim>(sinRow, Vec(F.Adot.transpose() * v), -rhoA * w * l, na, nt, Qv.segment(iM, nm));
+            qR1 += w * ((1.0 - xi) * x + l * dR1);
+            qR2 += w * (xi * x - l * dR1);
+            // modes: B^T x = S_i A^T x; D_m = S^T Adot^T v
+            const Vec Ax = At * x + l * (F.Adot.transpose() * v);
+            for (int i = 0; i < m; ++i) qModes.col(i) += (w * sinRow[i]) * Ax;
+            const double tx = e.dot(x), tv_v = e.dot(v);
+            qS1 += w * (g1 * tx + l * ((g1d * e + g1 * ed).dot(v) - xid * tv_v / l));
+            qS2 += w * (g2 * tx + l * ((g2d * e + g2 * ed).dot(v) + xid * tv_v / l));
+            sumV2 += w * v.squaredNorm();
         }
-        for (int i = 0; i < na; ++i) B.col(iM + i) = sinRow[i] * A.col(0);
-        for (int dir = 1; dir < Dim; ++dir)
-            for (int i = 0; i < nt; ++i) B.col(iM + na + (dir - 1) * nt + i) = sinRow[i] * A.col(dir);
-        B.col(iS1) = g1 * tv;
-        B.col(iS2) = g2 * tv;
-
-        const double wm = rhoA * l * w;
-        // Lower triangle of M += wm B^T B (B is Dim x n: a plain loop beats a rank update here).
-        for (int b = 0; b < n; ++b) {
-            const Vec Bb = B.col(b);
-            for (int a = b; a < n; ++a) d.massMatrix(a, b) += wm * B.col(a).dot(Bb);
-        }
-
-        // Q_v -= rhoA w [ B^T (ldot v + l a) + l D ];  + 1/2 rhoA delta sum w |v|^2
-        const Vec x = ld * v + l * a;
-        Qv.noalias() -= (rhoA * w) * (B.transpose() * x);
-        Qv.template segment<Dim>(0) -= (rhoA * w * l) * dR1;
-        Qv.template segment<Dim>(Dim) += (rhoA * w * l) * dR1;
-        const double tv_v = tv.dot(v);
-        Qv[iS1] -= rhoA * w * l * ((g1d * tv + g1 * tvd).dot(v) - xid * tv_v / l);
-        Qv[iS2] -= rhoA * w * l * ((g2d * tv + g2 * tvd).dot(v) + xid * tv_v / l);
-        const double v2 = v.squaredNorm();
-        sumV2 += w * v2;
-
     }
-    d.massMatrix.template triangularView<Eigen::StrictlyUpper>() = d.massMatrix.transpose();
-    Qv[iS1] -= 0.5 * rhoA * sumV2;
-    Qv[iS2] += 0.5 * rhoA * sumV2;
+    Qv.template segment<Dim>(0) = -rhoA * qR1;
+    Qv.template segment<Dim>(Dim) = -rhoA * qR2;
+    for (int dir = 0; dir < Dim; ++dir)
+        for (int i = 0; i < m; ++i) {
+            const int b = modalIndex(dir, i);
+            if (b >= 0) Qv[b] = -rhoA * qModes(dir, i);
+        }
+    Qv[iS1] = -rhoA * qS1 - 0.5 * rhoA * sumV2;
+    Qv[iS2] = -rhoA * qS2 + 0.5 * rhoA * sumV2;
     d.kineticEnergy = 0.5 * rhoA * l * sumV2;
 
     // ---- axial strain energy: U_ax = 1/2 EA l sum w eps^2, eps = 1/2(|t|^2/l^2 - 1) ------------
-    for (int k = 0; k < strainTable_.xi.size(); ++k) {
-        const double w = strainTable_.w[k];
-        const auto dsinRow = strainTable_.dsin.row(k);
-        const Vec up = modesToLocal<Dim>(dsinRow, qm, na, nt);  // du/dxi
-        const Vec t = e + A * up;
-        Mat Wp;  // d(A u')/de
-        for (int m = 0; m < Dim; ++m) Wp.col(m) = F.dA[m] * up;
-        const double t2 = t.squaredNorm();
-        const double eps = 0.5 * (t2 / (l * l) - 1.0);
-        // Tension-only law: a slack point (eps <= 0) stores no energy and feels no axial force.
-        if (law_.slack(eps)) continue;
-        const double energyDensity = law_.F(eps);  // U_ax = EA l sum w F(eps), F' = f (AxialLaw)
-        d.axialEnergy += EA * l * w * energyDensity;
-        // d eps/dr2 = (I + W')^T t / l^2, d eps/dq_m = S'^T A^T t / l^2, d eps/dl = -|t|^2 / l^3
-        const Vec deps_de = (t + Wp.transpose() * t) / (l * l);
-        const Vec At = A.transpose() * t / (l * l);
-        const double deps_dl = -t2 / (l * l * l);
-        double coef = EA * l * w * law_.f(eps);  // dU/deps at this point
-        double dU_dl = EA * w * energyDensity;
-        if (literal) {
-            // U_str = EA/(2 l) w eps |u'_perp|^2
-            double h = 0;
-            for (int dd = 1; dd < Dim; ++dd) h += up[dd] * up[dd];
-            d.stringEnergy += 0.5 * EA / l * w * eps * h;
-            coef += 0.5 * EA / l * w * h;
-            dU_dl += -0.5 * EA / (l * l) * w * eps * h;
-            Vec uperp = up;
-            uperp[0] = 0;
-            addLocalToModes<Dim>(dsinRow, uperp, EA / l * w * eps, na, nt, gradU.segment(iM, nm));
+    {
+        const double l2 = l * l;
+        Vec gE = Vec::Zero();  // sum coef d eps/de (dU/dr2 = gE = -dU/dr1)
+        ModeVectors gModes;    // dU/dq_m per mode number, local directions
+        gModes.leftCols(m).setZero();
+        double gL = 0;         // dU/dl
+        for (int k = 0; k < strainTable_.xi.size(); ++k) {
+            const double w = strainTable_.w[k];
+            const double* dsinRow = strainTable_.dsin.data() + k * m;
+            Vec up = Vec::Zero();  // du/dxi
+            for (int i = 0; i < m; ++i) up += dsinRow[i] * U.col(i);
+            const Vec t = e + A * up;
+            const double t2 = t.squaredNorm();
+            const double eps = 0.5 * (t2 / l2 - 1.0);
+            // Tension-only law: a slack point (eps <= 0) stores no energy and feels no axial force.
+            if (law_.slack(eps)) continue;
+            const double energyDensity = law_.F(eps);  // U_ax = EA l sum w F(eps), F' = f (AxialLaw)
+            d.axialEnergy += EA * l * w * energyDensity;
+            // d eps/dr2 = (I + W')^T t / l^2 with W' col m = dA[m] u', d eps/dq_m = S'^T A^T t / l^2,
+            // d eps/dl = -|t|^2 / l^3
+            Vec deps_de = t;
+            for (int mm = 0; mm < Dim; ++mm) deps_de[mm] += (F.dA[mm] * up).dot(t);
+            double coef = EA * l * w * law_.f(eps);  // dU/deps at this point
+            double dU_dl = EA * w * energyDensity;
+            Vec modal = (coef / l2) * (A.transpose() * t);  // local vector multiplying S_i'
+            if (literal) {
+                // U_str = EA/(2 l) w eps |u'_perp|^2
+                double h = 0;
+                for (int dd = 1; dd < Dim; ++dd) h += up[dd] * up[dd];
+                d.stringEnergy += 0.5 * EA / l * w * eps * h;
+                coef += 0.5 * EA / l * w * h;
+                dU_dl += -0.5 * EA / l2 * w * eps * h;
+                modal = (coef / l2) * (A.transpose() * t);
+                for (int dd = 1; dd < Dim; ++dd) modal[dd] += EA / l * w * eps * up[dd];
+            }
+            gE += (coef / l2) * deps_de;
+            for (int i = 0; i < m; ++i) gModes.col(i) += dsinRow[i] * modal;
+            gL += dU_dl - coef * t2 / (l2 * l);
         }
-        gradU.template segment<Dim>(0) -= coef * deps_de;
-        gradU.template segment<Dim>(Dim) += coef * deps_de;
-        addLocalToModes<Dim>(dsinRow, Vec(At), coef, na, nt, gradU.segment(iM, nm));
-        dU_dl += coef * deps_dl;
-        gradU[iS1] -= dU_dl;
-        gradU[iS2] += dU_dl;
+        gradU.template segment<Dim>(0) -= gE;
+        gradU.template segment<Dim>(Dim) += gE;
+        for (int dir = 0; dir < Dim; ++dir)
+            for (int i = 0; i < m; ++i) {
+                const int b = modalIndex(dir, i);
+                if (b >= 0) gradU[b] += gModes(dir, i);
+            }
+        gradU[iS1] -= gL;
+        gradU[iS2] += gL;
     }
 
     // ---- bending, closed form: U_b = EI/(2 l^3) sum_i (i pi)^4/2 q_i^2 over transverse modes ----
@@ -380,8 +595,8 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
 
     // Finite inputs can still overflow (e.g. EA = 1e300 with a large strain): never return inf/NaN.
     if (!(std::isfinite(d.kineticEnergy + d.strainEnergy() + d.gravityEnergy) &&
-          d.massMatrix.allFinite() && d.velocityForces.allFinite() && d.elasticForces.allFinite() &&
-          d.gravityForces.allFinite()))
+          std::isfinite((d.massMatrix.array() * 0.0).sum() + (d.velocityForces.array() * 0.0).sum() +
+                        (d.elasticForces.array() * 0.0).sum() + (d.gravityForces.array() * 0.0).sum())))
         throw std::domain_error("SpanModel::evaluate: the result overflowed (non-finite energy, mass matrix or "
                                 "forces) for finite inputs; the state or the rope parameters are out of range");
 }

@@ -54,7 +54,9 @@ struct AxialCondensationData {
 /// l and the modal amplitudes; it is written once for a generic scalar and evaluated with
 /// second-order Taylor numbers, which gives gradients (one directional pass per independent input)
 /// and second time derivatives (one pass along qdot) exactly, without step sizes. Integrals use the
-/// span's automatic strain quadrature (exact to round-off), so they agree with SpanModel::evaluate.
+/// span's own strain rule (SpanModel::quadratureNodes / quadratureWeights of Integrand::Strain: the
+/// exact midpoint rule by default), so they are the derivatives of the energy SpanModel::evaluate
+/// computes.
 template <int Dim>
 class AxialCondensation {
 public:

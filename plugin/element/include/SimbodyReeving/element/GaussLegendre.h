@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Gauss-Legendre quadrature on the unit interval [0, 1].
+/// Gauss-Legendre and midpoint quadrature on the unit interval [0, 1].
 
 #include <vector>
 
@@ -20,5 +20,14 @@ struct GaussLegendreRule {
 /// (nodes accurate to a few ulp for N <= 200).
 /// @throws std::invalid_argument if numPoints < 1 or numPoints > 200.
 GaussLegendreRule makeGaussLegendreRule(int numPoints);
+
+/// Nodes xi_j = (j + 1/2) / N and weights 1/N of the N-point midpoint rule on [0, 1] (returned in
+/// the same struct). It integrates every cosine series sum_k c_k cos(k pi xi) with k < 2N exactly:
+/// sum_j cos(k pi (j + 1/2) / N) = 0 for every integer k that is not a multiple of 2N, and so is
+/// int_0^1 cos(k pi xi) dxi for k >= 1. SpanModel uses it for the strain integrals, which are such
+/// series (see SpanModel::automaticStrainPoints). It is not exact for sines or polynomials of
+/// degree >= 2.
+/// @throws std::invalid_argument if numPoints < 1 or numPoints > 200.
+GaussLegendreRule makeMidpointRule(int numPoints);
 
 }  // namespace SimbodyReeving

@@ -19,10 +19,11 @@ inline constexpr int kMaxModesPerDirection = 16;
 
 /// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
 ///
-/// The default is Complete (issue 19): it is exact, it costs 2.4-4.8 % more instructions per span
-/// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 22 296 against
-/// 21 276 at n_a = 0, n_t = 1; 54 451 against 53 159 at n_a = 3, n_t = 3; bench/RESULTS.md,
-/// "Axially moving string"), and Simplified misses the transport of the transverse motion by rope
+/// The default is Complete (issue 19): it is exact, it costs 27-29 % more instructions per span
+/// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 8 075 against
+/// 6 283 at n_a = 0, n_t = 1; 12 932 against 10 173 at n_a = 3, n_t = 3; bench/moving_string/cost.sh,
+/// issue 20; before issue 20's closed-form mass matrix both cost 21-54 k and differed by 2.4-4.8 %),
+/// and Simplified misses the transport of the transverse motion by rope
 /// flowing through a span (hoisting, a drum paying out, a belt) at a speed v that is not small
 /// against the wave speed c = sqrt(P / rhoA). Measured on the axially moving string (a taut span
 /// between fixed nodes, both material coordinates moving at v; tests/element/test_axially_moving_string.cpp),
@@ -127,7 +128,7 @@ struct SpanOptions {
     /// n_t: number of transverse sine modes per transverse direction, 0..16 (one direction in a
     /// planar span, two in a spatial one).
     int transverseModes = 1;
-    /// Complete (default: exact, 2.4-4.8 % more instructions per evaluation) or Simplified (the
+    /// Complete (default: exact, 27-29 % more instructions per evaluation) or Simplified (the
     /// paper's eq 13: misses the transport of transverse motion by rope flowing through the span;
     /// see VelocityModel for the measurements).
     VelocityModel velocityModel = VelocityModel::Complete;
@@ -170,8 +171,11 @@ struct SpanOptions {
     /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
     /// EA eps_s = 165 N is rounded down by up to a fifth of that).
     double quasiStaticSlackTransitionStrain = 1e-5;
-    /// Gauss-Legendre points for the kinetic and strain integrals; 0 selects the automatic rule
-    /// SpanModel::automaticQuadraturePoints (exact to round-off); otherwise 1..200.
+    /// 0 (default) selects the automatic rules: Gauss-Legendre with
+    /// SpanModel::automaticQuadraturePoints points for the kinetic integrals (exact to round-off)
+    /// and the midpoint rule with SpanModel::automaticStrainPoints points for the strain integrals
+    /// (exact for a taut span, see there). Otherwise 1..200: that many Gauss-Legendre points for
+    /// both.
     int quadraturePoints = 0;
 };
 
@@ -208,7 +212,9 @@ struct SpanData {
     double potentialEnergy() const { return strainEnergy() + gravityEnergy; }
 
     ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
-    Jacobian velocityJacobian;  ///< scratch: B at the current quadrature point
+    /// Not written by evaluate() any more (M is assembled in closed form and Q_v without forming
+    /// B); kept so that code naming it still compiles.
+    Jacobian velocityJacobian;
 };
 
 /// The two ends of a span: node 1 at s1 (xi = 0) and node 2 at s2 (xi = 1).
@@ -241,11 +247,13 @@ struct EndStrain {
 /// **Dynamics** (eq 14-18). T = 1/2 int_0^1 rhoA l |v|^2 dxi with the material velocity
 /// v = B(xi, q) qdot of the chosen VelocityModel (the s-dependence of xi through s1, s2 included,
 /// so the span may gain or lose material over its ends). M and Q_v are derived from this same T,
-/// with the same quadrature, so T + U is an exact invariant of M qddot = Q_v + Q_elastic +
+/// with the same quadrature (M assembled in closed form from the kinetic rule's moments: the
+/// quadrature sum rearranged), so T + U is an exact invariant of M qddot = Q_v + Q_elastic +
 /// Q_gravity for either velocity model.
 ///
 /// **Elastic energy** (eq 19-22): see ElasticEnergyModel. Axial and string energies are integrated
-/// by Gauss-Legendre quadrature; the bending energy (quadratic in q_m with constant coefficients)
+/// by the midpoint rule (exact for a taut span, automaticStrainPoints) or by the Gauss-Legendre
+/// rule SpanOptions::quadraturePoints asks for; the bending energy (quadratic in q_m with constant coefficients)
 /// and the gravity energy are integrated in closed form.
 ///
 /// **Axial force** (eq 21): P(s) = EA eps(s), eps = 1/2 (|dr/ds|^2 - 1).
@@ -293,9 +301,17 @@ public:
     int numModalCoordinates() const { return numModal_; }
     int axialModes() const { return options_.axialModes; }
     int transverseModes() const { return options_.transverseModes; }
-    /// Gauss-Legendre points used for the kinetic (M, Q_v, T) or strain (U_ax, U_str) integrals.
+    /// Quadrature points used for the kinetic (M, Q_v, T) or strain (U_ax, U_str) integrals.
     int quadraturePoints(Integrand integrand) const {
         return static_cast<int>((integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).xi.size());
+    }
+    /// Nodes xi_k in (0, 1) and weights w_k of the rule used for the kinetic or strain integrals
+    /// (int_0^1 f dxi ~ sum_k w_k f(xi_k)); AxialCondensation integrates with the strain rule.
+    const Eigen::VectorXd& quadratureNodes(Integrand integrand) const {
+        return (integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).xi;
+    }
+    const Eigen::VectorXd& quadratureWeights(Integrand integrand) const {
+        return (integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).w;
     }
     const RopeProperties& properties() const { return properties_; }
     const SpanOptions& options() const { return options_; }
@@ -313,11 +329,33 @@ public:
     int s1Index() const { return 2 * Dim + numModal_; }
     int s2Index() const { return 2 * Dim + numModal_ + 1; }
 
-    /// The automatic quadrature rule, exact to round-off for the span's integrands (tested against
+    /// The Gauss-Legendre count that integrates the span's integrands to round-off (tested against
     /// 150 points): with n_max = max(n_a, n_t) and k the integrand's largest number of half-waves
     /// on [0, 1] (k = 2 n_max for kinetic, 4 n_max for strain integrals), N = ceil(1.15 k) + 12;
-    /// without modes N = 2 (kinetic) and 1 (strain).
+    /// without modes N = 2 (kinetic) and 1 (strain). The automatic rule (SpanOptions::quadraturePoints
+    /// = 0) uses it for the kinetic integrals only; the strain integrals take the exact midpoint
+    /// rule of automaticStrainPoints, which needs fewer points (7 instead of 26 at n_max = 3).
     static int automaticQuadraturePoints(int axialModes, int transverseModes, Integrand integrand);
+
+    /// Points of the automatic strain rule, the N-point midpoint rule xi_j = (j + 1/2) / N, w = 1/N
+    /// (makeMidpointRule), N = 2 n_max + 1 with n_max = max(n_a, n_t) (1 without modes).
+    ///
+    /// Exact for a taut span: in the element frame the tangent r_xi has the components
+    /// lambda = |e| + sum_i S_i' a_i and tau = sum_i S_i' b_i, S_i' = i pi cos(i pi xi), so the
+    /// strain eps = (lambda^2 + |tau|^2) / (2 l^2) - 1/2 and its gradient are cosine series with
+    /// at most 2 n_max half-waves, and every strain integrand (eps^2, eps d eps/dq and, for the
+    /// linear law or a strain above the tension-only transition, F(eps) and f(eps) d eps/dq; the
+    /// PaperLiteral eps |u_perp'|^2 and its gradient; AxialCondensation's Phi_i, dU/dl and their
+    /// derivatives) is a cosine series with at most 4 n_max < 2N half-waves, which the midpoint
+    /// rule integrates exactly (GaussLegendre.h). Measured against 200 Gauss-Legendre points in
+    /// tests/element/test_strain_quadrature.cpp.
+    ///
+    /// Where a tension-only span has slack points (strain below the transition strain somewhere),
+    /// the clamped integrand is not a cosine series and neither rule is exact: the midpoint rule
+    /// then samples the strain at its N points, as Gauss-Legendre did at its own. Either way the
+    /// elastic forces are the exact gradient of the energy the rule computes (the same points and
+    /// weights), so T + U stays an invariant; maxStrain() looks at the same points.
+    static int automaticStrainPoints(int axialModes, int transverseModes);
 
     /// Evaluates M, Q_v, Q_elastic, Q_gravity and all energies at (q, qdot).
     /// @throws std::invalid_argument if q or qdot has the wrong size or a non-finite entry, if
@@ -374,9 +412,22 @@ private:
     // Quadrature table: xi_k, w_k and, per point, S_i(xi_k) and dS_i/dxi (xi_k), i = 1..maxMode_.
     struct QuadratureTable {
         Eigen::VectorXd xi, w;
-        Eigen::MatrixXd sin, dsin;
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sin, dsin;  // row k: point k
     };
     QuadratureTable kineticTable_, strainTable_;
+    // Moments of the kinetic rule (sum_k w_k ... over kineticTable_), i, j = 1..maxMode_: the mass
+    // matrix is assembled from them in closed form (SpanModel.cpp, "mass matrix"), which is the
+    // same sum as sum_k w_k B_k^T B_k rearranged. omega_0 = (1 - xi)^2, omega_1 = xi (1 - xi),
+    // omega_2 = xi^2.
+    struct KineticMoments {
+        double poly[3] = {0, 0, 0};               // sum w omega_p
+        Eigen::VectorXd alpha, beta;              // sum w (1 - xi) S_i, sum w xi S_i
+        Eigen::VectorXd slope[3];                 // sum w omega_p S_i'
+        Eigen::MatrixXd sinSin;                   // sum w S_i S_j
+        Eigen::MatrixXd slopeSlope[3];            // sum w omega_p S_i' S_j'
+        Eigen::MatrixXd slopeSin[2];              // sum w (1 - xi) S_i' S_j, sum w xi S_i' S_j
+    };
+    KineticMoments moments_;
     // Closed-form integrals int_0^1 S_i dxi and (i pi)^4 / 2 (bending), i = 1..maxMode_.
     Eigen::VectorXd sinMean_, bendFactor_;
 };
