@@ -1,8 +1,9 @@
-// The automatic strain rule of a span (SpanModel::automaticStrainPoints: the midpoint rule with
-// 2 n_max + 1 points) is exact where it claims to be: cosine series with fewer than 2N half-waves,
-// and so the strain energy, the elastic forces and the condensation quantities of a taut span
-// (linear law, or tension-only with every point above the transition strain), against a
-// 200-point Gauss-Legendre evaluation of the same span.
+// The midpoint rule (makeMidpointRule, SpanModel::automaticStrainPoints: 2 n_max + 1 points) is exact
+// where it claims to be, for cosine series with fewer than 2N half-waves; and a span's automatic
+// strain rule (Gauss-Legendre with automaticQuadraturePoints points: the midpoint rule is not the
+// automatic rule yet, see SpanModel.cpp) gives the strain energy, the elastic forces and the
+// condensation quantities of a taut span (linear law, or tension-only with every point above the
+// transition strain) of a 200-point Gauss-Legendre evaluation of the same span.
 #include "SimbodyReeving/element/AxialCondensation.h"
 #include "SimbodyReeving/element/GaussLegendre.h"
 #include "SimbodyReeving/element/SpanModel.h"
@@ -58,7 +59,7 @@ TEST(StrainQuadrature, AutomaticPointCounts) {
     o.axialModes = 3;
     o.transverseModes = 1;
     const SpanModel<2> automatic({0.8, 2.0e4, 3.0, false}, o, Eigen::Vector2d(0, -9.81));
-    EXPECT_EQ(automatic.quadraturePoints(Integrand::Strain), 7);
+    EXPECT_EQ(automatic.quadraturePoints(Integrand::Strain), SpanModel<2>::automaticQuadraturePoints(3, 1, Integrand::Strain));
     EXPECT_EQ(automatic.quadraturePoints(Integrand::Kinetic), SpanModel<2>::automaticQuadraturePoints(3, 1, Integrand::Kinetic));
     o.quadraturePoints = 11;  // an explicit count stays a Gauss-Legendre rule for both integrals
     const SpanModel<2> explicitRule({0.8, 2.0e4, 3.0, false}, o, Eigen::Vector2d(0, -9.81));
@@ -130,7 +131,8 @@ void compareWithGaussLegendre200(const Case& c, double& worstForce, double& wors
                  (c.elastic == ElasticEnergyModel::PaperLiteral ? " literal" : " consistent") +
                  (c.tensionOnly ? " tension-only (taut)" : " linear law"));
     const SpanModel<Dim> automatic = makeSpan<Dim>(c, 0), reference = makeSpan<Dim>(c, 200);
-    ASSERT_EQ(automatic.quadraturePoints(Integrand::Strain), SpanModel<Dim>::automaticStrainPoints(c.na, c.nt));
+    ASSERT_EQ(automatic.quadraturePoints(Integrand::Strain),
+              SpanModel<Dim>::automaticQuadraturePoints(c.na, c.nt, Integrand::Strain));
     std::mt19937 rng(11 + c.na + 17 * c.nt + 5 * c.tensionOnly);
     for (int trial = 0; trial < 3; ++trial) {
         const Eigen::VectorXd q = c.tensionOnly ? tautState(automatic, rng) : randomState(automatic, rng);

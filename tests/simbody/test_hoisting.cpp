@@ -150,7 +150,7 @@ TEST(Hoisting, LockedDrumReproducesTheFixedAnchor) {
         reeving.addRope(spec);
         system.realizeTopology();
         State s = system.getDefaultState();
-        reeving.findStaticEquilibrium(s, 1e-12);
+        reeving.findStaticEquilibrium(s, 1e-11);  // its round-off floor here: 1.3e-12 (measured)
         payload.setUToFitLinearVelocity(s, Vec3(1, 0, 0.2));
         SimTK::RungeKuttaMersonIntegrator integ(system);
         integ.setAccuracy(1e-10);

@@ -247,11 +247,13 @@ TEST(Slew, AFrameChangeKeepsConfigurationVelocityAndForces) {
                 before.getTime(), (A1 - A0).norm(), (q1 - q0).norm(), (v1 - v0).norm(), v0.norm(), dp,
                 std::abs(T1 - T0) / T0, T0, (F1 - F0).norm() / F0.norm(), F0.norm());
     // Measured: |A0' - A0| = 1.76, modal coordinates 1.6e-17 m, rates changed by 3.9e-3 m/s,
-    // positions 2.8e-17 m, kinetic energy equal to the last bit, end force 2.1e-17 relative.
+    // positions 2.8e-17 m, kinetic energy equal to the last bit, end force 2.1e-17 relative (3.5e-15
+    // since issue 20: the two states may take different routes to S xddot, the formed S or a
+    // product by the chain solve, which round differently; bound 1e-13, 29x).
     EXPECT_GT((A1 - A0).norm(), 1.0);
     EXPECT_LE((q1 - q0).norm(), 1e-15);
     EXPECT_GT((v1 - v0).norm(), 1e-3);
     EXPECT_LE(dp, 1e-15);
     EXPECT_NEAR(T1, T0, 1e-14 * T0);
-    EXPECT_LE((F1 - F0).norm(), 1e-15 * F0.norm());
+    EXPECT_LE((F1 - F0).norm(), 1e-13 * F0.norm());
 }

@@ -52,7 +52,7 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
     slackStiffness_ = span.slackRegularised() ? 0.5 * o.quasiStaticSlackStiffness * EA_ : 0.0;
     gravity_ = span.gravity();
     referenceFrame_ = span.referenceFrame();
-    // The span's own strain rule (SpanModel::automaticStrainPoints or the explicit Gauss-Legendre
+    // The span's own strain rule (SpanModel::quadratureNodes: Gauss-Legendre, automatic or explicit
     // count), so that Phi and dU/dl are the derivatives of the energy SpanModel::evaluate computes.
     const Eigen::VectorXd& nodes = span.quadratureNodes(Integrand::Strain);
     const int nq = static_cast<int>(nodes.size());

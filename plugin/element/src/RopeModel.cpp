@@ -478,56 +478,14 @@ template <int Dim>
 void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
     const int N = numSpans(), nqc = numCondensed_, nd = numDependent();
-    const int nn = Dim * (N + 1), nx = numExternalCoordinates(), nw = nx + numModal_;
     Eigen::VectorXd& s = data.materialCoordinates;
     const bool warm = s.size() == N + 1 && s.allFinite();
     detail::RopeWorkspace<Dim>& ws = data.ws();
-    // The independent positions w (node positions, driven material coordinates, modal states).
-    ws.positionW.resize(nw);
-    for (int k = 0; k <= N; ++k) ws.positionW.template segment<Dim>(Dim * k) = nodes.col(k);
-    if (drivenS.size() == numDriven_) ws.positionW.segment(nn, numDriven_) = drivenS;
-    if (qm.size() == numModal_) ws.positionW.tail(numModal_) = qm;
-    const bool predict = warm && nd > 0 && ws.predictorValid && ws.predictorW.size() == nw &&
-                         data.condensedAmplitudes.size() == nqc && data.multipliers.size() == numMultipliers_;
     setKnownMaterialCoordinates(nodes, drivenS, data);
     if (data.condensedAmplitudes.size() != nqc || !data.condensedAmplitudes.allFinite())
         data.condensedAmplitudes.setZero(nqc);
     if (data.multipliers.size() != numMultipliers_ || !data.multipliers.allFinite())
         data.multipliers.setZero(numMultipliers_);
-    // Tangent predictor: the dependents move with the independents as d(w) ~ d(w0) - C_d^-1 C_w (w - w0),
-    // with the Jacobian entries of the last converged solve and the last factorization of C_d (an
-    // iterate of that solve): Newton then starts O(|w - w0|^2) from the solution, so it usually
-    // needs one step less. Node and modal moves only (material moved by a drum is mapped by
-    // setKnownMaterialCoordinates); not used if it would disorder the material coordinates.
-    ws.predictorValid = false;
-    bool tookStep = false;  // newtonLu holds a factorization from this solve
-    if (predict) {
-        ws.rowScratch.setZero(nd);
-        bool moved = false;
-        for (const detail::JacobianEntry& e : ws.jacobian) {
-            if (e.col >= nw || (e.col >= nn && e.col < nx)) continue;
-            const double dw = ws.positionW[e.col] - ws.predictorW[e.col];
-            if (dw != 0.0) {
-                ws.rowScratch[e.row] -= e.value * dw;
-                moved = true;
-            }
-        }
-        if (moved) {
-            solveDependent(data, ws.predictorUsesDynamicsLu ? ws.dependentLu : ws.newtonLu, ws.rowScratch, ws.newtonStep);
-            bool ordered = ws.newtonStep.allFinite();
-            for (int ki = 0; ki < numSliding_ && ordered; ++ki) {
-                const int k = slidingNode_[ki];
-                const double sk = s[k] + ws.newtonStep[nqc + ki];
-                ordered = sk > s[k - 1] + (slidingIndex_[k - 1] >= 0 ? ws.newtonStep[nqc + slidingIndex_[k - 1]] : 0.0) &&
-                          sk < s[k + 1] + (slidingIndex_[k + 1] >= 0 ? ws.newtonStep[nqc + slidingIndex_[k + 1]] : 0.0);
-            }
-            if (ordered) {
-                data.condensedAmplitudes += ws.newtonStep.head(nqc);
-                for (int ki = 0; ki < numSliding_; ++ki) s[slidingNode_[ki]] += ws.newtonStep[nqc + ki];
-                data.multipliers += ws.newtonStep.tail(numMultipliers_);
-            }
-        }
-    }
     data.multiplierRates.setZero(numMultipliers_);
     data.newtonIterations = 0;
     for (auto& v : data.ws().spanQdot) v.setZero();
@@ -581,9 +539,6 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         const bool stagnating = err > 0.5 * previous;
         if (err <= 1e-15 || (stagnating && err <= 1e-12) || (stagnating && iter >= 4 && err <= 1e-9)) {
             data.newtonIterations = iter;
-            ws.predictorW = ws.positionW;
-            ws.predictorValid = tookStep;
-            ws.predictorUsesDynamicsLu = false;
             return;
         }
         // Damping: if the last step did not reduce |C|_2 (Newton overshooting a sharp change of
@@ -605,7 +560,6 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         if (iter == kMaxIterations && !coldRetry) break;
         if (iter == kMaxIterations) continue;  // the cold retry starts at the top of the loop
         factorDependentJacobian(data, ws.newtonLu);
-        tookStep = true;
         Eigen::VectorXd& step = data.ws().newtonStep;
         solveDependent(data, ws.newtonLu, C, step);
         step *= -1.0;
@@ -733,11 +687,6 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     ws.reducedValid = false;
     if (nd > 0) {
         factorDependentJacobian(data, ws.dependentLu);
-        // (the predictor of the next solve starts from this converged point and this factorization)
-        if (ws.positionW.size() == nw) {
-            ws.predictorW = ws.positionW;
-            ws.predictorValid = ws.predictorUsesDynamicsLu = true;
-        }
         ws.rowScratch.setZero(nd);
         for (const detail::JacobianEntry& e : ws.jacobian)
             if (e.col < nw) ws.rowScratch[e.row] -= e.value * ws.w[e.col];

@@ -37,7 +37,7 @@ struct RopeWorkspace {
     std::vector<int> externalColumnStart, externalColumnRow;
     std::vector<double> externalColumnValue;
     BandedLU dependentLu;  ///< C_d in chain order (RopeModel::dependentRowPos_ / dependentColPos_), computeDynamics
-    BandedLU newtonLu;     ///< the same at the Newton iterates
+    BandedLU newtonLu;     ///< the same at the Newton iterates (kept apart from the dynamics' one)
     BandedLU kktLu;        ///< [M_yy C_y^T; C_y 0] in chain order (RopeModel::kktPos_ / kktRowPos_)
     Eigen::VectorXd chainSolution;  ///< right-hand sides / solutions of the KKT system, row-major
     Eigen::VectorXd supportBlock;   ///< M_xy Y + C_x^T Mu for them, row-major
@@ -50,10 +50,6 @@ struct RopeWorkspace {
     Eigen::VectorXd cd;                   ///< dependent accelerations at wdot = 0: -C_d^-1 bias
     Eigen::VectorXd newtonResidual, newtonStep;         ///< dependent-coordinate Newton
     Eigen::VectorXd newtonStart;                        ///< the iterate a damped step starts from
-    /// Tangent predictor: independent positions of this and of the last converged solve.
-    Eigen::VectorXd positionW, predictorW;
-    bool predictorValid = false;
-    bool predictorUsesDynamicsLu = false;  ///< dependentLu (computeDynamics) or newtonLu (Newton)
     Eigen::MatrixXd modalCoupling;  ///< qddot_m = modalFree - modalCoupling xddot
     Eigen::VectorXd modalFree;
     // ---- the dense reduced equations (RopeData::reducedMass / reducedForce, computed on demand)

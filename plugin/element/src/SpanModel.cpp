@@ -13,6 +13,16 @@
 
 namespace SimbodyReeving {
 namespace {
+// The exact midpoint strain rule (automaticStrainPoints) is implemented and tested but not the
+// automatic rule yet: measured with it, the crane's motor torque changes by 1.5e-12 relative when
+// the height datum moves (CraneScene.MotorTorqueDoesNotDependOnTheHeightDatum, bound 1e-13; 2.5e-14
+// with Gauss-Legendre), a round-off growth not yet understood. Gauss-Legendre
+// (automaticQuadraturePoints) stays the automatic strain rule; the midpoint rule would save about
+// 25 k instructions per rhs of the default pendulum.
+constexpr bool kUseMidpointStrainRule = false;
+}  // namespace
+
+namespace {
 
 template <class T>
 [[noreturn]] void throwInvalid(const std::string& where, const std::string& what, const T& value,
@@ -109,7 +119,7 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
 
     const double pi = std::acos(-1.0);
     auto makeTable = [&](Integrand integrand, QuadratureTable& table) {
-        const bool midpoint = options_.quadraturePoints == 0 && integrand == Integrand::Strain;
+        const bool midpoint = kUseMidpointStrainRule && options_.quadraturePoints == 0 && integrand == Integrand::Strain;
         const int nq = options_.quadraturePoints > 0 ? options_.quadraturePoints
                        : midpoint ? automaticStrainPoints(options_.axialModes, options_.transverseModes)
                                   : automaticQuadraturePoints(options_.axialModes, options_.transverseModes, integrand);

@@ -171,11 +171,9 @@ struct SpanOptions {
     /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
     /// EA eps_s = 165 N is rounded down by up to a fifth of that).
     double quasiStaticSlackTransitionStrain = 1e-5;
-    /// 0 (default) selects the automatic rules: Gauss-Legendre with
-    /// SpanModel::automaticQuadraturePoints points for the kinetic integrals (exact to round-off)
-    /// and the midpoint rule with SpanModel::automaticStrainPoints points for the strain integrals
-    /// (exact for a taut span, see there). Otherwise 1..200: that many Gauss-Legendre points for
-    /// both.
+    /// 0 (default) selects the automatic rule: Gauss-Legendre with
+    /// SpanModel::automaticQuadraturePoints points for the kinetic and for the strain integrals
+    /// (exact to round-off). Otherwise 1..200: that many Gauss-Legendre points for both.
     int quadraturePoints = 0;
 };
 
@@ -252,8 +250,8 @@ struct EndStrain {
 /// Q_gravity for either velocity model.
 ///
 /// **Elastic energy** (eq 19-22): see ElasticEnergyModel. Axial and string energies are integrated
-/// by the midpoint rule (exact for a taut span, automaticStrainPoints) or by the Gauss-Legendre
-/// rule SpanOptions::quadraturePoints asks for; the bending energy (quadratic in q_m with constant coefficients)
+/// by Gauss-Legendre (automaticQuadraturePoints, or the count SpanOptions::quadraturePoints asks
+/// for); the bending energy (quadratic in q_m with constant coefficients)
 /// and the gravity energy are integrated in closed form.
 ///
 /// **Axial force** (eq 21): P(s) = EA eps(s), eps = 1/2 (|dr/ds|^2 - 1).
@@ -333,11 +331,11 @@ public:
     /// 150 points): with n_max = max(n_a, n_t) and k the integrand's largest number of half-waves
     /// on [0, 1] (k = 2 n_max for kinetic, 4 n_max for strain integrals), N = ceil(1.15 k) + 12;
     /// without modes N = 2 (kinetic) and 1 (strain). The automatic rule (SpanOptions::quadraturePoints
-    /// = 0) uses it for the kinetic integrals only; the strain integrals take the exact midpoint
-    /// rule of automaticStrainPoints, which needs fewer points (7 instead of 26 at n_max = 3).
+    /// = 0) uses it for both (the exact midpoint rule of automaticStrainPoints, 7 points instead of
+    /// 26 at n_max = 3, is not the automatic rule yet: see SpanModel.cpp, kUseMidpointStrainRule).
     static int automaticQuadraturePoints(int axialModes, int transverseModes, Integrand integrand);
 
-    /// Points of the automatic strain rule, the N-point midpoint rule xi_j = (j + 1/2) / N, w = 1/N
+    /// Points of the exact strain rule, the N-point midpoint rule xi_j = (j + 1/2) / N, w = 1/N
     /// (makeMidpointRule), N = 2 n_max + 1 with n_max = max(n_a, n_t) (1 without modes).
     ///
     /// Exact for a taut span: in the element frame the tangent r_xi has the components
