@@ -43,19 +43,22 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     drivenIndex_.assign(N + 1, -1);
     for (int k = 0; k <= N; ++k) {
         const bool end = k == 0 || k == N;
-        if (end && nodeKind_[k] == MaterialNode::Sliding)
-            throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
-                                        " cannot be Sliding (a sheave needs a span on both sides)");
+        if (end && (nodeKind_[k] == MaterialNode::Sliding || nodeKind_[k] == MaterialNode::Slipping))
+            throw std::invalid_argument("RopeModel: end node " + std::to_string(k) + " cannot be " +
+                                        (nodeKind_[k] == MaterialNode::Sliding ? "Sliding" : "Slipping") +
+                                        " (a sheave needs a span on both sides)");
         if (!end && nodeKind_[k] == MaterialNode::Fixed)
             throw std::invalid_argument("RopeModel: interior node " + std::to_string(k) +
                                         " cannot be Fixed (a rope fastened mid-path is two ropes)");
-        if (nodeKind_[k] == MaterialNode::Sliding) {
+        if (nodeKind_[k] == MaterialNode::Sliding || nodeKind_[k] == MaterialNode::Slipping) {
             slidingIndex_[k] = numSliding_++;
             slidingNode_.push_back(k);
-        } else if (nodeKind_[k] == MaterialNode::Driven) {
-            drivenIndex_[k] = numDriven_++;
         }
+        if (nodeKind_[k] == MaterialNode::Driven || nodeKind_[k] == MaterialNode::Slipping)
+            drivenIndex_[k] = numDriven_++;
+        if (nodeKind_[k] == MaterialNode::Fixed) ++numFixed_;
     }
+    slipRatio_.assign(N + 1, 1.0);
     condensedOffset_.assign(N, -1);
     for (int j = 0; j < N; ++j) {
         const SpanModel<Dim>& sp = spans_[j];
@@ -80,7 +83,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     auto materialIndex = [&](int node) {
         switch (nodeKind_[node]) {
             case MaterialNode::Driven: return nn + drivenIndex_[node];
-            case MaterialNode::Sliding: return nw + numCondensed_ + slidingIndex_[node];
+            case MaterialNode::Sliding:
+            case MaterialNode::Slipping: return nw + numCondensed_ + slidingIndex_[node];
             case MaterialNode::Fixed: break;
         }
         return nw + nd + fixedIndex[node];
@@ -111,7 +115,7 @@ template <int Dim>
 void RopeModel<Dim>::buildChainOrder() {
     const int N = numSpans(), nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
     const int nqc = numCondensed_, nc = numSliding_;
-    const int nz = nw + nd + (N + 1 - nc - numDriven_);
+    const int nz = nw + nd + numFixed_;
     // Keys along the rope: span j -> 2 j + 1 (its free modes, condensed amplitudes and their
     // stationarity rows), node k -> 2 k (its material coordinate, multiplier and rows).
     std::vector<int> zKey(nz, -1), rowKey(nd, -1), rowSpan(nd, -1), rowNode(nd, -1);
@@ -251,6 +255,18 @@ void RopeModel<Dim>::setStoredRope(int node, double lengthAtZero) {
 }
 
 template <int Dim>
+void RopeModel<Dim>::setSlipRatio(int node, double kappa) {
+    if (node < 0 || node > numSpans() || nodeKind_[node] != MaterialNode::Slipping)
+        throw std::invalid_argument("RopeModel::setSlipRatio: node " + std::to_string(node) + " is not a Slipping node");
+    if (!std::isfinite(kappa) || !(kappa > 0)) {
+        std::ostringstream msg;
+        msg << "RopeModel::setSlipRatio: kappa = " << kappa << " must be finite and > 0";
+        throw std::invalid_argument(msg.str());
+    }
+    slipRatio_[node] = kappa;
+}
+
+template <int Dim>
 void RopeModel<Dim>::setStationaryNodes(const std::vector<bool>& stationary) {
     if (static_cast<int>(stationary.size()) != numNodes())
         throw std::invalid_argument("RopeModel::setStationaryNodes: " + std::to_string(stationary.size()) +
@@ -333,11 +349,13 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         }
         for (int row = 0; row < nc; ++row) {
             const int k = slidingNode_[row];
-            C[row] = data.ws().secondEnd[k - 1].strain - data.ws().firstEnd[k].strain;
+            const double kappa = slipRatio_[k];  // 1 but at Slipping nodes: eps_{k-1} = kappa eps_k
+            C[row] = data.ws().secondEnd[k - 1].strain - kappa * data.ws().firstEnd[k].strain;
             scatter(row, k - 1, data.ws().secondEnd[k - 1].gradient, 1.0);
-            scatter(row, k, data.ws().firstEnd[k].gradient, -1.0);
+            scatter(row, k, data.ws().firstEnd[k].gradient, -kappa);
             if (withRates)
-                data.ws().bias[row] = data.ws().secondEnd[k - 1].accelerationBias - data.ws().firstEnd[k].accelerationBias;
+                data.ws().bias[row] =
+                    data.ws().secondEnd[k - 1].accelerationBias - kappa * data.ws().firstEnd[k].accelerationBias;
         }
         return;
     }
@@ -386,25 +404,31 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         for (int i = 0; i < spans_[j].axialModes(); ++i) {
             const int row = condensedOffset_[j] + i;
             addTerm(row, j, kj.phi(i), invEA);
-            addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -1.0);
+            addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -slipRatio_[j]);
             addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), 1.0);
         }
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + ki;
         addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), 1.0);
-        addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -1.0);
+        addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -slipRatio_[k]);
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + nc + ki;
         // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
         addTerm(row, k - 1, kernels_[k - 1].lengthDerivative(), invEA);
         addTerm(row, k, kernels_[k].lengthDerivative(), -invEA);
-        // sum_m nu_m dC_m/ds_k with C_m = eps2_{m-1}(l_{m-1}) - eps1_m(l_m), l_j = s_{j+1} - s_j.
+        // sum_m nu_m dC_m/ds_k with C_m = eps2_{m-1}(l_{m-1}) - kappa_m eps1_m(l_m), l_j = s_{j+1} - s_j.
         addProduct(row, k, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::Second), 1.0);
-        addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), 1.0);
+        addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), slipRatio_[k]);
         addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -1.0);
-        addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -1.0);
+        addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -slipRatio_[k - 1]);
+        // A Slipping node: the friction force F_f = EA (eps1_k - eps2_{k-1}) on s_k is an applied
+        // force, so the stationarity reads dU/ds_k / EA + sum nu dC/ds_k - F_f / EA = 0.
+        if (nodeKind_[k] == MaterialNode::Slipping) {
+            addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), 1.0);
+            addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -1.0);
+        }
     }
 }
 
@@ -421,7 +445,7 @@ void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const 
     Eigen::VectorXd& s = data.materialCoordinates;
     bool warm = s.size() == N + 1 && s.allFinite();
     if (!warm) s.setZero(N + 1);
-    auto known = [&](int k) { return nodeKind_[k] != MaterialNode::Sliding; };
+    auto known = [&](int k) { return slidingIndex_[k] < 0; };
     auto knownValue = [&](int k) {
         return nodeKind_[k] == MaterialNode::Fixed ? (k == 0 ? 0.0 : length_) : drivenS[drivenIndex_[k]];
     };
@@ -612,7 +636,7 @@ bool RopeModel<Dim>::positionsMatch(const NodeMatrix& nodes, const Eigen::Vector
         drivenS.size() != numDriven_)
         return false;
     for (int k = 0; k <= N; ++k)
-        if (drivenIndex_[k] >= 0 && data.materialCoordinates[k] != drivenS[drivenIndex_[k]]) return false;
+        if (nodeKind_[k] == MaterialNode::Driven && data.materialCoordinates[k] != drivenS[drivenIndex_[k]]) return false;
     for (int j = 0; j < N; ++j) {
         const auto& q = data.ws().spanQ[j];
         const int nmSpan = spans_[j].numModalCoordinates();
@@ -639,7 +663,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
                                      const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
                                      RopeData<Dim>& data) const {
     const int N = numSpans(), nn = Dim * (N + 1), nx = nn + numDriven_, nm = numModal_, nw = nx + nm;
-    const int nqc = numCondensed_, nc = numSliding_, nd = numDependent(), nz = nw + nd + (N + 1 - nc - numDriven_);
+    const int nqc = numCondensed_, nc = numSliding_, nd = numDependent(), nz = nw + nd + numFixed_;
     // solveDependentCoordinates left the span coordinates and the constraint Jacobians (velocity
     // independent) of this configuration in data; they are reused when they belong to these
     // positions, and solved afresh otherwise.
@@ -656,7 +680,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     data.ws().spans.resize(N);
     data.materialRates.setZero(N + 1);
     for (int k = 0; k <= N; ++k)
-        if (drivenIndex_[k] >= 0) data.materialRates[k] = drivenSdot[drivenIndex_[k]];
+        if (nodeKind_[k] == MaterialNode::Driven) data.materialRates[k] = drivenSdot[drivenIndex_[k]];
     data.condensedRates.setZero(nqc);
     data.multiplierRates.setZero(numMultipliers_);
     auto fillSpanVelocities = [&] {
@@ -722,6 +746,15 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         data.kineticEnergy += d.kineticEnergy;
         data.strainEnergy += d.strainEnergy();
         data.gravityEnergy += d.gravityEnergy;
+    }
+    // Slipping nodes: the friction force F_f = P_k - P_{k-1} on the material s_k, its reaction on
+    // the sheave's surface coordinate (MaterialNode::Slipping).
+    for (int ki = 0; ki < nc; ++ki) {
+        const int k = slidingNode_[ki];
+        if (nodeKind_[k] != MaterialNode::Slipping) continue;
+        const double friction = -constraintError(data, k);
+        ws.Qz[nw + nqc + ki] += friction;
+        ws.Qz[nn + drivenIndex_[k]] -= friction;
     }
 
     // The rope's equations at given external accelerations xddot, with y = [q_free, d] and
@@ -970,7 +1003,7 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     const int nqc = numCondensed_, nc = numSliding_;
     detail::RopeWorkspace<Dim>& ws = data.ws();
     Eigen::VectorXd& zdd = ws.zddot;
-    const int nz = nw + nd + (N + 1 - nc - numDriven_);
+    const int nz = nw + nd + numFixed_;
     zdd.setZero(nz);
     zdd.head(nx) = nodeAccelerations;
     zdd.segment(nx, numModal_) = qmddot;
@@ -1056,7 +1089,7 @@ void RopeModel<Dim>::assembleReduced(RopeData<Dim>& data) const {
     // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gd^T (Q_d - M_dd c_d).
     detail::RopeWorkspace<Dim>& ws = data.ws();
     const int N = numSpans(), nw = numExternalCoordinates() + numModal_, nd = numDependent();
-    const int nz = nw + nd + (N + 1 - numSliding_ - numDriven_);
+    const int nz = nw + nd + numFixed_;
     ws.Mz.setZero(nz, nz);
     for (int j = 0; j < N; ++j) {
         const auto& map = spanToRope_[j];

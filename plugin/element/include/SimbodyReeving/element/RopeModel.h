@@ -31,6 +31,19 @@ enum class MaterialNode {
     /// force difference across the node, or the force at an end) is part of the node reduction, so
     /// a coupled solve with the body that drives it is exact. Any node.
     Driven,
+    /// Dependent, with friction: rope sliding over a sheave whose groove grips it (a traction
+    /// sheave in slip). s_k is solved from the capstan law of the slip, P_{k-1}(s_k) = kappa P_k(s_k)
+    /// with kappa = RopeModel::setSlipRatio's (e^(mu alpha) when the rope slides towards span k - 1,
+    /// e^(-mu alpha) towards span k), and the friction force F_f = P_k - P_{k-1} [N] acts on the
+    /// material there (the massless material point at the node is in balance). The node also has an
+    /// external coordinate, like a Driven node (the sheave's surface, s_sheave = s_ref + R theta):
+    /// the friction's reaction -F_f acts there (h = P_{k-1} - P_k, S has zero rows and columns there),
+    /// so a Simbody layer can switch a sheave between Driven (stick) and Slipping (slip) without
+    /// changing the external coordinates. The friction power on the rope's material and the sheave
+    /// together is -(P_{k-1} - P_k)(sdot_k - sdot_sheave) <= 0 when kappa is chosen on the side the
+    /// rope slides towards. kappa = 1 is a Sliding node plus an unloaded sheave coordinate.
+    /// Interior nodes only.
+    Slipping,
 };
 
 template <int Dim>
@@ -170,9 +183,11 @@ public:
     int numSpans() const { return static_cast<int>(spans_.size()); }
     int numNodes() const { return numSpans() + 1; }
     MaterialNode nodeKind(int node) const { return nodeKind_[node]; }
-    /// Number of Driven nodes: the length of the drivenS vectors below.
+    /// Number of Driven and Slipping nodes (each has an external coordinate: the driven material
+    /// coordinate, or the slipping sheave's surface coordinate): the length of the drivenS vectors
+    /// below (the entries of Slipping nodes are read only for their rates, the sheave's speed).
     int numDrivenNodes() const { return numDriven_; }
-    /// Index of node k's material coordinate among the Driven ones (drivenS), or -1.
+    /// Index of node k's external material coordinate among the Driven and Slipping ones (drivenS), or -1.
     int drivenIndex(int node) const { return drivenIndex_[node]; }
     /// Number of external coordinates x = [r_0..r_N, s_driven]: Dim (N + 1) + numDrivenNodes().
     int numExternalCoordinates() const { return Dim * numNodes() + numDriven_; }
@@ -189,6 +204,11 @@ public:
     /// Added to nodeMass, nodeForce and the energies by computeDynamics.
     /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
     void setStoredRope(int node, double lengthAtZero);
+    /// Sets the tension ratio kappa = P_{k-1} / P_k [-] of the Slipping node k (see
+    /// MaterialNode::Slipping; default 1).
+    /// @throws std::invalid_argument if node is not Slipping or kappa is not finite and > 0.
+    void setSlipRatio(int node, double kappa);
+    double slipRatio(int node) const { return slipRatio_[node]; }
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
     /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
     /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
@@ -279,7 +299,8 @@ public:
                                   Eigen::VectorXd& q) const;
 
     /// Axial force difference F_a - F_b at interior node k (1..N-1) [N]: the tension-equality
-    /// residual at a Sliding node; at a Driven node, the force the rope's grip there carries.
+    /// residual at a Sliding node; at a Driven node, the force the rope's grip there carries; at a
+    /// Slipping node, the friction force the sheave carries (P_{k-1} - P_k, i.e. -F_f).
     double constraintError(const RopeData<Dim>& data, int k) const;
 
 private:
@@ -314,7 +335,9 @@ private:
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
     std::vector<MaterialNode> nodeKind_;
     std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
-    std::vector<int> slidingNode_;                 // sliding index -> node
+    std::vector<int> slidingNode_;                 // sliding index -> node (Sliding and Slipping nodes)
+    std::vector<double> slipRatio_;                // per node: kappa of a Slipping node, else 1
+    int numFixed_ = 0;
     struct Storage {
         int node = -1;
         double lengthAtZero = 0, slope = 0;  // l = lengthAtZero + slope s_node

@@ -1,0 +1,111 @@
+// RopeModel with a MaterialNode::Slipping node (a traction sheave in slip): at kappa = 1 it is a
+// Sliding node plus an unloaded sheave coordinate; at kappa != 1 the axial forces at the node keep
+// the capstan ratio P_{k-1} = kappa P_k, and the friction's reaction P_{k-1} - P_k is the rope's force
+// on the sheave coordinate. Both axial models.
+#include "SimbodyReeving/element/RopeModel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+using namespace SimbodyReeving;
+
+namespace {
+
+const RopeProperties kRope{0.6205, 16.5e6, 0.0};
+const Eigen::Vector2d kGravity(0, -9.81);
+
+std::vector<SpanModel<2>> makeSpans(int na, int nt, AxialDynamics axial) {
+    SpanOptions o;
+    o.axialModes = na;
+    o.transverseModes = nt;
+    o.axialDynamics = axial;
+    return std::vector<SpanModel<2>>(2, SpanModel<2>(kRope, o, kGravity));
+}
+
+// Start anchor, sheave, end anchor: two hanging falls of different length (an Atwood machine held
+// at its anchors, so both falls are taut with different tensions).
+Eigen::Matrix2Xd atwoodNodes() {
+    Eigen::Matrix2Xd n(2, 3);
+    n << -0.3, 0.0, 0.3, -8.0, 0.0, -12.0;
+    return n;
+}
+
+double endForce(const RopeModel<2>& rope, const RopeData<2>& d, int span, SpanEnd end) {
+    EndStrain<2> e;
+    const Eigen::VectorXd& q = d.spanCoordinates(span);
+    rope.span(span).endStrain(q, Eigen::VectorXd::Zero(q.size()), end, e);
+    return rope.properties().axialStiffness * e.strain;
+}
+
+}  // namespace
+
+TEST(RopeSlippingNode, UnitRatioIsASlidingNodeWithAnUnloadedSheaveCoordinate) {
+    for (AxialDynamics axial : {AxialDynamics::Dynamic, AxialDynamics::QuasiStatic}) {
+        const double L = 19.99;
+        const RopeModel<2> sliding(makeSpans(3, 1, axial), L);
+        const RopeModel<2> slipping(makeSpans(3, 1, axial), L,
+                                    {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed});
+        ASSERT_EQ(slipping.numDrivenNodes(), 1);
+        ASSERT_EQ(slipping.numExternalCoordinates(), 7);
+        const int nm = sliding.numModalCoordinates();
+        ASSERT_EQ(nm, slipping.numModalCoordinates());
+        Eigen::VectorXd qm(nm), qmd(nm);
+        for (int i = 0; i < nm; ++i) {
+            qm[i] = 1e-4 * std::sin(1.0 + i);
+            qmd[i] = 1e-3 * std::cos(2.0 + i);
+        }
+        Eigen::Matrix2Xd vel = Eigen::Matrix2Xd::Zero(2, 3);
+        vel.col(2) << 0.4, -0.2;
+        RopeData<2> a, b;
+        sliding.computeDynamics(atwoodNodes(), vel, qm, qmd, a);
+        const Eigen::VectorXd sheave = Eigen::VectorXd::Constant(1, 7.0), sheaveRate = Eigen::VectorXd::Constant(1, 0.5);
+        slipping.computeDynamics(atwoodNodes(), vel, sheave, sheaveRate, qm, qmd, b);
+        const double scale = a.nodeMass.cwiseAbs().maxCoeff();
+        EXPECT_LE((a.materialCoordinates - b.materialCoordinates).cwiseAbs().maxCoeff(), 1e-13);
+        EXPECT_LE((a.nodeMass - b.nodeMass.topLeftCorner(6, 6)).cwiseAbs().maxCoeff(), 1e-12 * scale);
+        EXPECT_EQ(b.nodeMass.row(6).cwiseAbs().maxCoeff(), 0.0);
+        EXPECT_EQ(b.nodeMass.col(6).cwiseAbs().maxCoeff(), 0.0);
+        const double forceScale = a.nodeForce.cwiseAbs().maxCoeff();
+        EXPECT_LE((a.nodeForce - b.nodeForce.head(6)).cwiseAbs().maxCoeff(), 1e-12 * forceScale);
+        // The reaction on the sheave coordinate is P_0 - P_1, the tension-equality residual (a few
+        // Newton tolerances, 1e-15 EA = 1.7e-8 N).
+        EXPECT_LE(std::abs(b.nodeForce[6]), 1e-13 * forceScale);
+        EXPECT_NEAR(a.kineticEnergy, b.kineticEnergy, 1e-12 * a.kineticEnergy);
+    }
+}
+
+TEST(RopeSlippingNode, ForcesKeepTheCapstanRatioAndTheSheaveCarriesTheirDifference) {
+    for (AxialDynamics axial : {AxialDynamics::Dynamic, AxialDynamics::QuasiStatic}) {
+        for (double kappa : {std::exp(0.3 * std::acos(-1.0)), std::exp(-0.3 * std::acos(-1.0))}) {
+            RopeModel<2> rope(makeSpans(3, 1, axial), 19.99,
+                              {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed});
+            rope.setSlipRatio(1, kappa);
+            const int nm = rope.numModalCoordinates();
+            const Eigen::VectorXd qm = Eigen::VectorXd::Zero(nm);
+            RopeData<2> d;
+            const Eigen::VectorXd sheave = Eigen::VectorXd::Constant(1, 7.0), zero1 = Eigen::VectorXd::Zero(1);
+            rope.computeDynamics(atwoodNodes(), Eigen::Matrix2Xd::Zero(2, 3), sheave, zero1, qm, qm, d);
+            const double pa = endForce(rope, d, 0, SpanEnd::Second), pb = endForce(rope, d, 1, SpanEnd::First);
+            ASSERT_GT(pb, 1e3);
+            // The Newton's tolerance 1e-15 in strain: 1.7e-8 N of forces of ~1e5 N.
+            EXPECT_NEAR(pa / pb, kappa, 1e-11) << "axial " << static_cast<int>(axial);
+            EXPECT_NEAR(rope.constraintError(d, 1), pa - pb, 1e-9 * pb);
+            // At rest the rope's generalized force on the sheave coordinate is the friction's reaction.
+            EXPECT_NEAR(d.nodeForce[6], pa - pb, 1e-9 * pb);
+        }
+    }
+}
+
+TEST(RopeSlippingNode, BadUseIsAnInvalidArgument) {
+    RopeModel<2> rope(makeSpans(1, 0, AxialDynamics::Dynamic), 19.99,
+                      {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed});
+    EXPECT_THROW(rope.setSlipRatio(0, 2.0), std::invalid_argument);
+    EXPECT_THROW(rope.setSlipRatio(1, 0.0), std::invalid_argument);
+    EXPECT_THROW(rope.setSlipRatio(1, std::nan("")), std::invalid_argument);
+    EXPECT_NO_THROW(rope.setSlipRatio(1, 2.0));
+    EXPECT_THROW(RopeModel<2>(makeSpans(1, 0, AxialDynamics::Dynamic), 19.99,
+                              {MaterialNode::Slipping, MaterialNode::Sliding, MaterialNode::Fixed}),
+                 std::invalid_argument);
+}
