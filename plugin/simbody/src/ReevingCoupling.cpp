@@ -55,7 +55,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             if (ropes[i].planar ? c.planar.nodeMass.size() == 0 : c.spatial.nodeMass.size() == 0) {
                 const int nx = ropes[i].numExternal();
                 if (ropes[i].planar)
-                    ropes[i].planarModel->multiplyByNodeMass(c.planar, Eigen::MatrixXd::Identity(nx, nx), c.planar.nodeMass);
+                    c.planarModel->multiplyByNodeMass(c.planar, Eigen::MatrixXd::Identity(nx, nx), c.planar.nodeMass);
                 else
                     spatialModel(s, ropes[i]).multiplyByNodeMass(c.spatial, Eigen::MatrixXd::Identity(nx, nx),
                                                                 c.spatial.nodeMass);
@@ -126,7 +126,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                     ws.ropeX(rc.external[a], k) = ws.a0[rc.rows[a]];
                 }
                 if (r.planar)
-                    r.planarModel->multiplyByNodeMass(c.planar, ws.ropeX, ws.ropeSX);
+                    c.planarModel->multiplyByNodeMass(c.planar, ws.ropeX, ws.ropeSX);
                 else
                     spatialModel(s, r).multiplyByNodeMass(c.spatial, ws.ropeX, ws.ropeSX);
                 for (size_t a = 0; a < rc.rows.size(); ++a) ws.SJ.row(rc.rows[a]) = ws.ropeSX.row(rc.external[a]);
@@ -173,8 +173,8 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                 c.nodeAccelerations3.col(k) = c.externalAccelerations.segment<3>(3 * k);
         }
         if (r.planar) {
-            r.planarModel->modalAccelerations(c.planar, c.externalAccelerations, c.modalAccelerations);
-            r.planarModel->recoverInertialStrain(c.planar, c.externalAccelerations, c.modalAccelerations);
+            c.planarModel->modalAccelerations(c.planar, c.externalAccelerations, c.modalAccelerations);
+            c.planarModel->recoverInertialStrain(c.planar, c.externalAccelerations, c.modalAccelerations);
         } else {
             const RopeModel<3>& model = spatialModel(s, r);
             model.modalAccelerations(c.spatial, c.externalAccelerations, c.modalAccelerations);
@@ -183,6 +183,17 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         for (int j = 0; j < r.numModal; ++j) {
             zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];
             zdot[r.zOffset + r.numModal + j] = c.modalAccelerations[j];
+        }
+        // Friction work of the traction sheaves: (P_a - P_b) v_slip, zero in stick.
+        for (const RopeRecord::DrivenNode& d : r.driven) {
+            if (!d.traction) continue;
+            const double v = slipRate(s, r, d);
+            double power = 0;
+            if (v != 0) {
+                const auto [pa, pb] = nodeAxialForces(s, r, d.node);
+                power = (pa - pb) * v;
+            }
+            zdot[r.tractionZOffset + d.tractionIndex] = power;
         }
     }
     return 0;
@@ -284,7 +295,7 @@ Eigen::VectorXd ReevingSubsystem::Guts::ropeReaction(const State& s, const RopeR
     }
     Eigen::MatrixXd Sx;  // S not formed (product coupling): S xddot by one solve
     if (r.planar)
-        r.planarModel->multiplyByNodeMass(c.planar, c.externalAccelerations, Sx);
+        c.planarModel->multiplyByNodeMass(c.planar, c.externalAccelerations, Sx);
     else
         spatialModel(s, r).multiplyByNodeMass(c.spatial, c.externalAccelerations, Sx);
     f -= Sx.col(0);

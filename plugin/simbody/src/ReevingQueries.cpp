@@ -27,8 +27,8 @@ std::vector<Vec3> ReevingSubsystem::Guts::sample(const State& s, int rope, int s
     const Eigen::VectorXd qm = modal(getZ(s), r, false);
     if (r.planar) {
         const Eigen::Matrix2Xd n2 = planarNodes(r, c.nodes3);
-        r.planarModel->spanCoordinates(span, n2, qm, c.planar, q);
-        const auto& sp = r.planarModel->span(span);
+        c.planarModel->spanCoordinates(span, n2, qm, c.planar, q);
+        const auto& sp = c.planarModel->span(span);
         const double offset = r.normal.dot(c.nodes3.col(0));
         for (int k = 0; k < numPoints; ++k) {
             const double sk = q[sp.s1Index()] + (q[sp.s2Index()] - q[sp.s1Index()]) * k / (numPoints - 1);
@@ -115,7 +115,7 @@ double ReevingSubsystem::strainAt(const State& s, int rope, int span, double sMa
         const double r1 = q[sp.s1Index()], r2 = q[sp.s2Index()];
         return sp.strain(q, xi >= 1.0 ? r2 : r1 + xi * (r2 - r1));
     };
-    if (r.planar) return strainOf(*r.planarModel, g.planarNodes(r, c.nodes3), c.planar);
+    if (r.planar) return strainOf(*c.planarModel, g.planarNodes(r, c.nodes3), c.planar);
     return strainOf(g.spatialModel(s, r), c.nodes3, c.spatial);
 }
 
@@ -147,7 +147,7 @@ double ReevingSubsystem::getConstraintError(const State& s, int rope, int sheave
     if (sheave < 1 || sheave >= r.numNodes() - 1)
         invalid("sheave node index = " + std::to_string(sheave) + " is outside 1.." + std::to_string(r.numNodes() - 2));
     const RopeCache& c = getGuts().positionCache(s).ropes[rope];
-    return r.planar ? r.planarModel->constraintError(c.planar, sheave)
+    return r.planar ? c.planarModel->constraintError(c.planar, sheave)
                     : getGuts().spatialModel(s, r).constraintError(c.spatial, sheave);
 }
 

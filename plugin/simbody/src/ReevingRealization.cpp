@@ -87,6 +87,18 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         z += 2 * r.numModal;
         r.index = static_cast<int>(&r - self.ropes.data());
     }
+    TractionStates traction;  // every traction sheave in stick at its spec's s_ref
+    for (RopeRecord& r : self.ropes) {
+        r.tractionZOffset = z;  // friction work of each traction sheave
+        z += r.numTraction;
+        r.tractionModels.clear();
+        traction.ropes.emplace_back(r.numTraction);
+        for (const RopeRecord::DrivenNode& d : r.driven)
+            if (d.traction) {
+                traction.ropes.back()[d.tractionIndex].sStick = d.sRef;
+                traction.ropes.back()[d.tractionIndex].wrapAngle = d.wrapAngle;
+            }
+    }
     // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
     // coordinate (1 row each); each rope records which of its external coordinates each row is.
     self.mobileNodes_.clear();
@@ -163,6 +175,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     frames.models.assign(ropes.size(), nullptr);
     frames.changes.assign(ropes.size(), 0);
     framesVariable_ = allocateDiscreteVariable(s, Stage::Position, new Value<SpatialFrames>(frames));
+    tractionVariable_ = allocateDiscreteVariable(s, Stage::Position, new Value<TractionStates>(traction));
     return 0;
 }
 
@@ -215,6 +228,7 @@ int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
     PositionCache& pc = updPositionCache(s);
     pc.ropes.resize(ropes.size());
     updateBodyKinematics(s, pc, false);
+    resolveWrapAngles(s, pc);
     for (size_t i = 0; i < ropes.size(); ++i) {
         updatePositionPart(s, ropes[i], pc, pc.ropes[i]);
         if (ropes[i].numModal > 0)
@@ -286,7 +300,17 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
     try {
         if (r.planar) {
             c.nodes2.noalias() = r.planeBasis.transpose() * c.nodes3;
-            r.planarModel->solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
+            const RopeModel<2>& model = planarModel(s, r);
+            if (c.planarModel != &model) {
+                // Another traction phase: fresh data for its model (other dependents), warm-started
+                // from the material coordinates and amplitudes of the last phase.
+                RopeData<2> fresh;
+                fresh.materialCoordinates = c.planar.materialCoordinates;
+                fresh.condensedAmplitudes = c.planar.condensedAmplitudes;
+                c.planar = std::move(fresh);
+                c.planarModel = &model;
+            }
+            model.solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
         } else {
             spatialModel(s, r, c.nodes3).solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
         }
@@ -320,7 +344,7 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
     try {
         if (r.planar) {
             c.nodeVelocities2.noalias() = r.planeBasis.transpose() * c.nodeVelocities3;
-            r.planarModel->computeDynamics(c.nodes2, c.nodeVelocities2, c.drivenS, c.drivenSdot, c.modalCoordinates,
+            planarModel(s, r).computeDynamics(c.nodes2, c.nodeVelocities2, c.drivenS, c.drivenSdot, c.modalCoordinates,
                                            c.modalRates, c.planar);
         } else {
             spatialModel(s, r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot,
@@ -359,7 +383,7 @@ Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {
             u += r.planar ? c.planar.strainEnergy + c.planar.gravityEnergy
                           : c.spatial.strainEnergy + c.spatial.gravityEnergy;
         } else if (r.planar) {
-            u += potential(*r.planarModel, c.planar, planarNodes(r, c.nodes3), modal(getZ(s), r, false));
+            u += potential(planarModel(s, r), c.planar, planarNodes(r, c.nodes3), modal(getZ(s), r, false));
         } else {
             u += potential(spatialModel(s, r), c.spatial, c.nodes3, modal(getZ(s), r, false));
         }
@@ -482,7 +506,7 @@ int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, 
                                        .setTransform(Transform(R_GC, centre))
                                        .setColor(Vec3(0.72, 0.72, 0.78))
                                        .setResolution(2));
-                if (n.kind == RopeNodeKind::TurningSheave) {  // a spoke turning with the pin, on both faces
+                if (n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) {  // a spoke turning with the pin, on both faces
                     for (double face : {-1.0, 1.0}) {
                         const Vec3 o = centre + face * 1.05 * halfWidth * axis;
                         geometry.push_back(DecorativeLine(o - 0.9 * n.radius * radial, o + 0.9 * n.radius * radial)
@@ -668,9 +692,13 @@ void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord&
     const int n = static_cast<int>(r.driven.size());
     sDriven.resize(n);
     if (sDrivenDot) sDrivenDot->resize(n);
+    const std::vector<TractionNodeState>* traction = r.numTraction > 0 ? &tractionStates(s).ropes[r.index] : nullptr;
     for (int d = 0; d < n; ++d) {
         const MobilizedBody& pin = r.nodeSpec(r.driven[d].node).body;
-        sDriven[d] = r.driven[d].sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
+        // A traction sheave's stick offset is state (in slip the entry is the groove's coordinate,
+        // which no span reads).
+        const double sRef = r.driven[d].traction ? (*traction)[r.driven[d].tractionIndex].sStick : r.driven[d].sRef;
+        sDriven[d] = sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
         if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * pin.getOneU(s, 0);
     }
 }

@@ -116,6 +116,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             case RopeNodeKind::DeviationSheave: return "DeviationSheave";
             case RopeNodeKind::WinchDrum: return "WinchDrum";
             case RopeNodeKind::TurningSheave: return "TurningSheave";
+            case RopeNodeKind::TractionSheave: return "TractionSheave";
         }
         return "unknown kind";
     };
@@ -131,11 +132,12 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                                         : k == r.numNodes() - 1 ? std::string("end node")
                                                                 : "sheave " + std::to_string(k - 1)) +
                                  " (" + kindName(n.kind) + ", node " + std::to_string(k) + ")";
-        if (end && (n.kind == RopeNodeKind::DeviationSheave || n.kind == RopeNodeKind::TurningSheave))
+        if (end && (n.kind == RopeNodeKind::DeviationSheave || n.kind == RopeNodeKind::TurningSheave ||
+                    n.kind == RopeNodeKind::TractionSheave))
             invalid(name + ": a rope end must be an Anchor or a WinchDrum (a sheave needs a span on both sides)");
         if (!end && (n.kind == RopeNodeKind::Anchor || n.kind == RopeNodeKind::WinchDrum))
-            invalid(name + ": a node inside the path must be a DeviationSheave or a TurningSheave (a rope fastened "
-                           "mid-path is two ropes)");
+            invalid(name + ": a node inside the path must be a DeviationSheave, TurningSheave or TractionSheave (a "
+                           "rope fastened mid-path is two ropes)");
         if (n.body.isEmptyHandle()) invalid(name + " has no body");
         if (matter && &n.body.getMatterSubsystem() != matter)
             invalid(name + " is on a body of another system's matter subsystem");
@@ -153,8 +155,17 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
         if (n.sense != 1 && n.sense != -1) invalid(name + " sense = " + std::to_string(n.sense) + " must be +1 or -1");
         if (n.kind == RopeNodeKind::WinchDrum && (!std::isfinite(n.ropeOnDrum) || n.ropeOnDrum < 0))
             invalid(number(name + " ropeOnDrum [m]", n.ropeOnDrum, "finite and >= 0"));
-        if (n.kind == RopeNodeKind::TurningSheave && !std::isfinite(n.materialCoordinateAtZeroAngle))
+        if ((n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) &&
+            !std::isfinite(n.materialCoordinateAtZeroAngle))
             invalid(number(name + " materialCoordinateAtZeroAngle [m]", n.materialCoordinateAtZeroAngle, "finite"));
+        if (n.kind == RopeNodeKind::TractionSheave) {
+            if (!std::isfinite(n.frictionCoefficient) || n.frictionCoefficient < 0)
+                invalid(number(name + " frictionCoefficient [-]", n.frictionCoefficient, "finite and >= 0"));
+            if (!std::isfinite(n.wrapAngle) || n.wrapAngle < 0 || n.wrapAngle > 20 * SimTK::Pi)
+                invalid(number(name + " wrapAngle [rad]", n.wrapAngle, "in [0, 20 pi] (0: from the geometry)"));
+            if (!(spec.planeNormal.norm() > 0))
+                invalid(name + ": TractionSheave is implemented for planar ropes only (give RopeSpec::planeNormal)");
+        }
     }
     if (!std::isfinite(spec.minimumSpanLength) || !(spec.minimumSpanLength > 0))
         invalid(number(who + "minimumSpanLength [m]", spec.minimumSpanLength, "finite and > 0"));
@@ -191,11 +202,18 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             case RopeNodeKind::Anchor: r.materialKinds[k] = MaterialNode::Fixed; break;
             case RopeNodeKind::DeviationSheave: r.materialKinds[k] = MaterialNode::Sliding; break;
             case RopeNodeKind::WinchDrum:
-            case RopeNodeKind::TurningSheave: {
-                r.materialKinds[k] = MaterialNode::Driven;
+            case RopeNodeKind::TurningSheave:
+            case RopeNodeKind::TractionSheave: {
+                r.materialKinds[k] = MaterialNode::Driven;  // a TractionSheave starts in stick
                 RopeRecord::DrivenNode d;
                 d.node = k;
                 d.drum = n.kind == RopeNodeKind::WinchDrum;
+                d.traction = n.kind == RopeNodeKind::TractionSheave;
+                if (d.traction) {
+                    d.tractionIndex = r.numTraction++;
+                    d.frictionCoefficient = n.frictionCoefficient;
+                    d.wrapAngle = n.wrapAngle;
+                }
                 d.ropeOnDrum = n.ropeOnDrum;
                 d.payout = n.sense * n.radius;
                 if (!d.drum) {
@@ -255,6 +273,9 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     }
     if (g.ropes.empty()) installLimitHandler(updSystem(), getMySubsystemIndex());
     if (!r.planar) installFrameChangeHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()));
+    for (size_t d = 0; d < r.driven.size(); ++d)
+        if (r.driven[d].traction)
+            installTractionHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()), static_cast<int>(d));
     g.ropes.push_back(std::move(r));
     invalidateSubsystemTopologyCache();
     return static_cast<int>(g.ropes.size()) - 1;

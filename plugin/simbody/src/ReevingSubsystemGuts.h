@@ -65,7 +65,17 @@ struct RopeRecord {
         double sRef = 0, dsdTheta = 0;
         bool drum = false;
         double ropeOnDrum = 0, payout = 0;  // drums: rope stored = ropeOnDrum - payout theta
+        // TractionSheave: stick is this Driven node with sRef the state's TractionNodeState::sStick;
+        // slip makes the node MaterialNode::Slipping (see tractionModel).
+        bool traction = false;
+        int tractionIndex = -1;  // among the rope's traction sheaves
+        double frictionCoefficient = 0, wrapAngle = 0;  // wrapAngle 0: from the geometry
     };
+    int numTraction = 0;
+    int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
+    /// Models by traction phase (planar ropes with TractionSheaves): key = per traction sheave 0
+    /// (stick) or its slip ratio kappa; built on first use (the set of phases a run visits is small).
+    mutable std::vector<std::pair<std::vector<double>, std::shared_ptr<const RopeModel<2>>>> tractionModels;
     std::vector<DrivenNode> driven;
     std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
     std::vector<int> nodeSlot;  // per node: its body's slot in ReevingSubsystem::Guts::bodySlots (realizeTopology)
@@ -112,6 +122,21 @@ struct RopeRecord {
 /// frames are built from the chords of that configuration: makeReferenceFrame(chord)). An event
 /// (or ReevingSubsystem::resetSpanFrames) replaces a rope's model by one whose references are the
 /// current element frames, rotating the transverse modal coordinates and rates with it.
+/// State (a discrete variable, invalidating Stage::Position): per rope, per TractionSheave its phase
+/// and the material coordinate offset of its current stick phase (s_k = sStick + dsdTheta theta),
+/// the wrap angle in use (resolved from the geometry at the state's first realization to
+/// Stage::Position when the spec gives 0: written in place, as SpatialFrames) and the count of
+/// transitions.
+struct TractionNodeState {
+    TractionMode mode = TractionMode::Stick;
+    double sStick = 0;
+    double wrapAngle = 0;  // 0: not resolved yet
+    int transitions = 0;
+};
+struct TractionStates {
+    std::vector<std::vector<TractionNodeState>> ropes;
+};
+
 struct SpatialFrames {
     std::vector<std::shared_ptr<const RopeModel<3>>> models;
     std::vector<int> changes;  // per rope: reference changes since the frames were first built
@@ -127,6 +152,7 @@ struct RopeCache {
     Eigen::VectorXd modalCoordinates, modalRates;
     RopeData<2> planar;
     RopeData<3> spatial;
+    const RopeModel<2>* planarModel = nullptr;  // the model `planar` was computed with (traction phases)
     Eigen::VectorXd drivenS, drivenSdot;  // material coordinates and rates of the driven nodes
     // dynamics
     Eigen::VectorXd externalAccelerations;  // xddot of RopeModel's external coordinates (node positions
@@ -277,6 +303,34 @@ public:
     int calcDecorativeGeometryAndAppendImpl(const SimTK::State& s, SimTK::Stage stage,
                                             SimTK::Array_<SimTK::DecorativeGeometry>& geometry) const override;
 
+    /// The planar rope r's model in state s: r.planarModel, or for a rope with TractionSheaves the
+    /// model of the state's traction phases (Stage::Model or later).
+    const RopeModel<2>& planarModel(const SimTK::State& s, const detail::RopeRecord& r) const;
+    const detail::TractionStates& tractionStates(const SimTK::State& s) const;
+    detail::TractionStates& updTractionStates(SimTK::State& s) const;
+    /// Resolves the wrap angles the specs leave to the geometry (TractionSheave::wrapAngle = 0) from
+    /// the node positions of pc, in place (realizeSubsystemPositionImpl).
+    void resolveWrapAngles(const SimTK::State& s, const detail::PositionCache& pc) const;
+    /// Axial forces P_a, P_b of the spans before and after node k at the node [N] (Stage::Position).
+    std::pair<double, double> nodeAxialForces(const SimTK::State& s, const detail::RopeRecord& r, int node) const;
+    /// e^(mu alpha) of traction sheave d of rope r in state s.
+    double tractionLimit(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
+    /// Slip rate sdot_k - dsdTheta thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).
+    double slipRate(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
+    /// Witness of traction sheave d's next transition (Stage::Velocity), positive until it is due:
+    /// stick: the smaller of e^(mu alpha) P_b - P_a and e^(mu alpha) P_a - P_b, plus a hysteresis of
+    /// kTractionHysteresis (|P_a| + |P_b|) [N]; slip: the slip rate in the slip's direction plus
+    /// kSlipRateHysteresis [m/s].
+    double tractionWitness(const SimTK::State& s, int rope, int driven) const;
+    /// The transition of traction sheave d (its witness fell through zero): stick -> slip towards the
+    /// tight side, slip -> stick with sStick = s_k - dsdTheta theta (s_k continuous).
+    void changeTractionMode(SimTK::State& s, int rope, int driven) const;
+    /// Relative force margin past the capstan limit at which a sticking sheave starts to slip, and
+    /// the slip rate past zero at which a slipping one sticks: a zero witness right after a
+    /// transition would otherwise leave the event's direction to round-off.
+    static constexpr double kTractionHysteresis = 1e-9;
+    static constexpr double kSlipRateHysteresis = 1e-9;  // [m/s]
+
     /// The spatial rope r's model in state s; if the state has none yet, builds it from the chords
     /// of `nodes` (the state's configuration) and stores it in the state (see SpatialFrames).
     const RopeModel<3>& spatialModel(const SimTK::State& s, const detail::RopeRecord& r,
@@ -409,6 +463,7 @@ private:
 
     mutable SimTK::CacheEntryIndex positionCache_;
     mutable SimTK::DiscreteVariableIndex framesVariable_;
+    mutable SimTK::DiscreteVariableIndex tractionVariable_;
     mutable const SimTK::MultibodySystem* system_ = nullptr;
     mutable const SimTK::SimbodyMatterSubsystem* matter_ = nullptr;
 };
@@ -422,6 +477,10 @@ void installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving);
 /// Adds to `system` the event handler that changes the span reference frames of spatial rope
 /// `rope` when a chord nears reversal against its reference (ReevingRealization.cpp).
 void installFrameChangeHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope);
+
+/// Adds to `system` the event handler of the stick/slip transitions of rope `rope`'s driven node
+/// `driven`, a TractionSheave (ReevingTraction.cpp).
+void installTractionHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope, int driven);
 
 /// Helper: rope `rope` of g; throws std::invalid_argument if the index is out of range.
 inline const RopeRecord& ropeAt(const ReevingSubsystem::Guts& g, int rope) {

@@ -41,7 +41,23 @@ namespace SimbodyReeving {
 /// (RopeModel::setStoredRope; without it the drum torque would depend on the height datum). Do not
 /// add that rope to the drum body's mass as well. The node's position is the point on the pin axis;
 /// the wrap arc is not modelled (point sheaves, as the paper).
-enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave };
+///   - TractionSheave: a sheave in the path on a MobilizedBody::Pin whose groove drives the rope by
+///     friction (an elevator's machine sheave), coefficient mu, wrap angle alpha; with P_a, P_b the
+///     axial forces of the spans before and after it:
+///       stick [Driven]: s_k = s_stick + sense R theta while e^(-mu alpha) <= P_a / P_b <= e^(mu alpha);
+///       slip [Slipping]: s_k is free, P_tight = e^(mu alpha) P_slack (Euler-Eytelwein), the tight
+///       side the one the rope slides towards relative to the groove; the friction force P_a - P_b
+///       turns the pin (torque sense R (P_a - P_b)) and dissipates (P_a - P_b) v_slip >= 0.
+///     Transitions are events (TractionMode): stick -> slip when the ratio reaches a limit, slip ->
+///     stick when the slip rate returns to zero; s_k is continuous through both. See TractionSheave.
+enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave, TractionSheave };
+
+/// The phase of a TractionSheave (ReevingSubsystem::getTractionMode).
+enum class TractionMode {
+    Stick,            ///< the rope moves with the groove
+    SlipTowardStart,  ///< the rope slides over the groove towards the rope's start (span k - 1 tight)
+    SlipTowardEnd,    ///< towards the rope's end (span k tight)
+};
 
 /// One node of a rope's path (see RopeNodeKind). Build it with the kind's struct below (RopeAnchor,
 /// DeviationSheave, WinchDrum, TurningSheave), which converts to a RopeNode; the two-argument
@@ -54,7 +70,9 @@ struct RopeNode {
     double radius = 0;          ///< sheaves and drums [m], > 0
     int sense = 1;              ///< WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind)
     double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
-    double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave: s_ref [m]
+    double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave, TractionSheave: s_ref [m]
+    double frictionCoefficient = 0;  ///< TractionSheave: mu [-], >= 0
+    double wrapAngle = 0;            ///< TractionSheave: alpha [rad], in [0, 20 pi]; 0: from the geometry
 
     RopeNode() = default;
     /// An Anchor at `station` of `body`.
@@ -121,6 +139,41 @@ struct TurningSheave {
         n.kind = RopeNodeKind::TurningSheave;
         n.sense = sense;
         n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
+        return n;
+    }
+};
+
+/// A traction sheave (see RopeNodeKind::TractionSheave): a MobilizedBody::Pin, radius R [m] > 0,
+/// the groove's friction coefficient mu [-] >= 0 (an effective one: a V or undercut groove's
+/// wedge factor included), the wrap angle alpha [rad] (0, the default: taken when the state is
+/// first realized to Stage::Position from the angle by which the two spans turn the rope at the
+/// node, alpha = pi - angle(r_{k-1} - r_k, r_{k+1} - r_k); fixed for the run: a point sheave does
+/// not follow the tangent points, so give alpha for double wrap or when the geometry changes the
+/// wrap), the material coordinate at the sheave at pin angle 0 with no slip yet [m] (as for a
+/// TurningSheave; getSlipDistance counts from it), the sense (as for a TurningSheave) and the point
+/// on the pin axis (body frame). It starts in stick.
+///
+/// What the point sheave does not model: the tension varies along the wrap arc (P e^(mu phi) in
+/// slip, and the creep of an elastic rope in stick: the whole arc sticks here); the centrifugal
+/// load rhoA v^2 of the rope on the arc (it lowers the effective traction at high rope speed);
+/// groove wear and pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
+/// undefined: both forces at or below 0 keep the sheave in its mode. Planar ropes only for now
+/// (addRope throws for a spatial rope with a TractionSheave).
+struct TractionSheave {
+    SimTK::MobilizedBody body;
+    double radius = 0;
+    double frictionCoefficient = 0;
+    double wrapAngle = 0;
+    double materialCoordinateAtZeroAngle = 0;
+    int sense = 1;
+    SimTK::Vec3 centre{0};
+    operator RopeNode() const {
+        RopeNode n(body, centre, radius);
+        n.kind = RopeNodeKind::TractionSheave;
+        n.sense = sense;
+        n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
+        n.frictionCoefficient = frictionCoefficient;
+        n.wrapAngle = wrapAngle;
         return n;
     }
 };
@@ -269,6 +322,41 @@ public:
     /// bodies' own work it closes the energy balance of a driven machine.
     /// @throws as getDrivenNodeTorque.
     double getDrivenNodePower(const SimTK::State& state, int rope, int node) const;
+    // ---- traction sheaves (RopeNodeKind::TractionSheave); each throws std::invalid_argument if
+    // rope or node is out of range or the node is not a TractionSheave --------------------------
+    /// Stick or slip (a discrete state variable, changed by the subsystem's traction events).
+    TractionMode getTractionMode(const SimTK::State& state, int rope, int node) const;
+    /// Slip rate v = sdot_k - sense R thetadot [m/s] (Stage::Velocity): the rope's speed over the
+    /// groove, positive towards the rope's start; 0 in stick.
+    double getSlipRate(const SimTK::State& state, int rope, int node) const;
+    /// Net slip distance s_k - sense R theta - s_ref [m]: how far the rope has slid over the groove
+    /// since the start (positive towards the rope's start).
+    double getSlipDistance(const SimTK::State& state, int rope, int node) const;
+    /// Force ratio P_a / P_b of the spans before and after the sheave [-] (Stage::Position; NaN if
+    /// P_b <= 0).
+    double getTractionRatio(const SimTK::State& state, int rope, int node) const;
+    /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position: alpha may come from the
+    /// geometry of the state's first realization).
+    double getTractionLimit(const SimTK::State& state, int rope, int node) const;
+    /// The wrap angle alpha in use [rad] (Stage::Position).
+    double getWrapAngle(const SimTK::State& state, int rope, int node) const;
+    /// Friction power dissipated in the groove, (P_a - P_b) v >= 0 [W] (Stage::Velocity; 0 in stick).
+    double getFrictionPower(const SimTK::State& state, int rope, int node) const;
+    /// Work dissipated by friction in the groove since the start [J] (the integral of
+    /// getFrictionPower: a Z entry of the subsystem).
+    double getFrictionWork(const SimTK::State& state, int rope, int node) const;
+    /// Work dissipated by friction in every TractionSheave of every rope [J].
+    double getTotalFrictionWork(const SimTK::State& state) const;
+    /// Number of stick/slip transitions of this sheave in the state's history.
+    int getNumTractionTransitions(const SimTK::State& state, int rope, int node) const;
+    /// Puts every sticking TractionSheave whose force ratio is outside [e^(-mu alpha), e^(mu alpha)]
+    /// into slip towards its tight side (realizes the state to Stage::Position first). The events
+    /// only see a ratio that crosses the limit during a step; call this on an initial state that may
+    /// start beyond it (e.g. a static equilibrium found in stick, which holds any ratio), before the
+    /// integrator is initialized. Returns the number of sheaves put into slip. The material
+    /// coordinate at such a sheave moves to where the capstan ratio holds (a new initial condition).
+    int updateTractionModes(SimTK::State& state) const;
+
     /// Rope stored on a WinchDrum node [m]: ropeOnDrum - sense R theta.
     /// @throws std::invalid_argument if rope or node is out of range or the node is not a WinchDrum.
     double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;

@@ -1,0 +1,278 @@
+// ReevingSubsystem::Guts: traction sheaves (RopeNodeKind::TractionSheave). Stick is a Driven node
+// whose offset is state; slip makes the node MaterialNode::Slipping with the capstan ratio of the
+// slip's direction; the transitions are events; the friction work is a Z entry.
+
+#include "ReevingSubsystemGuts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+using SimTK::MobilizedBody;
+using SimTK::Real;
+using SimTK::Stage;
+using SimTK::State;
+using SimTK::SubsystemIndex;
+using SimTK::System;
+using SimTK::Value;
+
+namespace SimbodyReeving {
+
+using namespace detail;
+
+const TractionStates& ReevingSubsystem::Guts::tractionStates(const State& s) const {
+    return Value<TractionStates>::downcast(getDiscreteVariable(s, tractionVariable_)).get();
+}
+
+TractionStates& ReevingSubsystem::Guts::updTractionStates(State& s) const {
+    return Value<TractionStates>::updDowncast(updDiscreteVariable(s, tractionVariable_)).upd();
+}
+
+double ReevingSubsystem::Guts::tractionLimit(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
+    return std::exp(d.frictionCoefficient * tractionStates(s).ropes[r.index][d.tractionIndex].wrapAngle);
+}
+
+const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const RopeRecord& r) const {
+    if (r.numTraction == 0) return *r.planarModel;
+    const std::vector<TractionNodeState>& ts = tractionStates(s).ropes[r.index];
+    std::vector<double> key(r.numTraction, 0.0);
+    bool anySlip = false;
+    for (const RopeRecord::DrivenNode& d : r.driven) {
+        if (!d.traction) continue;
+        const TractionNodeState& t = ts[d.tractionIndex];
+        if (t.mode == TractionMode::Stick) continue;
+        const double limit = std::exp(d.frictionCoefficient * t.wrapAngle);
+        // kappa = P_{k-1} / P_k: the tight side is the one the rope slides towards.
+        key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? limit : 1.0 / limit;
+        anySlip = true;
+    }
+    if (!anySlip) return *r.planarModel;
+    for (const auto& [k, model] : r.tractionModels)
+        if (k == key) return *model;
+    std::vector<MaterialNode> kinds = r.materialKinds;
+    for (const RopeRecord::DrivenNode& d : r.driven)
+        if (d.traction && key[d.tractionIndex] > 0) kinds[d.node] = MaterialNode::Slipping;
+    std::vector<SpanModel<2>> spans;
+    for (int j = 0; j < r.numSpans(); ++j) spans.push_back(r.planarModel->span(j));
+    auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, kinds);
+    for (const RopeRecord::DrivenNode& d : r.driven)
+        if (d.traction && key[d.tractionIndex] > 0) model->setSlipRatio(d.node, key[d.tractionIndex]);
+    r.addStoredRope(*model);
+    model->setStationaryNodes(r.stationaryNodes());
+    r.tractionModels.emplace_back(key, model);
+    return *r.tractionModels.back().second;
+}
+
+void ReevingSubsystem::Guts::resolveWrapAngles(const State& s, const PositionCache& pc) const {
+    const TractionStates& ts = tractionStates(s);
+    for (const RopeRecord& r : ropes)
+        for (const RopeRecord::DrivenNode& d : r.driven) {
+            if (!d.traction || ts.ropes[r.index][d.tractionIndex].wrapAngle > 0) continue;
+            // From this configuration (the state's first realization to Stage::Position): a value the
+            // state did not have yet, written in place (as the spatial frames are).
+            const int k = d.node;
+            auto at = [&](int node) { return pc.bodyX[r.nodeSlot[node]] * r.node(node).second; };
+            const SimTK::Vec3 a = at(k - 1) - at(k), b = at(k + 1) - at(k);
+            const double cosine = std::clamp(SimTK::dot(a, b) / (a.norm() * b.norm()), -1.0, 1.0);
+            const double alpha = SimTK::Pi - std::acos(cosine);
+            if (!(alpha > 0))
+                throw std::runtime_error("ReevingSubsystem: rope '" + r.spec.name + "' traction sheave at node " +
+                                         std::to_string(k) +
+                                         ": the rope passes straight over it in this configuration (wrap angle 0); "
+                                         "give TractionSheave::wrapAngle");
+            const_cast<TractionStates&>(ts).ropes[r.index][d.tractionIndex].wrapAngle = alpha;
+        }
+}
+
+std::pair<double, double> ReevingSubsystem::Guts::nodeAxialForces(const State& s, const RopeRecord& r, int k) const {
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    const RopeModel<2>& model = *c.planarModel;
+    EndStrain<2> e;
+    const Eigen::VectorXd& qa = c.planar.spanCoordinates(k - 1);
+    model.span(k - 1).endStrain(qa, Eigen::VectorXd::Zero(qa.size()), SpanEnd::Second, e);
+    const double pa = r.spec.properties.axialStiffness * e.strain;
+    const Eigen::VectorXd& qb = c.planar.spanCoordinates(k);
+    model.span(k).endStrain(qb, Eigen::VectorXd::Zero(qb.size()), SpanEnd::First, e);
+    return {pa, r.spec.properties.axialStiffness * e.strain};
+}
+
+double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    if (tractionStates(s).ropes[r.index][d.tractionIndex].mode == TractionMode::Stick) return 0;
+    return c.planar.materialRates[d.node] - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+}
+
+double ReevingSubsystem::Guts::tractionWitness(const State& s, int rope, int driven) const {
+    const RopeRecord& r = ropes[rope];
+    const RopeRecord::DrivenNode& d = r.driven[driven];
+    const TractionNodeState& t = tractionStates(s).ropes[rope][d.tractionIndex];
+    if (t.mode == TractionMode::Stick) {
+        const auto [pa, pb] = nodeAxialForces(s, r, d.node);
+        const double scale = std::abs(pa) + std::abs(pb);
+        if (!(std::max(pa, pb) > 0)) return scale + 1.0;  // both sides slack: no traction to lose
+        const double limit = tractionLimit(s, r, d);
+        return std::min(limit * pb - pa, limit * pa - pb) + kTractionHysteresis * scale;
+    }
+    const double v = slipRate(s, r, d);
+    return (t.mode == TractionMode::SlipTowardStart ? v : -v) + kSlipRateHysteresis;
+}
+
+void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) const {
+    getSystem().realize(s, Stage::Velocity);
+    const RopeRecord& r = ropes[rope];
+    const RopeRecord::DrivenNode& d = r.driven[driven];
+    TractionNodeState next = tractionStates(s).ropes[rope][d.tractionIndex];
+    if (next.mode == TractionMode::Stick) {
+        const auto [pa, pb] = nodeAxialForces(s, r, d.node);
+        const double limit = tractionLimit(s, r, d);
+        next.mode = limit * pb - pa < limit * pa - pb ? TractionMode::SlipTowardStart : TractionMode::SlipTowardEnd;
+    } else {
+        const double sk = positionCache(s).ropes[rope].planar.materialCoordinates[d.node];
+        next.sStick = sk - d.dsdTheta * r.nodeSpec(d.node).body.getOneQ(s, 0);
+        next.mode = TractionMode::Stick;
+    }
+    ++next.transitions;
+    updTractionStates(s).ropes[rope][d.tractionIndex] = next;
+}
+
+namespace {
+
+/// Witness: ReevingSubsystem::Guts::tractionWitness of one traction sheave; when it falls through
+/// zero, the sheave changes between stick and slip.
+class TractionEvent : public SimTK::TriggeredEventHandler {
+public:
+    TractionEvent(const System& system, SubsystemIndex reeving, int rope, int driven)
+        : SimTK::TriggeredEventHandler(Stage::Velocity), system_(system), reeving_(reeving), rope_(rope),
+          driven_(driven) {
+        getTriggerInfo().setTriggerOnRisingSignTransition(false);
+        getTriggerInfo().setTriggerOnFallingSignTransition(true);
+        getTriggerInfo().setRequiredLocalizationTimeWindow(1e-8);
+    }
+    Real getValue(const State& s) const override { return guts().tractionWitness(s, rope_, driven_); }
+    void handleEvent(State& s, Real, bool& shouldTerminate) const override {
+        shouldTerminate = false;
+        guts().changeTractionMode(s, rope_, driven_);
+    }
+
+private:
+    const ReevingSubsystem::Guts& guts() const {
+        return dynamic_cast<const ReevingSubsystem::Guts&>(system_.getSubsystem(reeving_).getSubsystemGuts());
+    }
+    const System& system_;
+    SubsystemIndex reeving_;
+    int rope_, driven_;
+};
+
+const RopeRecord::DrivenNode& tractionAt(const RopeRecord& r, int node) {
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    const int d = r.drivenIndex(node);
+    if (d < 0 || !r.driven[d].traction)
+        invalid("rope '" + r.spec.name + "' node " + std::to_string(node) + " is not a TractionSheave");
+    return r.driven[d];
+}
+
+}  // namespace
+
+void detail::installTractionHandler(System& system, SubsystemIndex reeving, int rope, int driven) {
+    system.addEventHandler(new TractionEvent(system, reeving, rope, driven));  // the system owns it
+}
+
+// ---- public queries ---------------------------------------------------------------------------
+
+TractionMode ReevingSubsystem::getTractionMode(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    return getGuts().tractionStates(s).ropes[rope][tractionAt(r, node).tractionIndex].mode;
+}
+
+double ReevingSubsystem::getSlipRate(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const RopeRecord::DrivenNode& d = tractionAt(r, node);
+    if (s.getSystemStage() < Stage::Velocity)
+        throw std::logic_error("ReevingSubsystem::getSlipRate: realize the state to Stage::Velocity first");
+    return getGuts().slipRate(s, r, d);
+}
+
+double ReevingSubsystem::getSlipDistance(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const RopeRecord::DrivenNode& d = tractionAt(r, node);
+    const double sk = getGuts().positionCache(s).ropes[rope].planar.materialCoordinates[node];
+    return sk - d.dsdTheta * r.nodeSpec(node).body.getOneQ(s, 0) - d.sRef;
+}
+
+double ReevingSubsystem::getTractionRatio(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    tractionAt(r, node);
+    const auto [pa, pb] = getGuts().nodeAxialForces(s, r, node);
+    return pb > 0 ? pa / pb : std::numeric_limits<double>::quiet_NaN();
+}
+
+double ReevingSubsystem::getTractionLimit(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const RopeRecord::DrivenNode& d = tractionAt(r, node);
+    getGuts().positionCache(s);  // Stage::Position: the wrap angle is resolved
+    return getGuts().tractionLimit(s, r, d);
+}
+
+double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    const RopeRecord::DrivenNode& d = tractionAt(r, node);
+    getGuts().positionCache(s);
+    return getGuts().tractionStates(s).ropes[rope][d.tractionIndex].wrapAngle;
+}
+
+double ReevingSubsystem::getFrictionPower(const State& s, int rope, int node) const {
+    const double v = getSlipRate(s, rope, node);
+    if (v == 0) return 0;
+    const auto [pa, pb] = getGuts().nodeAxialForces(s, ropeAt(getGuts(), rope), node);
+    return (pa - pb) * v;
+}
+
+double ReevingSubsystem::getFrictionWork(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    return getGuts().getZ(s)[r.tractionZOffset + tractionAt(r, node).tractionIndex];
+}
+
+double ReevingSubsystem::getTotalFrictionWork(const State& s) const {
+    double w = 0;
+    for (const RopeRecord& r : getGuts().ropes)
+        for (int t = 0; t < r.numTraction; ++t) w += getGuts().getZ(s)[r.tractionZOffset + t];
+    return w;
+}
+
+int ReevingSubsystem::getNumTractionTransitions(const State& s, int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    return getGuts().tractionStates(s).ropes[rope][tractionAt(r, node).tractionIndex].transitions;
+}
+
+int ReevingSubsystem::updateTractionModes(State& s) const {
+    const Guts& g = getGuts();
+    g.getSystem().realize(s, Stage::Position);
+    int changed = 0;
+    for (const RopeRecord& r : g.ropes)
+        for (const RopeRecord::DrivenNode& d : r.driven) {
+            if (!d.traction) continue;
+            TractionNodeState t = g.tractionStates(s).ropes[r.index][d.tractionIndex];
+            if (t.mode != TractionMode::Stick) continue;
+            const auto [pa, pb] = g.nodeAxialForces(s, r, d.node);
+            if (!(std::max(pa, pb) > 0)) continue;
+            const double limit = g.tractionLimit(s, r, d);
+            if (pa > limit * pb) {
+                t.mode = TractionMode::SlipTowardStart;
+            } else if (pb > limit * pa) {
+                t.mode = TractionMode::SlipTowardEnd;
+            } else {
+                continue;
+            }
+            ++t.transitions;
+            g.updTractionStates(s).ropes[r.index][d.tractionIndex] = t;
+            g.getSystem().realize(s, Stage::Position);
+            ++changed;
+        }
+    return changed;
+}
+
+}  // namespace SimbodyReeving

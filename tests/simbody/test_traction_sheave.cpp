@@ -1,0 +1,242 @@
+// TractionSheave (issue 21): a capstan Atwood machine. Two masses hang from a light, stiff rope over a
+// traction sheave on a pin that is held (Motion::Steady 0) or driven at constant speed. The masses
+// stay at rest exactly while m1 / m2 <= e^(mu alpha); in slip they accelerate as the capstan Atwood
+// machine; a slowly growing load starts the slip at the capstan ratio; mu = 0 is a DeviationSheave,
+// a large mu a TurningSheave; energy closes with the friction work.
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
+
+#include <gtest/gtest.h>
+
+#include <Simbody.h>
+
+#include <cmath>
+#include <memory>
+
+using namespace SimTK;
+namespace sr = SimbodyReeving;
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kMu = 0.2;
+const double kLimit = std::exp(kMu * Pi);  // wrap angle pi: 1.874
+
+enum class SheaveKind { Traction, Deviation, Turning };
+
+// A downward force on mass 1 growing at `rate` [N/s].
+class GrowingLoad : public Force::Custom::Implementation {
+public:
+    GrowingLoad(const MobilizedBody& body, double rate) : body_(body), rate_(rate) {}
+    void calcForce(const State& s, Vector_<SpatialVec>& bodyForces, Vector_<Vec3>&, Vector&) const override {
+        body_.applyBodyForce(s, SpatialVec(Vec3(0), Vec3(0, -rate_ * s.getTime(), 0)), bodyForces);
+    }
+    Real calcPotentialEnergy(const State&) const override { return 0; }
+    bool dependsOnlyOnPositions() const override { return false; }
+
+private:
+    MobilizedBody body_;
+    double rate_;
+};
+
+struct Atwood {
+    MultibodySystem system;
+    SimbodyMatterSubsystem matter{system};
+    GeneralForceSubsystem forces{system};
+    Force::Gravity gravity{forces, matter, -YAxis, kG};
+    std::unique_ptr<sr::ReevingSubsystem> reeving;
+    MobilizedBody::Pin sheave;
+    MobilizedBody::Slider mass1, mass2;  // along Ground's y: q is the height [m]
+    State state;
+
+    // m1 on the rope's start side (x = -0.5), m2 on its end side (x = +0.5), sheave at the origin.
+    struct Options {
+        double sheaveSpeed = 0;  // Motion::Steady of the pin [rad/s]
+        double loadRate = 0;     // GrowingLoad on mass 1 [N/s]
+        double rhoA = 0.01, EA = 1e7;  // light and stiff: 1 kN stretches it 1e-4
+        bool equilibrium = true;  // start at static equilibrium (else both masses at y = -5, rope at rest)
+    };
+    Atwood(double m1, double m2, SheaveKind kind, double mu) : Atwood(m1, m2, kind, mu, Options()) {}
+    Atwood(double m1, double m2, SheaveKind kind, double mu, const Options& o) {
+        const double sheaveSpeed = o.sheaveSpeed, loadRate = o.loadRate;
+        const Rotation slideUp(Pi / 2, ZAxis);  // the slider's x axis along Ground's y
+        sheave = MobilizedBody::Pin(matter.Ground(), Transform(), Body::Rigid(MassProperties(5, Vec3(0), Inertia(0.2))),
+                                    Transform());
+        mass1 = MobilizedBody::Slider(matter.Ground(), Transform(slideUp, Vec3(-0.5, 0, 0)),
+                                      Body::Rigid(MassProperties(m1, Vec3(0), Inertia(1))), Transform(slideUp));
+        mass2 = MobilizedBody::Slider(matter.Ground(), Transform(slideUp, Vec3(0.5, 0, 0)),
+                                      Body::Rigid(MassProperties(m2, Vec3(0), Inertia(1))), Transform(slideUp));
+        Motion::Steady(sheave, sheaveSpeed);
+        if (loadRate > 0) Force::Custom(forces, new GrowingLoad(mass1, loadRate));
+        reeving = std::make_unique<sr::ReevingSubsystem>(system);
+        sr::RopeSpec rope;
+        rope.start = sr::RopeAnchor{mass1, Vec3(0)};
+        const double R = 0.3, L = 10.0489, sRef = L / 2;
+        if (kind == SheaveKind::Traction)
+            rope.sheaves = {sr::TractionSheave{sheave, R, mu, Pi, sRef, 1, Vec3(0)}};
+        else if (kind == SheaveKind::Turning)
+            rope.sheaves = {sr::TurningSheave{sheave, R, sRef, 1, Vec3(0)}};
+        else
+            rope.sheaves = {sr::DeviationSheave{matter.Ground(), Vec3(0), R}};
+        rope.end = sr::RopeAnchor{mass2, Vec3(0)};
+        rope.properties = {o.rhoA, o.EA, 0.0, false};
+        rope.unstretchedLength = L;  // chords 2 x 5.0249 m: strain 1e-4 at y = -5
+        rope.spanDefaults.axialModes = 0;
+        rope.spanDefaults.transverseModes = 0;
+        rope.planeNormal = Vec3(0, 0, 1);
+        reeving->addRope(rope);
+        system.realizeTopology();
+        state = system.getDefaultState();
+        mass1.setOneQ(state, 0, -5.0);
+        mass2.setOneQ(state, 0, -5.0);
+        if (o.equilibrium) reeving->findStaticEquilibrium(state);  // in stick
+    }
+    double energy(const State& s) const { return reeving->calcMechanicalEnergy(s); }
+};
+
+TEST(TractionSheave, MassesStayAtRestExactlyWhileTheRatioIsWithinTheCapstanLimit) {
+    for (double fraction : {0.99, 1.01}) {
+        Atwood a(100.0 * kLimit * fraction, 100.0, SheaveKind::Traction, kMu);
+        const int slipping = a.reeving->updateTractionModes(a.state);
+        EXPECT_EQ(slipping, fraction < 1 ? 0 : 1) << fraction;
+        const double y0 = a.mass1.getOneQ(a.state, 0);
+        RungeKuttaMersonIntegrator integ(a.system);
+        integ.setAccuracy(1e-8);
+        TimeStepper ts(a.system, integ);
+        ts.initialize(a.state);
+        ts.stepTo(0.5);
+        const State& s = integ.getState();
+        const double moved = a.mass1.getOneQ(s, 0) - y0;
+        if (fraction < 1) {
+            EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::Stick);
+            EXPECT_EQ(a.reeving->getNumTractionTransitions(s, 0, 1), 0);
+            EXPECT_LE(std::abs(moved), 1e-10);  // measured 1.8e-12 m (rope creep at the Newton's tolerance)
+        } else {
+            EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart);
+            EXPECT_LT(moved, -1e-3);  // mass 1 goes down
+        }
+        std::printf("fraction %.2f: moved %.3e m\n", fraction, moved);
+    }
+}
+
+TEST(TractionSheave, SlippingMassesAccelerateAsTheCapstanAtwoodMachine) {
+    const double m1 = 250, m2 = 100;
+    Atwood a(m1, m2, SheaveKind::Traction, kMu);
+    ASSERT_EQ(a.reeving->updateTractionModes(a.state), 1);
+    a.system.realize(a.state, Stage::Velocity);
+    const double y0 = a.mass1.getOneQ(a.state, 0), e0 = a.energy(a.state);
+    RungeKuttaMersonIntegrator integ(a.system);
+    integ.setAccuracy(1e-8);
+    TimeStepper ts(a.system, integ);
+    ts.initialize(a.state);
+    const double T = 0.5;
+    ts.stepTo(T);
+    const State& s = integ.getState();
+    a.system.realize(s, Stage::Dynamics);
+    const double measured = -2 * (a.mass1.getOneQ(s, 0) - y0) / (T * T);
+    const double expected = kG * (m1 - m2 * kLimit) / (m1 + m2 * kLimit);
+    std::printf("capstan Atwood: a = %.6f m/s^2, expected %.6f (rel %.2e)\n", measured, expected,
+                measured / expected - 1);
+    // The issue's bound 0.5 %; measured -6.4e-4 (the rope's 0.1 kg and its oscillation on the masses).
+    EXPECT_NEAR(measured / expected, 1.0, 5e-3);
+    const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.energy(s) - e0;
+    std::printf("energy: dE %.6e J, W_friction %.6e J, residual %.3e\n", de, wf, de + wf);
+    EXPECT_GT(wf, 0);
+    // Measured 5.5e-10 of 171 J (RK-Merson 1e-8); margin 18x (the issue asks 1e-6).
+    EXPECT_LE(std::abs(de + wf), 1e-8 * std::max(std::abs(de), wf));
+    EXPECT_NEAR(a.reeving->getTractionRatio(s, 0, 1), kLimit, 1e-9);  // the Newton's 1e-15 strain tolerance
+    EXPECT_GT(a.reeving->getSlipRate(s, 0, 1), 0);
+}
+
+TEST(TractionSheave, SlowlyGrowingLoadStartsTheSlipAtTheCapstanRatio) {
+    // N/s on mass 1: slips near t = 0.73 s. The rope is lighter and stiffer here: its weight
+    // (rhoA g per fall) and its strain (the capstan law holds for P = EA eps, the tension is
+    // P |dr/ds|) shift the load ratio at the slip by about their relative size, 1e-5.
+    const double m1 = 180, m2 = 100, rate = 100;
+    Atwood::Options o;
+    o.loadRate = rate;
+    o.rhoA = 1e-4;
+    o.EA = 1e8;
+    Atwood a(m1, m2, SheaveKind::Traction, kMu, o);
+    // The masses on the stiff rope are an undamped oscillator (447 rad/s): position errors of the
+    // integrator's size stay in it as force noise (k = 2e7 N/m: 2 N per 1e-7 m), hence 1e-10.
+    RungeKuttaMersonIntegrator integ(a.system);
+    integ.setAccuracy(1e-10);
+    TimeStepper ts(a.system, integ);
+    ts.initialize(a.state);
+    double tSlip = -1;
+    // Reports every 1e-5 s (the load ratio grows 5.6e-7 relative per interval) around the expected
+    // slip time 0.7300 s, every 1e-2 s before.
+    const double dt = 1e-5;
+    for (int i = 1; i <= 72; ++i) ts.stepTo(i * 1e-2);
+    ASSERT_EQ(a.reeving->getTractionMode(integ.getState(), 0, 1), sr::TractionMode::Stick);
+    for (int i = 1; i <= 2000; ++i) {
+        const double t = 0.72 + i * dt;
+        ts.stepTo(t);
+        if (tSlip < 0 && a.reeving->getTractionMode(integ.getState(), 0, 1) != sr::TractionMode::Stick) tSlip = t;
+    }
+    ASSERT_GT(tSlip, 0);
+    const double loadRatio = (m1 * kG + rate * tSlip) / (m2 * kG);
+    std::printf("slip at t in (%.5f, %.5f]: load ratio %.8f vs e^(mu alpha) %.8f (rel %.2e)\n", tSlip - dt, tSlip,
+                loadRatio, kLimit, loadRatio / kLimit - 1);
+    // The issue's bound; measured 2.5e-5 (2026-12-01): the load ratio lags the rope-force ratio, which is at the limit to 1e-9.
+    EXPECT_NEAR(loadRatio / kLimit, 1.0, 1e-4);
+    const State& s = integ.getState();
+    a.system.realize(s, Stage::Dynamics);
+    // The load does work on mass 1: W = int F v dt, v the mass's velocity; measured by the energy
+    // balance less the friction work: check the balance with the load as the drive.
+    EXPECT_GT(a.reeving->getFrictionWork(s, 0, 1), 0);
+}
+
+TEST(TractionSheave, ZeroFrictionIsADeviationSheaveAndLargeFrictionATurningSheave) {
+    const double m1 = 130, m2 = 100, T = 1.0;
+    // From the same initial state (masses level, rope at rest, strain 1e-4) for every sheave kind: the
+    // masses start to move at once, and a traction sheave slips (mu = 0) or sticks (mu = 10) throughout.
+    Atwood::Options o;
+    o.equilibrium = false;
+    auto path = [&](SheaveKind kind, double mu) {
+        Atwood a(m1, m2, kind, mu, o);
+        if (kind == SheaveKind::Traction) a.reeving->updateTractionModes(a.state);
+        RungeKuttaMersonIntegrator integ(a.system);
+        integ.setAccuracy(1e-10);
+        TimeStepper ts(a.system, integ);
+        ts.initialize(a.state);
+        ts.stepTo(T);
+        return std::make_pair(a.mass1.getOneQ(integ.getState(), 0), a.mass2.getOneQ(integ.getState(), 0));
+    };
+    const auto deviation = path(SheaveKind::Deviation, 0), frictionless = path(SheaveKind::Traction, 0.0);
+    const auto turning = path(SheaveKind::Turning, 0), gripping = path(SheaveKind::Traction, 10.0);
+    std::printf("mu = 0 vs deviation: %.3e m; mu = 10 vs turning: %.3e m; deviation moved %.3f m\n",
+                std::abs(frictionless.first - deviation.first), std::abs(gripping.first - turning.first),
+                deviation.first + 5.0);
+    // The issue's bound 1e-9 m; measured 3.0e-10 m (mu = 0) and 0 (mu = 10: the same Driven model).
+    EXPECT_LE(std::abs(frictionless.first - deviation.first), 1e-9);
+    EXPECT_LE(std::abs(frictionless.second - deviation.second), 1e-9);
+    EXPECT_LE(std::abs(gripping.first - turning.first), 1e-9);
+    EXPECT_LE(std::abs(gripping.second - turning.second), 1e-9);
+}
+
+TEST(TractionSheave, DrivenSheaveMovesAStickingLoadAtItsSurfaceSpeed) {
+    const double omega = 2.0, R = 0.3;  // 0.6 m/s
+    Atwood::Options o;
+    o.sheaveSpeed = omega;
+    Atwood a(120, 100, SheaveKind::Traction, kMu, o);
+    auto chord = [&](const State& st) {  // the start-side fall's chord length [m]
+        return (a.mass1.getBodyOriginLocation(st) - a.sheave.getBodyOriginLocation(st)).norm();
+    };
+    RungeKuttaMersonIntegrator integ(a.system);
+    integ.setAccuracy(1e-8);
+    TimeStepper ts(a.system, integ);
+    ts.initialize(a.state);
+    ts.stepTo(0.5);
+    const double c1 = chord(integ.getState());
+    ts.stepTo(1.5);
+    const State& s = integ.getState();
+    // s = s_ref + R theta rises: rope moves to the start side, its fall lengthens at R omega (times
+    // the stretch 1 + 1e-4).
+    const double speed = (chord(s) - c1) / 1.0;
+    std::printf("driven: start fall lengthens at %.7f m/s vs R omega %.7f\n", speed, R * omega);
+    EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::Stick);
+    EXPECT_NEAR(speed / (R * omega), 1.0, 1e-3);  // the issue's 0.1 %; measured 2.1e-5 (the stretch 1e-4 changing)
+}
+
+}  // namespace
