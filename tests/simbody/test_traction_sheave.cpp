@@ -3,6 +3,7 @@
 // stay at rest exactly while m1 / m2 <= e^(mu alpha); in slip they accelerate as the capstan Atwood
 // machine; a slowly growing load starts the slip at the capstan ratio; mu = 0 is a DeviationSheave,
 // a large mu a TurningSheave; energy closes with the friction work.
+#include "SimbodyReeving/simbody/MotionWorkMeter.h"
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
 
 #include <gtest/gtest.h>
@@ -44,13 +45,15 @@ struct Atwood {
     GeneralForceSubsystem forces{system};
     Force::Gravity gravity{forces, matter, -YAxis, kG};
     std::unique_ptr<sr::ReevingSubsystem> reeving;
+    std::unique_ptr<sr::MotionWorkMeter> meter;  // the pin's motion is the drive
     MobilizedBody::Pin sheave;
     MobilizedBody::Slider mass1, mass2;  // along Ground's y: q is the height [m]
     State state;
 
     // m1 on the rope's start side (x = -0.5), m2 on its end side (x = +0.5), sheave at the origin.
     struct Options {
-        double sheaveSpeed = 0;  // Motion::Steady of the pin [rad/s]
+        double sheaveSpeed = 0;  // Motion::Steady of the pin [rad/s] (with swingAmplitude: the sinusoid's rate)
+        double swingAmplitude = 0;  // > 0: Motion::Sinusoid of the pin angle instead, amplitude [rad]
         double loadRate = 0;     // GrowingLoad on mass 1 [N/s]
         double rhoA = 0.01, EA = 1e7;  // light and stiff: 1 kN stretches it 1e-4
         bool equilibrium = true;  // start at static equilibrium (else both masses at y = -5, rope at rest)
@@ -65,7 +68,10 @@ struct Atwood {
                                       Body::Rigid(MassProperties(m1, Vec3(0), Inertia(1))), Transform(slideUp));
         mass2 = MobilizedBody::Slider(matter.Ground(), Transform(slideUp, Vec3(0.5, 0, 0)),
                                       Body::Rigid(MassProperties(m2, Vec3(0), Inertia(1))), Transform(slideUp));
-        Motion::Steady(sheave, sheaveSpeed);
+        if (o.swingAmplitude > 0)
+            Motion::Sinusoid(sheave, Motion::Position, o.swingAmplitude, sheaveSpeed, 0.0);
+        else
+            Motion::Steady(sheave, sheaveSpeed);
         if (loadRate > 0) Force::Custom(forces, new GrowingLoad(mass1, loadRate));
         reeving = std::make_unique<sr::ReevingSubsystem>(system);
         sr::RopeSpec rope;
@@ -84,6 +90,7 @@ struct Atwood {
         rope.spanDefaults.transverseModes = 0;
         rope.planeNormal = Vec3(0, 0, 1);
         reeving->addRope(rope);
+        meter = std::make_unique<sr::MotionWorkMeter>(system);
         system.realizeTopology();
         state = system.getDefaultState();
         mass1.setOneQ(state, 0, -5.0);
@@ -141,7 +148,7 @@ TEST(TractionSheave, SlippingMassesAccelerateAsTheCapstanAtwoodMachine) {
     const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.energy(s) - e0;
     std::printf("energy: dE %.6e J, W_friction %.6e J, residual %.3e\n", de, wf, de + wf);
     EXPECT_GT(wf, 0);
-    // Measured 5.5e-10 of 171 J (RK-Merson 1e-8); margin 18x (the issue asks 1e-6).
+    // Measured 6.5e-10 of 171 J (RK-Merson 1e-8); margin 15x (the issue asks 1e-6).
     EXPECT_LE(std::abs(de + wf), 1e-8 * std::max(std::abs(de), wf));
     EXPECT_NEAR(a.reeving->getTractionRatio(s, 0, 1), kLimit, 1e-9);  // the Newton's 1e-15 strain tolerance
     EXPECT_GT(a.reeving->getSlipRate(s, 0, 1), 0);
@@ -237,6 +244,42 @@ TEST(TractionSheave, DrivenSheaveMovesAStickingLoadAtItsSurfaceSpeed) {
     std::printf("driven: start fall lengthens at %.7f m/s vs R omega %.7f\n", speed, R * omega);
     EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::Stick);
     EXPECT_NEAR(speed / (R * omega), 1.0, 1e-3);  // the issue's 0.1 %; measured 2.1e-5 (the stretch 1e-4 changing)
+}
+
+// The pin swings (theta = A sin(omega t)) harder than the traction can follow: the surface
+// acceleration R A omega^2 = 4.8 m/s^2 exceeds g (kappa - 1) / (kappa + 1) = 2.98 m/s^2 for equal
+// masses, so the rope slips while the groove accelerates fast and sticks again between; the drive's
+// work W_drive (MotionWorkMeter) and the friction work close the energy balance through every phase.
+TEST(TractionSheave, EnergyClosesThroughStickSlipAndStickAgain) {
+    Atwood::Options o;
+    o.sheaveSpeed = 4.0;
+    o.swingAmplitude = 1.0;
+    Atwood a(100, 100, SheaveKind::Traction, kMu, o);
+    RungeKuttaMersonIntegrator integ(a.system);
+    integ.setAccuracy(1e-8);
+    TimeStepper ts(a.system, integ);
+    ts.initialize(a.state);
+    const State& s0 = integ.getState();
+    a.system.realize(s0, Stage::Velocity);
+    const double e0 = a.energy(s0);
+    double worst = 0, largest = 0;
+    for (int i = 1; i <= 40; ++i) {
+        ts.stepTo(0.05 * i);
+        const State& s = integ.getState();
+        a.system.realize(s, Stage::Velocity);
+        const double de = a.energy(s) - e0, wf = a.reeving->getFrictionWork(s, 0, 1), wd = a.meter->getWork(s);
+        worst = std::max(worst, std::abs(de + wf - wd));
+        largest = std::max({largest, std::abs(de), wf, std::abs(wd)});
+    }
+    const State& s = integ.getState();
+    const int transitions = a.reeving->getNumTractionTransitions(s, 0, 1);
+    std::printf("swing: %d transitions, W_friction %.4f J, largest term %.4f J, worst residual %.3e J (%.2e)\n",
+                transitions, a.reeving->getFrictionWork(s, 0, 1), largest, worst, worst / largest);
+    EXPECT_GE(transitions, 4);  // stick -> slip -> stick, twice
+    EXPECT_GT(a.reeving->getFrictionWork(s, 0, 1), 0);
+    // The issue's bound 1e-6; measured 1.35e-8 of 484 J over 11 transitions (without booking the
+    // kinetic-energy jumps at stick -> slip as friction work: 5e-5).
+    EXPECT_LE(worst, 1e-6 * largest);
 }
 
 }  // namespace

@@ -135,7 +135,16 @@ void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) 
         next.mode = TractionMode::Stick;
     }
     ++next.transitions;
+    // Stick -> slip changes the rope's material rate at the node at once (the massless contact
+    // point: the slip rate jumps to the one that keeps the capstan ratio), so the rope's kinetic
+    // energy jumps; slip -> stick is continuous (the slip rate is zero there). Positions and the
+    // potential energy are continuous. The jump is booked as friction work, so that
+    // E(t) - E(0) + W_friction = W_drives holds through the transition.
+    const double before = positionCache(s).ropes[rope].planar.kineticEnergy;
     updTractionStates(s).ropes[rope][d.tractionIndex] = next;
+    getSystem().realize(s, Stage::Velocity);
+    const double after = positionCache(s).ropes[rope].planar.kineticEnergy;
+    updZ(s)[r.tractionZOffset + d.tractionIndex] += before - after;
 }
 
 namespace {
