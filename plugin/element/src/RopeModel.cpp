@@ -26,7 +26,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     for (const auto& sp : spans_) {
         const RopeProperties& p = sp.properties();
         if (p.massPerLength != p0.massPerLength || p.axialStiffness != p0.axialStiffness ||
-            p.bendingStiffness != p0.bendingStiffness || p.tensionOnly != p0.tensionOnly)
+            p.bendingStiffness != p0.bendingStiffness || p.tensionOnly != p0.tensionOnly ||
+            p.axialRetardationTime != p0.axialRetardationTime)
             throw std::invalid_argument("RopeModel: all spans of a rope must have the same RopeProperties");
     }
     const int N = numSpans();
@@ -733,19 +734,20 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     ws.Qz.setZero(nz);
     data.inertialCorrectionValid = false;
     if (nqc > 0) ws.velocityForcesZ.setZero(nz);
-    data.kineticEnergy = data.strainEnergy = data.gravityEnergy = 0;
+    data.kineticEnergy = data.strainEnergy = data.gravityEnergy = data.dampingPower = 0;
     for (int j = 0; j < N; ++j) {
         SpanData<Dim>& d = ws.spans[j];
         spans_[j].evaluate(ws.spanQ[j], ws.spanQdot[j], d);
         const auto& map = spanToRope_[j];
         const int n = spans_[j].numCoordinates();
         for (int a = 0; a < n; ++a) {
-            ws.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a];
+            ws.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a] + d.dampingForces[a];
             if (nqc > 0) ws.velocityForcesZ[map[a]] += d.velocityForces[a];
         }
         data.kineticEnergy += d.kineticEnergy;
         data.strainEnergy += d.strainEnergy();
         data.gravityEnergy += d.gravityEnergy;
+        data.dampingPower += d.dampingPower;
     }
     // Slipping nodes: the friction force F_f = P_k - P_{k-1} on the material s_k, its reaction on
     // the sheave's surface coordinate (MaterialNode::Slipping).

@@ -47,6 +47,16 @@ void validate(const RopeProperties& p) {
     if (!std::isfinite(p.bendingStiffness) || !(p.bendingStiffness >= 0))
         throwInvalid("RopeProperties", "bendingStiffness (EI) [N m^2]", p.bendingStiffness,
                      "must be finite and >= 0");
+    if (!std::isfinite(p.axialRetardationTime) || !(p.axialRetardationTime >= 0))
+        throwInvalid("RopeProperties", "axialRetardationTime (c) [s]", p.axialRetardationTime, "must be finite and >= 0");
+}
+
+double retardationTimeForDampingRatio(double zeta, double omega) {
+    if (!std::isfinite(zeta) || !(zeta >= 0))
+        throwInvalid("retardationTimeForDampingRatio", "zeta [-]", zeta, "must be finite and >= 0");
+    if (!std::isfinite(omega) || !(omega > 0))
+        throwInvalid("retardationTimeForDampingRatio", "omega [rad/s]", omega, "must be finite and > 0");
+    return 2.0 * zeta / omega;
 }
 
 template <int Dim>
@@ -277,7 +287,6 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     // Modal amplitudes and rates as local vectors per mode number: U.col(i) = (a_i, b_i[, c_i])
     // (zero where mode i + 1 exceeds n_a or n_t), so that u(xi) = sum_i S_i(xi) U.col(i).
     const int m = maxMode_;
-    using ModeVectors = Eigen::Matrix<double, Dim, kMaxModesPerDirection>;
     ModeVectors U, Ud;
     U.leftCols(m).setZero();
     Ud.leftCols(m).setZero();
@@ -603,12 +612,65 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     Qg[iS1] = -rhoA * gr;
     Qg[iS2] = rhoA * gr;
 
+    d.dampingForces.setZero(n);
+    d.dampingPower = 0;
+    if (properties_.axialRetardationTime > 0) addAxialDamping(q, qdot, U, Ud, d);
+
     // Finite inputs can still overflow (e.g. EA = 1e300 with a large strain): never return inf/NaN.
     if (!(std::isfinite(d.kineticEnergy + d.strainEnergy() + d.gravityEnergy) &&
           std::isfinite((d.massMatrix.array() * 0.0).sum() + (d.velocityForces.array() * 0.0).sum() +
                         (d.elasticForces.array() * 0.0).sum() + (d.gravityForces.array() * 0.0).sum())))
         throw std::domain_error("SpanModel::evaluate: the result overflowed (non-finite energy, mass matrix or "
                                 "forces) for finite inputs; the state or the rope parameters are out of range");
+}
+
+// Kelvin-Voigt damping (RopeProperties::axialRetardationTime): at each strain point xi_k,
+//     Deps/Dt = b . qdot,  b = d eps/dq at fixed xi + (d eps/dxi) d xi/dqdot,
+// with xi = (s - s1) / l moving at fixed material s: xi_dot = -((1 - xi) s1dot + xi s2dot) / l. So
+//     l^2 b_r2 = (I + W')^T t = -l^2 b_r1,  l^2 b_(dir,i) = S_i'(xi) (A^T t)_dir,
+//     l^2 b_s1 = |t|^2 / l - (1 - xi) t . A u'' / l,  l^2 b_s2 = -|t|^2 / l - xi t . A u'' / l,
+// and D = 1/2 EA c l sum_k w_k (b_k . qdot)^2, Q = -EA c l sum_k w_k (b_k . qdot) b_k.
+template <int Dim>
+void SpanModel<Dim>::addAxialDamping(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                                     const ModeVectors& U, const ModeVectors& Ud, Data& d) const {
+    const int m = maxMode_, iS1 = s1Index(), iS2 = s2Index(), na = options_.axialModes, nt = options_.transverseModes;
+    const ChordFrame<Dim>& F = d.frame;
+    const Mat& A = F.A;
+    const Vec e = q.template segment<Dim>(Dim) - q.template segment<Dim>(0);
+    const Vec ed = qdot.template segment<Dim>(Dim) - qdot.template segment<Dim>(0);
+    const double l = q[iS2] - q[iS1], l2 = l * l, s1d = qdot[iS1], s2d = qdot[iS2];
+    const double pi = std::acos(-1.0);
+    const double scale = properties_.axialStiffness * properties_.axialRetardationTime * l;
+    for (int k = 0; k < strainTable_.xi.size(); ++k) {
+        const double xi = strainTable_.xi[k], w = strainTable_.w[k];
+        const double* sinRow = strainTable_.sin.data() + k * m;
+        const double* dsinRow = strainTable_.dsin.data() + k * m;
+        Vec up = Vec::Zero(), upp = Vec::Zero(), upd = Vec::Zero();  // u', u'', u' rate (local)
+        for (int i = 0; i < m; ++i) {
+            up += dsinRow[i] * U.col(i);
+            upp -= ((i + 1) * pi) * ((i + 1) * pi) * sinRow[i] * U.col(i);
+            upd += dsinRow[i] * Ud.col(i);
+        }
+        const Vec t = e + A * up;
+        if (law_.slack(0.5 * (t.squaredNorm() / l2 - 1.0))) continue;
+        Vec bE = t;  // l^2 d eps/de
+        for (int mm = 0; mm < Dim; ++mm) bE[mm] += (F.dA[mm] * up).dot(t);
+        const Vec At = A.transpose() * t;
+        const double tApp = t.dot(A * upp), t2 = t.squaredNorm();
+        const double bS1 = (t2 - (1.0 - xi) * tApp) / l, bS2 = (-t2 - xi * tApp) / l;
+        const double rate = (bE.dot(ed) + At.dot(upd) + bS1 * s1d + bS2 * s2d) / l2;  // Deps/Dt
+        const double f = scale * w * rate;  // dD/d(b . qdot)
+        d.dampingPower += f * rate;
+        d.dampingForces.template segment<Dim>(0) += (f / l2) * bE;
+        d.dampingForces.template segment<Dim>(Dim) -= (f / l2) * bE;
+        for (int dir = 0; dir < Dim; ++dir)
+            for (int i = 0; i < m; ++i) {
+                const int b = dir == 0 ? (i < na ? 2 * Dim + i : -1) : (i < nt ? 2 * Dim + na + (dir - 1) * nt + i : -1);
+                if (b >= 0) d.dampingForces[b] -= (f / l2) * dsinRow[i] * At[dir];
+            }
+        d.dampingForces[iS1] -= (f / l2) * bS1;
+        d.dampingForces[iS2] -= (f / l2) * bS2;
+    }
 }
 
 template <int Dim>

@@ -111,6 +111,9 @@ struct RopeData {
     double kineticEnergy = 0;    ///< T of all spans [J]
     double strainEnergy = 0;     ///< [J]
     double gravityEnergy = 0;    ///< [J]
+    /// Power dissipated by the spans' Kelvin-Voigt damping (RopeProperties::axialRetardationTime)
+    /// [W], >= 0: sum of SpanData::dampingPower. The damping forces are part of nodeForce.
+    double dampingPower = 0;
 
 
     /// Reduced mass Mbar = G^T M G of the last computeDynamics, on the independent velocities

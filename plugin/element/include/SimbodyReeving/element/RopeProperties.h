@@ -24,7 +24,26 @@ struct RopeProperties {
     /// spans carry a small regularising energy (SpanOptions::quasiStaticSlackTransitionStrain and
     /// quasiStaticSlackStiffness). Brace initialisation {rhoA, EA, EI} keeps this default.
     bool tensionOnly = true;
+    /// c: Kelvin-Voigt retardation time of the axial law [s]; finite, >= 0; default 0 (the paper's
+    /// conservative rope). The axial force becomes P = EA (eps + c Deps/Dt), Deps/Dt the material
+    /// rate of the strain (at a fixed material point s, so rope that merely flows through a span or
+    /// over a sheave at uniform strain dissipates nothing), from the Rayleigh dissipation function
+    ///     D = 1/2 EA c int_{s1}^{s2} (Deps/Dt)^2 ds,   Q_damping = -dD/dqdot,
+    /// so the dissipated power is 2 D >= 0 (SpanData::dampingPower). A uniformly stretched span of
+    /// stiffness k = EA / l carrying a mass m is then a Kelvin-Voigt spring: damping ratio
+    /// zeta = c omega / 2 at omega = sqrt(k / m) (retardationTimeForDampingRatio). Tension-only
+    /// ropes: damping acts where the rope is taut (eps > 0), like its stiffness. With
+    /// AxialDynamics::QuasiStatic spans the condensed amplitudes follow the static (undamped) strain
+    /// distribution; the damping forces act through their rates, i.e. on the motions the rope's
+    /// stretch follows (the bodies', the sheaves'), not on the span's own axial vibration, which is
+    /// not a state there.
+    double axialRetardationTime = 0.0;
 };
+
+/// The Kelvin-Voigt retardation time c [s] that gives damping ratio zeta [-] at angular frequency
+/// omega [rad/s]: c = 2 zeta / omega.
+/// @throws std::invalid_argument unless zeta >= 0 and omega > 0 are finite.
+double retardationTimeForDampingRatio(double zeta, double omega);
 
 /// Axial force [N] for Green strain eps under `properties`' law: EA eps, or EA max(eps, 0) when
 /// RopeProperties::tensionOnly.

@@ -195,6 +195,11 @@ struct SpanData {
     CoordVector elasticForces;
     /// Q_g = -dU_g/dq with U_g = -int rhoA g . r ds.
     CoordVector gravityForces;
+    /// Q_d = -dD/dqdot of the Kelvin-Voigt damping (RopeProperties::axialRetardationTime; zero
+    /// without it) [N, N m]: not part of Q_elastic, so energies stay conservative-only.
+    CoordVector dampingForces;
+    /// Power dissipated by the damping, -Q_d . qdot = 2 D >= 0 [W].
+    double dampingPower = 0;
 
     double kineticEnergy = 0;   ///< T [J]
     double axialEnergy = 0;     ///< 1/2 int EA eps^2 ds [J]
@@ -413,6 +418,11 @@ private:
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sin, dsin;  // row k: point k
     };
     QuadratureTable kineticTable_, strainTable_;
+    using ModeVectors = Eigen::Matrix<double, Dim, kMaxModesPerDirection>;
+    /// Adds the Kelvin-Voigt damping forces and power to d (evaluate, with U, Ud the modal
+    /// amplitudes and rates per mode number; d.frame already computed).
+    void addAxialDamping(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                         const ModeVectors& U, const ModeVectors& Ud, Data& d) const;
     // Moments of the kinetic rule (sum_k w_k ... over kineticTable_), i, j = 1..maxMode_: the mass
     // matrix is assembled from them in closed form (SpanModel.cpp, "mass matrix"), which is the
     // same sum as sum_k w_k B_k^T B_k rearranged. omega_0 = (1 - xi)^2, omega_1 = xi (1 - xi),
