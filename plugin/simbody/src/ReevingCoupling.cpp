@@ -184,6 +184,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];
             zdot[r.zOffset + r.numModal + j] = c.modalAccelerations[j];
         }
+        if (r.dampingZOffset >= 0) zdot[r.dampingZOffset] = r.planar ? c.planar.dampingPower : c.spatial.dampingPower;
         // Friction work of the traction sheaves: (P_a - P_b) v_slip, zero in stick.
         for (const RopeRecord::DrivenNode& d : r.driven) {
             if (!d.traction) continue;

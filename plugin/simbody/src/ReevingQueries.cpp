@@ -182,6 +182,25 @@ double ReevingSubsystem::calcRopeKineticEnergy(const State& s) const {
 
 double ReevingSubsystem::calcRopePotentialEnergy(const State& s) const { return getGuts().calcPotentialEnergy(s); }
 
+double ReevingSubsystem::getDampingPower(const State& s) const {
+    const Guts& g = getGuts();
+    if (s.getSystemStage() < Stage::Velocity)
+        throw std::logic_error("ReevingSubsystem::getDampingPower: realize the state to Stage::Velocity first");
+    double p = 0;
+    for (size_t i = 0; i < g.ropes.size(); ++i) {
+        const RopeCache& c = g.positionCache(s).ropes[i];
+        p += g.ropes[i].planar ? c.planar.dampingPower : c.spatial.dampingPower;
+    }
+    return p;
+}
+
+double ReevingSubsystem::getDampingWork(const State& s) const {
+    double w = 0;
+    for (const RopeRecord& r : getGuts().ropes)
+        if (r.dampingZOffset >= 0) w += getGuts().getZ(s)[r.dampingZOffset];
+    return w;
+}
+
 double ReevingSubsystem::calcMechanicalEnergy(const State& s) const {
     const MultibodySystem& mbs = getGuts().mbs();
     return mbs.calcKineticEnergy(s) + mbs.calcPotentialEnergy(s) + calcRopeKineticEnergy(s);

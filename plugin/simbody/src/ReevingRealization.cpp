@@ -91,6 +91,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     for (RopeRecord& r : self.ropes) {
         r.tractionZOffset = z;  // friction work of each traction sheave
         z += r.numTraction;
+        r.dampingZOffset = r.spec.properties.axialRetardationTime > 0 ? z++ : -1;  // damping work
         r.tractionModels.clear();
         traction.ropes.emplace_back(r.numTraction);
         for (const RopeRecord::DrivenNode& d : r.driven)

@@ -73,6 +73,7 @@ struct RopeRecord {
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
+    int dampingZOffset = -1;  // Z entry of the rope's damping work (ropes with axialRetardationTime > 0)
     /// Models by traction phase (planar ropes with TractionSheaves): key = per traction sheave 0
     /// (stick) or its slip ratio kappa; built on first use (the set of phases a run visits is small).
     mutable std::vector<std::pair<std::vector<double>, std::shared_ptr<const RopeModel<2>>>> tractionModels;

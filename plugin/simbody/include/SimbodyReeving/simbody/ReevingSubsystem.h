@@ -380,6 +380,13 @@ public:
     double getMaxConstraintError(const SimTK::State& state) const;
     /// Positions in Ground of numPoints >= 2 equally spaced material points of a span [m].
     std::vector<SimTK::Vec3> sampleSpan(const SimTK::State& state, int rope, int span, int numPoints) const;
+    /// Power dissipated by the ropes' Kelvin-Voigt damping (RopeProperties::axialRetardationTime)
+    /// [W], >= 0 (Stage::Velocity).
+    double getDampingPower(const SimTK::State& state) const;
+    /// Work dissipated by the ropes' damping since the start [J] (the integral of getDampingPower:
+    /// a Z entry per damped rope). With getTotalFrictionWork and the drives' work (MotionWorkMeter)
+    /// it closes the energy balance E(t) - E(0) + W_friction + W_damping = W_drives.
+    double getDampingWork(const SimTK::State& state) const;
     /// Rope kinetic energy [J] (Stage::Velocity).
     double calcRopeKineticEnergy(const SimTK::State& state) const;
     /// Rope strain + gravity energy [J].
