@@ -93,6 +93,9 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     if (options_.quadraturePoints < 0 || options_.quadraturePoints > 200)
         throwInvalid("SpanModel", "SpanOptions::quadraturePoints", options_.quadraturePoints,
                      "is outside 0..200 (0 = automatic)");
+    if (!(options_.transverseDampingRatio >= 0 && options_.transverseDampingRatio <= 1.0))
+        throwInvalid("SpanModel", "SpanOptions::transverseDampingRatio (zeta_t)", options_.transverseDampingRatio,
+                     "must be in [0, 1]");
     if (!(options_.quasiStaticSlackStiffness >= 1e-9 && options_.quasiStaticSlackStiffness <= 1.0))
         throwInvalid("SpanModel", "SpanOptions::quasiStaticSlackStiffness (delta)", options_.quasiStaticSlackStiffness,
                      "must be in [1e-9, 1]");
@@ -615,6 +618,7 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     d.dampingForces.setZero(n);
     d.dampingPower = 0;
     if (properties_.axialRetardationTime > 0) addAxialDamping(q, qdot, U, Ud, d);
+    if (options_.transverseDampingRatio > 0 && nt > 0) addTransverseDamping(q, qdot, U, d);
 
     // Finite inputs can still overflow (e.g. EA = 1e300 with a large strain): never return inf/NaN.
     if (!(std::isfinite(d.kineticEnergy + d.strainEnergy() + d.gravityEnergy) &&
@@ -622,6 +626,34 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
                         (d.elasticForces.array() * 0.0).sum() + (d.gravityForces.array() * 0.0).sum())))
         throw std::domain_error("SpanModel::evaluate: the result overflowed (non-finite energy, mass matrix or "
                                 "forces) for finite inputs; the state or the rope parameters are out of range");
+}
+
+template <int Dim>
+void SpanModel<Dim>::addTransverseDamping(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                          const Eigen::Ref<const Eigen::VectorXd>& qdot, const ModeVectors& U,
+                                          Data& d) const {
+    const int m = maxMode_, na = options_.axialModes, nt = options_.transverseModes;
+    const Vec e = q.template segment<Dim>(Dim) - q.template segment<Dim>(0);
+    const double l = q[s2Index()] - q[s1Index()], l2 = l * l;
+    double meanStrain = 0;
+    for (int k = 0; k < strainTable_.xi.size(); ++k) {
+        const double* dsinRow = strainTable_.dsin.data() + k * m;
+        Vec up = Vec::Zero();
+        for (int i = 0; i < m; ++i) up += dsinRow[i] * U.col(i);
+        meanStrain += strainTable_.w[k] * 0.5 * ((e + d.frame.A * up).squaredNorm() / l2 - 1.0);
+    }
+    const double rhoA = properties_.massPerLength;
+    const double P = properties_.axialStiffness * std::max(meanStrain, 0.0), pi = std::acos(-1.0);
+    for (int i = 0; i < nt; ++i) {
+        const double k = (i + 1) * pi / l;
+        const double omega = std::sqrt((k * k * P + k * k * k * k * properties_.bendingStiffness) / rhoA);
+        const double coefficient = 2.0 * options_.transverseDampingRatio * omega * 0.5 * rhoA * l;
+        for (int dir = 1; dir < Dim; ++dir) {
+            const int b = 2 * Dim + na + (dir - 1) * nt + i;
+            d.dampingForces[b] -= coefficient * qdot[b];
+            d.dampingPower += coefficient * qdot[b] * qdot[b];
+        }
+    }
 }
 
 // Kelvin-Voigt damping (RopeProperties::axialRetardationTime): at each strain point xi_k,

@@ -91,7 +91,9 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     for (RopeRecord& r : self.ropes) {
         r.tractionZOffset = z;  // friction work of each traction sheave
         z += r.numTraction;
-        r.dampingZOffset = r.spec.properties.axialRetardationTime > 0 ? z++ : -1;  // damping work
+        bool damped = r.spec.properties.axialRetardationTime > 0;
+        for (const SpanOptions& o : r.spanOptions) damped = damped || o.transverseDampingRatio > 0;
+        r.dampingZOffset = damped ? z++ : -1;  // damping work
         r.tractionModels.clear();
         traction.ropes.emplace_back(r.numTraction);
         for (const RopeRecord::DrivenNode& d : r.driven)

@@ -171,6 +171,14 @@ struct SpanOptions {
     /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
     /// EA eps_s = 165 N is rounded down by up to a fifth of that).
     double quasiStaticSlackTransitionStrain = 1e-5;
+    /// zeta_t [-], finite, in [0, 1]; default 0: modal damping of the transverse modes. Mode i of
+    /// each transverse direction feels
+    ///     Q_i = -2 zeta_t omega_i m_i qdot_i,   m_i = rhoA l / 2,
+    ///     omega_i^2 = (i pi / l)^2 P / rhoA + (i pi / l)^4 EI / rhoA,
+    /// the span's taut-string (and bending) frequency at its mean axial force P = EA mean(eps) >= 0
+    /// over the strain points, evaluated at each state: a free transverse vibration decays with
+    /// damping ratio zeta_t. Its power -sum Q_i qdot_i >= 0 is part of SpanData::dampingPower.
+    double transverseDampingRatio = 0;
     /// 0 (default) selects the automatic rule: Gauss-Legendre with
     /// SpanModel::automaticQuadraturePoints points for the kinetic and for the strain integrals
     /// (exact to round-off). Otherwise 1..200: that many Gauss-Legendre points for both.
@@ -421,6 +429,9 @@ private:
     using ModeVectors = Eigen::Matrix<double, Dim, kMaxModesPerDirection>;
     /// Adds the Kelvin-Voigt damping forces and power to d (evaluate, with U, Ud the modal
     /// amplitudes and rates per mode number; d.frame already computed).
+    /// Adds the transverse modal damping (SpanOptions::transverseDampingRatio) to d.
+    void addTransverseDamping(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
+                              const ModeVectors& U, Data& d) const;
     void addAxialDamping(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qdot,
                          const ModeVectors& U, const ModeVectors& Ud, Data& d) const;
     // Moments of the kinetic rule (sum_k w_k ... over kineticTable_), i, j = 1..maxMode_: the mass
