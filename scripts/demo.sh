@@ -3,13 +3,18 @@
 # executable: no tests, no benchmarks) and runs a bundled demo with its defaults:
 #   ./scripts/demo.sh [ARGS...]        the pendulum demo (the paper's Table 1 study), out/pendulum
 #   ./scripts/demo.sh crane [ARGS...]  the gantry-crane demo (lift, traverse, lower), out/crane
-# Extra arguments go to the demo; ./scripts/demo.sh --help and ./scripts/demo.sh crane --help list
+#   ./scripts/demo.sh elevator [ARGS...]  the traction-elevator demo (EN 81-50 traction checks), out/elevator
+# Extra arguments go to the demo; ./scripts/demo.sh --help, ./scripts/demo.sh crane --help and
+# ./scripts/demo.sh elevator --help list
 # the demo's options.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 demo=reeving-pendulum
 if [ "${1:-}" = crane ]; then
     demo=reeving-crane
+    shift
+elif [ "${1:-}" = elevator ]; then
+    demo=reeving-elevator
     shift
 fi
 ./scripts/install-deps.sh

@@ -251,6 +251,16 @@ void checkCrane(const ProgramRun& r, const fs::path& cwd) {
     for (const std::string& f : filesUnder(out)) EXPECT_EQ(f.find(".partial"), std::string::npos) << f;
 }
 
+// reeving-elevator --t-end 0.3: every scenario, the traction table in out/elevator/summary.json.
+void checkElevator(const ProgramRun& r, const fs::path& cwd) {
+    const fs::path out = cwd / "out" / "elevator";
+    const nlohmann::json s = readJson(out / "summary.json");
+    ASSERT_EQ(s.at("traction_table").size(), 4u) << r.out;
+    for (const char* scenario : {"trip", "loading", "emergency-stop", "stall"})
+        EXPECT_TRUE(fs::exists(out / (std::string("timeseries_") + scenario + ".csv"))) << scenario;
+    for (const std::string& f : filesUnder(out)) EXPECT_EQ(f.find(".partial"), std::string::npos) << f;
+}
+
 const std::map<std::string, Example>& knownExamples() {
     static const std::map<std::string, Example> examples{
         {"span-element-tour", {{"--axial-modes", "--transverse-modes"}, "", checkSpanElementTour}},
@@ -267,6 +277,11 @@ const std::map<std::string, Example>& knownExamples() {
            "--no-plots", "--quiet", "--visualize"},
           "--t-end 0.5",
           checkCrane}},
+        {"reeving-elevator",
+         {{"--scenario", "--friction", "--rated-load", "--retardation-time", "--axial-modes", "--transverse-modes",
+           "--integrator", "--accuracy", "--t-end", "--report-interval", "--out", "--no-plots", "--quiet", "--visualize"},
+          "--t-end 0.3",
+          checkElevator}},
     };
     return examples;
 }
@@ -275,7 +290,7 @@ const std::map<std::string, Example>& knownExamples() {
 
 TEST(Examples, EveryInstalledExampleIsCheckedHere) {
     const auto installed = installedExamples();
-    EXPECT_EQ(installed.size(), 4u);
+    EXPECT_EQ(installed.size(), 5u);
     for (const auto& [name, path] : installed) {
         EXPECT_TRUE(knownExamples().count(name)) << name << " is installed but has no first-contact check here";
         EXPECT_TRUE(fs::exists(path)) << path;
@@ -312,7 +327,7 @@ TEST(Examples, DefaultsRunAndWriteTheirOutputs) {
         const Example& example = knownExamples().at(name);
         const fs::path cwd = scratch("defaults_" + name);
         // Without a display, as on a build machine (--visualize is tried below).
-        const ProgramRun r = run(path, example.defaultsArgs + (name == "reeving-pendulum" || name == "reeving-crane" ? " --quiet" : ""), cwd,
+        const ProgramRun r = run(path, example.defaultsArgs + (name == "reeving-pendulum" || name == "reeving-crane" || name == "reeving-elevator" ? " --quiet" : ""), cwd,
                           "env -u DISPLAY");
         ASSERT_EQ(r.status, 0) << name << ":\n" << r.out << r.err;
         example.checkDefaults(r, cwd);

@@ -1,0 +1,296 @@
+// reeving-elevator: a 1:1 roped traction elevator (issue 21) through EN 81-50's traction checks:
+// a trip, loading to 125 %, an emergency stop and a stalled counterweight, the hoist ropes over a
+// traction sheave that sticks and slips (capstan law). See --help and README.md.
+#include "common/Cli.h"
+#include "common/DemoOutput.h"
+#include "common/DemoVisualizer.h"
+#include "common/Interrupt.h"
+
+#include <SimbodyReeving/scenes/ElevatorScene.h>
+#include <SimbodyReeving/simbody/Integrators.h>
+#include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace SimbodyReeving;
+using demo_common::Json;
+using demo_common::jsonNumber;
+using SimTK::Stage;
+using SimTK::State;
+
+namespace {
+
+constexpr const char* kProgram = "reeving-elevator";
+
+struct Options {
+    std::string scenario = "all";
+    ElevatorParameters parameters;
+    int axialModes = 1, transverseModes = 1;
+    std::string integrator = "rk-merson";
+    double accuracy = 1e-6, reportInterval = 0.01, tEnd = 0;  // tEnd 0: each scenario's own duration
+    std::string outDir = "out/elevator";
+    bool plots = true, quiet = false, visualize = false;
+};
+
+struct Row {
+    double t, carY, carV, carA, cwtY, travel, pCar, pCwt, ratio, limit, slipRate, slipDistance, frictionWork,
+        dampingWork, machineWork, residual;
+    int mode;
+};
+
+struct Result {
+    std::string scenario;
+    std::vector<Row> rows;
+    long steps = 0, rhs = 0;
+    double wall = 0, duration = 0;
+    int transitions = 0;
+};
+
+struct Interrupted : std::runtime_error {
+    Interrupted() : std::runtime_error("interrupted") {}
+};
+
+Row observe(const ElevatorScene& scene, const State& s, double e0) {
+    scene.system().realize(s, Stage::Acceleration);
+    const ReevingSubsystem& rv = scene.reeving();
+    Row r{};
+    r.t = s.getTime();
+    r.carY = scene.carHeight(s);
+    r.carV = scene.carVelocity(s);
+    r.carA = scene.carAcceleration(s);
+    r.cwtY = scene.counterweightHeight(s);
+    r.travel = scene.ropeTravel(s);
+    r.pCar = scene.carSideForce(s);
+    r.pCwt = scene.counterweightSideForce(s);
+    r.ratio = r.pCar / r.pCwt;
+    r.limit = rv.getTractionLimit(s, 0, 1);
+    r.mode = static_cast<int>(rv.getTractionMode(s, 0, 1));
+    r.slipRate = rv.getSlipRate(s, 0, 1);
+    r.slipDistance = rv.getSlipDistance(s, 0, 1);
+    r.frictionWork = rv.getTotalFrictionWork(s);
+    r.dampingWork = rv.getDampingWork(s);
+    r.machineWork = scene.workMeter().getWork(s);
+    r.residual = scene.energyResidual(s, e0);
+    return r;
+}
+
+Result run(const Options& o, ElevatorScenario scenario) {
+    ElevatorParameters p = o.parameters;
+    p.scenario = scenario;
+    SpanOptions spans;
+    spans.axialModes = o.axialModes;
+    spans.transverseModes = o.transverseModes;
+    ElevatorScene scene(p, spans);
+    Result r;
+    r.scenario = toString(scenario);
+    r.duration = o.tEnd > 0 ? o.tEnd : scene.duration();
+    State s0 = scene.makeInitialState();
+    const double e0 = scene.reeving().calcMechanicalEnergy(s0);
+    demo_common::DemoVisualizer viz(scene.system(), scene.reeving(), kProgram, o.visualize);
+    viz.lookAt(SimTK::Vec3(6, -0.5 * p.hoistway, 0.9 * p.hoistway), SimTK::Vec3(0, -0.5 * p.hoistway, 0));
+    viz.report(s0);
+    auto integ = makeIntegrator(o.integrator, scene.system());
+    integ->setAccuracy(o.accuracy);
+    InterpolatingTimeStepper ts(scene.system(), *integ);
+    ts.initialize(s0);
+    const auto start = std::chrono::steady_clock::now();
+    r.rows.push_back(observe(scene, ts.getState(), e0));
+    const int reports = static_cast<int>(std::floor(r.duration / o.reportInterval + 1e-9));
+    for (int n = 1; n <= reports; ++n) {
+        if (demo_common::interrupted()) throw Interrupted();
+        ts.stepTo(n * o.reportInterval);
+        r.rows.push_back(observe(scene, ts.getState(), e0));
+        viz.report(ts.getState());
+    }
+    r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.steps = integ->getNumStepsTaken();
+    r.rhs = integ->getNumRealizations();
+    r.transitions = scene.reeving().getNumTractionTransitions(ts.getState(), 0, 1);
+    return r;
+}
+
+void writeTimeseries(const fs::path& path, const Result& r) {
+    demo_common::OutputFile f(path);
+    auto& out = f.stream();
+    out << "t_s,car_y_m,car_v_mps,car_a_mps2,car_jerk_mps3,counterweight_y_m,rope_travel_m,car_side_force_N,"
+           "counterweight_side_force_N,force_ratio,traction_limit,mode,slip_rate_mps,slip_distance_m,"
+           "friction_work_J,damping_work_J,machine_work_J,energy_residual_J\n";
+    out.precision(10);
+    for (size_t i = 0; i < r.rows.size(); ++i) {
+        const Row& w = r.rows[i];
+        // Jerk by central differences of the reported accelerations (one-sided at the ends).
+        const size_t a = i == 0 ? 0 : i - 1, b = std::min(i + 1, r.rows.size() - 1);
+        const double jerk = b > a ? (r.rows[b].carA - r.rows[a].carA) / (r.rows[b].t - r.rows[a].t) : 0.0;
+        out << w.t << ',' << w.carY << ',' << w.carV << ',' << w.carA << ',' << jerk << ',' << w.cwtY << ','
+            << w.travel << ',' << w.pCar << ',' << w.pCwt << ',' << w.ratio << ',' << w.limit << ',' << w.mode << ','
+            << w.slipRate << ',' << w.slipDistance << ',' << w.frictionWork << ',' << w.dampingWork << ','
+            << w.machineWork << ',' << w.residual << '\n';
+    }
+    f.commit();
+}
+
+Json summarize(const Result& r) {
+    double maxRatio = 0, maxA = 0, maxResidual = 0, largest = 0;
+    for (const Row& w : r.rows) {
+        if (w.pCwt > 0) maxRatio = std::max(maxRatio, std::max(w.ratio, 1.0 / w.ratio));
+        maxA = std::max(maxA, std::abs(w.carA));
+        maxResidual = std::max(maxResidual, std::abs(w.residual));
+        largest = std::max({largest, std::abs(w.machineWork), w.frictionWork, w.dampingWork});
+    }
+    const Row& end = r.rows.back();
+    const bool slipped = r.transitions > 0 || std::abs(end.slipDistance) > 1e-9;
+    Json j;
+    j["scenario"] = r.scenario;
+    j["traction"] = slipped ? "slipped" : "held";
+    j["traction_limit"] = jsonNumber(end.limit);
+    j["largest_force_ratio"] = jsonNumber(maxRatio);
+    j["traction_margin"] = jsonNumber(end.limit / maxRatio);  // > 1: held with this factor to spare
+    j["slip_distance_m"] = jsonNumber(end.slipDistance);
+    j["stick_slip_transitions"] = r.transitions;
+    j["car_rise_m"] = jsonNumber(end.carY - r.rows.front().carY);
+    j["rope_travel_m"] = jsonNumber(end.travel - r.rows.front().travel);
+    j["max_car_acceleration_mps2"] = jsonNumber(maxA);
+    j["friction_work_J"] = jsonNumber(end.frictionWork);
+    j["damping_work_J"] = jsonNumber(end.dampingWork);
+    j["machine_work_J"] = jsonNumber(end.machineWork);
+    j["max_energy_residual_J"] = jsonNumber(maxResidual);
+    j["energy_residual_relative"] = jsonNumber(largest > 0 ? maxResidual / largest : 0.0);
+    j["simulated_s"] = jsonNumber(r.duration);
+    j["steps"] = r.steps;
+    j["rhs_evaluations"] = r.rhs;
+    j["wall_s"] = jsonNumber(r.wall);
+    j["real_time_factor"] = jsonNumber(r.wall > 0 ? r.duration / r.wall : 0.0);
+    return j;
+}
+
+void plot(const fs::path& dir, const std::vector<Result>& results) {
+    if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+        std::cerr << kProgram << ": gnuplot not found, figures skipped (apt-get install gnuplot-nox)\n";
+        return;
+    }
+    demo_common::OutputFile gp(dir / "plots.gp");
+    auto& g = gp.stream();
+    g << "set terminal pngcairo size 1200,900 noenhanced\nset datafile separator ','\nset key top left\nset grid\n";
+    for (const Result& r : results) {
+        const std::string csv = "timeseries_" + r.scenario + ".csv";
+        g << "set output 'elevator_" << r.scenario << ".png'\nset multiplot layout 3,1 title 'reeving-elevator: "
+          << r.scenario << "'\n"
+          << "set ylabel 'm'\nplot '" << csv << "' u 1:($2-$2[1]) w l t 'car rise', '" << csv
+          << "' u 1:(-$7) w l t 'rope travel (car up)', '" << csv << "' u 1:14 w l t 'slip distance'\n"
+          << "set ylabel 'kN'\nplot '" << csv << "' u 1:($8/1000) w l t 'car side P_a', '" << csv
+          << "' u 1:($9/1000) w l t 'counterweight side P_b'\n"
+          << "set ylabel 'ratio'\nset xlabel 't [s]'\nplot '" << csv << "' u 1:10 w l t 'P_a / P_b', '" << csv
+          << "' u 1:11 w l dt 2 t 'e^(mu alpha)', '" << csv << "' u 1:(1/$11) w l dt 2 t 'e^(-mu alpha)'\n"
+          << "unset multiplot\nunset xlabel\n";
+    }
+    gp.commit();
+    const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp";
+    if (std::system(cmd.c_str()) != 0) std::cerr << kProgram << ": gnuplot failed; see " << (dir / "plots.gp").string() << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace demo_common;
+    Options o;
+    CLI::App app(
+        "reeving-elevator: a 1:1 roped traction elevator (car with its rated load, counterweight at car +\n"
+        "half the rated load, the rope set as one rope) through EN 81-50's traction checks, the hoist ropes\n"
+        "over a traction sheave that sticks and slips by the capstan law P_tight = e^(mu alpha) P_slack.\n"
+        "Outputs in DIR: timeseries_<scenario>.csv, summary.json (the traction table: held or slipped,\n"
+        "margin) and, with gnuplot, elevator_<scenario>.png.",
+        kProgram);
+    applyConventions(app);
+    app.footer(
+        "Exit status: 0 every scenario run (held or slipped: both are results); 2 bad command line or\n"
+        "unusable --out (nothing written); 1 the simulation failed; 130 interrupted (SIGINT/SIGTERM,\n"
+        "nothing written).");
+    app.add_option("--scenario", o.scenario, "trip, loading, emergency-stop, stall or all (default all)")
+        ->check(oneOf({"all", "trip", "loading", "emergency-stop", "stall"}));
+    app.add_option("--friction", o.parameters.friction, "effective groove friction coefficient mu (default 0.2)")
+        ->check(positiveNumber());
+    app.add_option("--rated-load", o.parameters.ratedLoad, "[kg] (default 630)")->check(positiveNumber());
+    app.add_option("--retardation-time", o.parameters.retardationTime,
+                   "Kelvin-Voigt rope damping c [s] (default 0: no damping)")
+        ->check(finiteNumber());
+    app.add_option("--axial-modes", o.axialModes, "n_a of both spans, 0..16 (default 1)")->transform(integerIn(0, 16));
+    app.add_option("--transverse-modes", o.transverseModes, "n_t, 0..16 (default 1)")->transform(integerIn(0, 16));
+    app.add_option("--integrator", o.integrator, "rk-merson (default), rk3, rk2, cpodes, verlet...")->check(nonEmpty());
+    app.add_option("--accuracy", o.accuracy, "integrator accuracy, 0 < TOL < 1 (default 1e-6)")
+        ->check(numberInOpenInterval(0, 1));
+    app.add_option("--t-end", o.tEnd, "end time of each scenario [s] (default: the scenario's own, 4.5-15 s)")
+        ->check(positiveNumber());
+    app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.01)")->check(positiveNumber());
+    app.add_option("--out", o.outDir, "output folder (default out/elevator)")->type_name("DIR")->check(nonEmpty());
+    app.add_flag_callback("--no-plots", [&o] { o.plots = false; }, "do not make PNG figures");
+    app.add_flag("--quiet", o.quiet, "no progress output");
+    app.add_flag("--visualize", o.visualize, "show the runs in Simbody's Visualizer (headless without a display)");
+    const int status = parseOrExitStatus(app, argc, argv);
+    if (status >= 0) return status;
+    if (o.parameters.retardationTime < 0) {
+        std::cerr << usageErrorText(kProgram, "--retardation-time: '" + numberText(o.parameters.retardationTime) +
+                                                  "' must be >= 0");
+        return kUsageExitStatus;
+    }
+    try {
+        o.parameters.validate();
+    } catch (const std::exception& e) {
+        std::cerr << usageErrorText(kProgram, e.what());
+        return kUsageExitStatus;
+    }
+    if (!prepareOutputFolder(kProgram, o.outDir)) return kUsageExitStatus;
+    installInterruptHandlers();
+    std::vector<ElevatorScenario> scenarios;
+    if (o.scenario == "all")
+        scenarios = {ElevatorScenario::Trip, ElevatorScenario::Loading, ElevatorScenario::EmergencyStop,
+                     ElevatorScenario::Stall};
+    else
+        scenarios = {elevatorScenarioFromString(o.scenario)};
+    std::vector<Result> results;
+    Json summary;
+    summary["program"] = kProgram;
+    summary["friction"] = jsonNumber(o.parameters.friction);
+    summary["wrap_angle_rad"] = jsonNumber(o.parameters.wrapAngle);
+    summary["rated_load_kg"] = jsonNumber(o.parameters.ratedLoad);
+    summary["car_mass_kg"] = jsonNumber(o.parameters.carMass);
+    summary["counterweight_kg"] = jsonNumber(o.parameters.counterweight());
+    summary["retardation_time_s"] = jsonNumber(o.parameters.retardationTime);
+    Json table = Json::array();
+    try {
+        for (ElevatorScenario sc : scenarios) {
+            if (!o.quiet) std::cout << kProgram << ": " << toString(sc) << " ..." << std::flush;
+            results.push_back(run(o, sc));
+            const Json j = summarize(results.back());
+            if (!o.quiet)
+                std::cout << " " << j["traction"].get<std::string>() << " (margin " << j["traction_margin"].dump()
+                          << ", " << results.back().steps << " steps, " << results.back().wall << " s)\n";
+            table.push_back(j);
+        }
+    } catch (const Interrupted&) {
+        std::cerr << kProgram << ": interrupted; nothing written\n";
+        return 130;
+    } catch (const std::exception& e) {
+        std::cerr << kProgram << ": the simulation failed: " << e.what() << "\n";
+        return 1;
+    }
+    summary["traction_table"] = table;
+    const fs::path dir(o.outDir);
+    for (const Result& r : results) writeTimeseries(dir / ("timeseries_" + r.scenario + ".csv"), r);
+    {
+        OutputFile f(dir / "summary.json");
+        writeJson(f.stream(), summary);
+        f.commit();
+    }
+    if (o.plots) plot(dir, results);
+    if (!o.quiet) std::cout << kProgram << ": outputs in " << dir.string() << "\n";
+    return 0;
+}

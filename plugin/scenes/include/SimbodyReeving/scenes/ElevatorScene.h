@@ -1,0 +1,118 @@
+#pragma once
+/// @file
+/// A 1:1 roped traction elevator as a ready Simbody scene: car and counterweight on vertical guide
+/// rails (sliders), one rope (the rope set as one rope of the set's rhoA and EA) over a traction
+/// sheave (RopeNodeKind::TractionSheave) at the top of the hoistway, and the four scenarios of
+/// EN 81-50's traction checks.
+
+#include "SimbodyReeving/scenes/MotionProfile.h"
+#include "SimbodyReeving/simbody/MotionWorkMeter.h"
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
+
+#include <Simbody.h>
+
+#include <memory>
+#include <string>
+
+namespace SimbodyReeving {
+
+/// What the elevator does (ElevatorParameters::scenario):
+///   - Trip: a floor-to-floor trip upwards of the fully loaded car, the machine sheave on a smooth
+///     speed profile (MotionProfile: acceleration continuous, jerk bounded).
+///   - Loading: the car stands at the bottom landing loaded to 125 % of the rated load, the brake
+///     holding the sheave (EN 81-50's loading case: a static check, run for a few seconds from the
+///     equilibrium with the rated load, so the extra 25 % arrives as a step).
+///   - EmergencyStop: the fully loaded car runs down at rated speed; from t = 0 the machine brake
+///     stops the sheave with a smooth deceleration profile peaking at brakeDeceleration (its
+///     surface): the sheave is prescribed, so the brake's work is the machine's (MotionWorkMeter).
+///   - Stall: the counterweight rests on its buffer (a stop force) while the machine keeps driving the
+///     empty car up: the rope must slip, so the car cannot be hauled into the overhead.
+enum class ElevatorScenario { Trip, Loading, EmergencyStop, Stall };
+
+/// "trip", "loading", "emergency-stop", "stall".
+const char* toString(ElevatorScenario scenario);
+/// @throws std::invalid_argument for any other name.
+ElevatorScenario elevatorScenarioFromString(const std::string& name);
+
+/// Physical parameters (SI units). The defaults: a 630 kg passenger elevator, 1.6 m/s, 1:1 roping,
+/// four 10 mm ropes over a 640 mm traction sheave with an undercut U groove.
+struct ElevatorParameters {
+    ElevatorScenario scenario = ElevatorScenario::Trip;
+    double g = 9.81;                ///< [m/s^2], > 0
+    double carMass = 1000.0;        ///< empty car with its sling [kg], > 0
+    double ratedLoad = 630.0;       ///< [kg], >= 0
+    double counterweightMass = 0;   ///< [kg]; 0: car + half the rated load
+    double hoistway = 40.0;         ///< sheave axis above the car's rope hitch at the bottom landing [m], > 2
+    double sheaveRadius = 0.32;     ///< [m], > 0
+    double sheaveInertia = 25.0;    ///< machine sheave, rotor and brake drum about the axis [kg m^2], > 0
+    double friction = 0.2;          ///< effective groove friction coefficient mu [-], >= 0
+    double wrapAngle = 3.14159265358979323846;  ///< alpha [rad], > 0 (1:1, single wrap: pi)
+    double rhoA = 1.4;              ///< rope set [kg/m], > 0 (4 x 0.35)
+    double EA = 1.6e7;              ///< rope set [N], > 0 (4 x 4 MN)
+    double retardationTime = 0.0;   ///< Kelvin-Voigt c of the rope [s], >= 0
+    double ratedSpeed = 1.6;        ///< [m/s], > 0
+    double tripDistance = 12.0;     ///< Trip: [m], in (0, hoistway - 4)
+    double tripRamp = 2.5;          ///< Trip: acceleration time of the speed profile [s], > 0
+    double brakeDeceleration = 3.0; ///< EmergencyStop: peak deceleration of the sheave surface [m/s^2], > 0
+    double stallSpeed = 0.5;        ///< Stall: surface speed the machine keeps driving at [m/s], > 0
+    double bufferStiffness = 2e6;   ///< Stall: counterweight buffer [N/m], > 0
+    /// @throws std::invalid_argument naming the first parameter out of range.
+    void validate() const;
+    double counterweight() const { return counterweightMass > 0 ? counterweightMass : carMass + 0.5 * ratedLoad; }
+};
+
+/// The elevator in the x-y plane (y up). Bodies: the machine sheave, a MobilizedBody::Pin (axis z) at
+/// the origin, prescribed in every scenario (the trip's speed profile, held in Loading, the brake's
+/// stop in EmergencyStop, the stalled drive); the car and the counterweight, MobilizedBody::Sliders along y (q = the
+/// height of the rope hitch [m]), at x = -R and x = +R. Rope: car hitch (start) -> TractionSheave
+/// (sense +1: a positive sheave angle moves rope towards the car, lowering it) -> counterweight hitch
+/// (end); tension-only, spans with the library's default options. A MotionWorkMeter holds the
+/// machine's work: energy residual = E(t) - E(0) + W_friction + W_damping - W_machine.
+class ElevatorScene {
+public:
+    /// @throws std::invalid_argument for bad parameters or span options.
+    ElevatorScene(const ElevatorParameters& parameters, const SpanOptions& spans);
+
+    SimTK::MultibodySystem& system() { return *system_; }
+    const SimTK::MultibodySystem& system() const { return *system_; }
+    const ReevingSubsystem& reeving() const { return *reeving_; }
+    const MotionWorkMeter& workMeter() const { return *workMeter_; }
+    const ElevatorParameters& parameters() const { return parameters_; }
+    const SimTK::MobilizedBody::Pin& sheave() const { return *sheave_; }
+    /// The car's mass in this scenario (empty in Stall, rated load in Trip and EmergencyStop, 125 % of
+    /// it in Loading) [kg].
+    double carTotalMass() const;
+    /// The end of the scenario's run [s].
+    double duration() const;
+
+    /// The state at t = 0: static equilibrium (in stick) of car, counterweight and rope (in Loading
+    /// with the rated load, then the car's mass raised to 125 %; in Stall with the counterweight
+    /// settled on its buffer); in EmergencyStop every body then moving at rated speed (car down);
+    /// the traction modes updated (ReevingSubsystem::updateTractionModes); realized to Stage::Velocity.
+    SimTK::State makeInitialState() const;
+
+    // ---- observables (Stage::Position unless said otherwise)
+    double carHeight(const SimTK::State& s) const;           ///< car hitch height [m]
+    double counterweightHeight(const SimTK::State& s) const; ///< [m]
+    double carVelocity(const SimTK::State& s) const;         ///< [m/s] (Stage::Velocity)
+    double carAcceleration(const SimTK::State& s) const;     ///< [m/s^2] (Stage::Acceleration)
+    /// The machine's rope travel since t = 0: R (theta - theta_0) [m] (positive: rope towards the car).
+    double ropeTravel(const SimTK::State& s) const;
+    double carSideForce(const SimTK::State& s) const;  ///< axial force of the car fall at the sheave [N]
+    double counterweightSideForce(const SimTK::State& s) const;  ///< [N]
+    /// E(t) - E(0) + W_friction + W_damping - W_machine [J] (Stage::Velocity), e0 = E(0).
+    double energyResidual(const SimTK::State& s, double e0) const;
+
+private:
+    ElevatorParameters parameters_;
+    std::unique_ptr<SimTK::MultibodySystem> system_;
+    std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter_;
+    std::unique_ptr<SimTK::GeneralForceSubsystem> forces_;
+    std::unique_ptr<ReevingSubsystem> reeving_;
+    std::unique_ptr<MotionWorkMeter> workMeter_;
+    std::unique_ptr<SimTK::MobilizedBody::Pin> sheave_;
+    std::unique_ptr<SimTK::MobilizedBody::Slider> car_, counterweight_;
+    double carStart_ = 0;
+};
+
+}  // namespace SimbodyReeving

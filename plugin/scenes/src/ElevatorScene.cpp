@@ -1,0 +1,211 @@
+#include "SimbodyReeving/scenes/ElevatorScene.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace SimbodyReeving {
+
+const char* toString(ElevatorScenario scenario) {
+    switch (scenario) {
+        case ElevatorScenario::Trip: return "trip";
+        case ElevatorScenario::Loading: return "loading";
+        case ElevatorScenario::EmergencyStop: return "emergency-stop";
+        case ElevatorScenario::Stall: return "stall";
+    }
+    return "?";
+}
+
+ElevatorScenario elevatorScenarioFromString(const std::string& name) {
+    for (ElevatorScenario s : {ElevatorScenario::Trip, ElevatorScenario::Loading, ElevatorScenario::EmergencyStop,
+                               ElevatorScenario::Stall})
+        if (name == toString(s)) return s;
+    throw std::invalid_argument("elevator scenario '" + name + "' is not one of trip, loading, emergency-stop, stall");
+}
+
+void ElevatorParameters::validate() const {
+    auto check = [](const char* name, double v, bool ok, const char* must) {
+        if (!std::isfinite(v) || !ok) {
+            std::ostringstream o;
+            o << "ElevatorParameters: " << name << " = " << v << " must be " << must;
+            throw std::invalid_argument(o.str());
+        }
+    };
+    check("g [m/s^2]", g, g > 0, "finite and > 0");
+    check("carMass [kg]", carMass, carMass > 0, "finite and > 0");
+    check("ratedLoad [kg]", ratedLoad, ratedLoad >= 0, "finite and >= 0");
+    check("counterweightMass [kg]", counterweightMass, counterweightMass >= 0, "finite and >= 0 (0: car + half the rated load)");
+    check("hoistway [m]", hoistway, hoistway > 2, "finite and > 2");
+    check("sheaveRadius [m]", sheaveRadius, sheaveRadius > 0, "finite and > 0");
+    check("sheaveInertia [kg m^2]", sheaveInertia, sheaveInertia > 0, "finite and > 0");
+    check("friction [-]", friction, friction >= 0, "finite and >= 0");
+    check("wrapAngle [rad]", wrapAngle, wrapAngle > 0, "finite and > 0");
+    check("rhoA [kg/m]", rhoA, rhoA > 0, "finite and > 0");
+    check("EA [N]", EA, EA > 0, "finite and > 0");
+    check("retardationTime [s]", retardationTime, retardationTime >= 0, "finite and >= 0");
+    check("ratedSpeed [m/s]", ratedSpeed, ratedSpeed > 0, "finite and > 0");
+    check("tripDistance [m]", tripDistance, tripDistance > 0 && tripDistance < hoistway - 4, "in (0, hoistway - 4)");
+    check("tripRamp [s]", tripRamp, tripRamp > 0, "finite and > 0");
+    check("brakeDeceleration [m/s^2]", brakeDeceleration, brakeDeceleration > 0, "finite and > 0");
+    check("stallSpeed [m/s]", stallSpeed, stallSpeed > 0, "finite and > 0");
+    check("bufferStiffness [N/m]", bufferStiffness, bufferStiffness > 0, "finite and > 0");
+}
+
+namespace {
+
+/// The brake's stop of a sheave turning at omega0 at t = 0: omega(t) = omega0 (1 - r(t / T)),
+/// r(u) = 6 u^5 - 15 u^4 + 10 u^3 (acceleration continuous, zero at both ends), standstill from T on.
+class BrakeStop : public SimTK::Motion::Custom::Implementation {
+public:
+    BrakeStop(double omega0, double T) : omega0_(omega0), T_(T) {}
+    Implementation* clone() const override { return new BrakeStop(*this); }
+    SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Position; }
+    void calcPrescribedPosition(const SimTK::State& s, int nq, SimTK::Real* q) const override {
+        const double u = std::min(std::max(s.getTime() / T_, 0.0), 1.0);
+        if (nq == 1) q[0] = omega0_ * T_ * (u - (std::pow(u, 6) - 3 * std::pow(u, 5) + 2.5 * std::pow(u, 4)));
+    }
+    void calcPrescribedPositionDot(const SimTK::State& s, int nq, SimTK::Real* qdot) const override {
+        const double u = std::min(std::max(s.getTime() / T_, 0.0), 1.0);
+        if (nq == 1) qdot[0] = omega0_ * (1 - (6 * std::pow(u, 5) - 15 * std::pow(u, 4) + 10 * std::pow(u, 3)));
+    }
+    void calcPrescribedPositionDotDot(const SimTK::State& s, int nq, SimTK::Real* qdotdot) const override {
+        const double u = std::min(std::max(s.getTime() / T_, 0.0), 1.0);
+        if (nq == 1) qdotdot[0] = -omega0_ / T_ * (30 * std::pow(u, 4) - 60 * std::pow(u, 3) + 30 * u * u);
+    }
+
+private:
+    double omega0_, T_;
+};
+
+}  // namespace
+
+double ElevatorScene::carTotalMass() const {
+    const ElevatorParameters& p = parameters_;
+    switch (p.scenario) {
+        case ElevatorScenario::Stall: return p.carMass;
+        case ElevatorScenario::Loading: return p.carMass + 1.25 * p.ratedLoad;
+        default: return p.carMass + p.ratedLoad;
+    }
+}
+
+double ElevatorScene::duration() const {
+    const ElevatorParameters& p = parameters_;
+    switch (p.scenario) {
+        case ElevatorScenario::Trip: return 1.0 + p.tripDistance / p.ratedSpeed + p.tripRamp + 2.0;
+        case ElevatorScenario::Loading: return 3.0;
+        case ElevatorScenario::EmergencyStop: return 15.0 * p.ratedSpeed / (8.0 * p.brakeDeceleration) + 2.0;
+        case ElevatorScenario::Stall: return 6.0;
+    }
+    return 1.0;
+}
+
+ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOptions& spans) : parameters_(parameters) {
+    using namespace SimTK;
+    const ElevatorParameters& p = parameters_;
+    p.validate();
+    system_ = std::make_unique<MultibodySystem>();
+    matter_ = std::make_unique<SimbodyMatterSubsystem>(*system_);
+    forces_ = std::make_unique<GeneralForceSubsystem>(*system_);
+    Force::Gravity(*forces_, *matter_, -YAxis, p.g);
+    const double R = p.sheaveRadius;
+    sheave_ = std::make_unique<MobilizedBody::Pin>(matter_->Ground(), Transform(),
+                                                   Body::Rigid(MassProperties(200, Vec3(0), Inertia(p.sheaveInertia))),
+                                                   Transform());
+    const Rotation slideUp(Pi / 2, ZAxis);  // the sliders' x axis along Ground's y: q is the height
+    car_ = std::make_unique<MobilizedBody::Slider>(matter_->Ground(), Transform(slideUp, Vec3(-R, 0, 0)),
+                                                   Body::Rigid(MassProperties(carTotalMass(), Vec3(0), Inertia(500))),
+                                                   Transform(slideUp));
+    counterweight_ = std::make_unique<MobilizedBody::Slider>(
+        matter_->Ground(), Transform(slideUp, Vec3(R, 0, 0)),
+        Body::Rigid(MassProperties(p.counterweight(), Vec3(0), Inertia(100))), Transform(slideUp));
+    // Heights at t = 0: the car at the bottom landing (Trip, Loading, Stall) or mid-shaft
+    // (EmergencyStop); the counterweight where the rope puts it, 2 m below the sheave in the first.
+    carStart_ = p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -p.hoistway;
+    const double cwtStart = p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -2.0;
+    switch (p.scenario) {
+        case ElevatorScenario::Trip: {
+            MotionProfile lift;  // car height gained; the sheave turns -1/R rad per metre
+            lift.moves.push_back({1.0, p.tripDistance / p.ratedSpeed + p.tripRamp, p.tripRamp, p.tripDistance});
+            prescribeProfile(*sheave_, lift, -1.0 / R);
+            break;
+        }
+        case ElevatorScenario::Loading: Motion::Steady(*sheave_, 0.0); break;
+        case ElevatorScenario::EmergencyStop:
+            // The car runs down: rope towards the car, theta increasing.
+            Motion::Custom(*sheave_, new BrakeStop(p.ratedSpeed / R, 15.0 * p.ratedSpeed / (8.0 * p.brakeDeceleration)));
+            break;
+        case ElevatorScenario::Stall: {
+            MotionProfile drive;  // the machine drives the car up at stallSpeed after a 1 s ramp
+            const double D = 100.0;
+            drive.moves.push_back({0.5, D, 1.0, p.stallSpeed * (D - 1.0)});
+            prescribeProfile(*sheave_, drive, -1.0 / R);
+            // The buffer: 1 cm under the counterweight's start (the drive lowers it onto it).
+            Force::MobilityLinearStop(*forces_, *counterweight_, MobilizerQIndex(0), p.bufferStiffness, 0.0,
+                                      cwtStart - 0.01, 10.0);
+            break;
+        }
+    }
+    reeving_ = std::make_unique<ReevingSubsystem>(*system_);
+    RopeSpec rope;
+    rope.name = "hoist ropes";
+    rope.start = RopeAnchor{*car_, Vec3(0)};
+    TractionSheave ts;
+    ts.body = *sheave_;
+    ts.radius = R;
+    ts.frictionCoefficient = p.friction;
+    ts.wrapAngle = p.wrapAngle;
+    ts.materialCoordinateAtZeroAngle = -carStart_;
+    ts.sense = 1;
+    rope.sheaves = {ts};
+    rope.end = RopeAnchor{*counterweight_, Vec3(0)};
+    rope.properties = {p.rhoA, p.EA, 0.0, true};
+    rope.properties.axialRetardationTime = p.retardationTime;
+    rope.unstretchedLength = -carStart_ - cwtStart;
+    rope.spanDefaults = spans;
+    rope.planeNormal = Vec3(0, 0, 1);
+    reeving_->addRope(rope);
+    reeving_->setDecorationForceScale(1.5 * (p.carMass + p.ratedLoad) * p.g);
+    workMeter_ = std::make_unique<MotionWorkMeter>(*system_);
+    system_->realizeTopology();
+}
+
+SimTK::State ElevatorScene::makeInitialState() const {
+    using namespace SimTK;
+    const ElevatorParameters& p = parameters_;
+    State s = system_->getDefaultState();
+    s.setTime(0);
+    car_->setOneQ(s, 0, carStart_);
+    counterweight_->setOneQ(s, 0, p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -2.0);
+    system_->realize(s, Stage::Time);
+    system_->prescribe(s);
+    reeving_->findStaticEquilibrium(s, 1e-10);
+    if (p.scenario == ElevatorScenario::EmergencyStop) {  // everything at rated speed, car down
+        car_->setOneU(s, 0, -p.ratedSpeed);
+        counterweight_->setOneU(s, 0, p.ratedSpeed);
+    }
+    system_->prescribe(s);
+    reeving_->updateTractionModes(s);
+    workMeter_->setWork(s, 0);
+    system_->realize(s, Stage::Velocity);
+    return s;
+}
+
+double ElevatorScene::carHeight(const SimTK::State& s) const { return car_->getOneQ(s, 0); }
+double ElevatorScene::counterweightHeight(const SimTK::State& s) const { return counterweight_->getOneQ(s, 0); }
+double ElevatorScene::carVelocity(const SimTK::State& s) const { return car_->getOneU(s, 0); }
+double ElevatorScene::carAcceleration(const SimTK::State& s) const { return car_->getOneUDot(s, 0); }
+double ElevatorScene::ropeTravel(const SimTK::State& s) const { return parameters_.sheaveRadius * sheave_->getOneQ(s, 0); }
+double ElevatorScene::carSideForce(const SimTK::State& s) const {
+    const auto range = reeving_->getSpanMaterialRange(s, 0, 0);
+    return reeving_->getAxialForce(s, 0, 0, range.second);
+}
+double ElevatorScene::counterweightSideForce(const SimTK::State& s) const {
+    const auto range = reeving_->getSpanMaterialRange(s, 0, 1);
+    return reeving_->getAxialForce(s, 0, 1, range.first);
+}
+double ElevatorScene::energyResidual(const SimTK::State& s, double e0) const {
+    return reeving_->calcMechanicalEnergy(s) - e0 + reeving_->getTotalFrictionWork(s) + reeving_->getDampingWork(s) -
+           workMeter_->getWork(s);
+}
+
+}  // namespace SimbodyReeving
