@@ -171,6 +171,10 @@ struct SpanOptions {
     /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
     /// EA eps_s = 165 N is rounded down by up to a fifth of that).
     double quasiStaticSlackTransitionStrain = 1e-5;
+    /// 0 (default) selects the automatic rule: Gauss-Legendre with
+    /// SpanModel::automaticQuadraturePoints points for the kinetic and for the strain integrals
+    /// (exact to round-off). Otherwise 1..200: that many Gauss-Legendre points for both.
+    int quadraturePoints = 0;
     /// zeta_t [-], finite, in [0, 1]; default 0: modal damping of the transverse modes. Mode i of
     /// each transverse direction feels
     ///     Q_i = -2 zeta_t omega_i m_i qdot_i,   m_i = rhoA l / 2,
@@ -179,10 +183,6 @@ struct SpanOptions {
     /// over the strain points, evaluated at each state: a free transverse vibration decays with
     /// damping ratio zeta_t. Its power -sum Q_i qdot_i >= 0 is part of SpanData::dampingPower.
     double transverseDampingRatio = 0;
-    /// 0 (default) selects the automatic rule: Gauss-Legendre with
-    /// SpanModel::automaticQuadraturePoints points for the kinetic and for the strain integrals
-    /// (exact to round-off). Otherwise 1..200: that many Gauss-Legendre points for both.
-    int quadraturePoints = 0;
 };
 
 /// Generalized forces, mass matrix and energies of one span at one state: the per-evaluation
