@@ -228,6 +228,7 @@ int main(int argc, char** argv) {
     app.add_option("--accuracy", o.accuracy, "integrator accuracy, 0 < TOL < 1 (default 1e-6)")
         ->check(numberInOpenInterval(0, 1));
     app.add_option("--t-end", o.tEnd, "end time of each scenario [s] (default: the scenario's own, 4.5-15 s)")
+        ->type_name("T")
         ->check(positiveNumber());
     app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.01)")->check(positiveNumber());
     app.add_option("--out", o.outDir, "output folder (default out/elevator)")->type_name("DIR")->check(nonEmpty());
