@@ -207,12 +207,15 @@ SceneOutcome randomScene(Hostile& h) {
 
 }  // namespace
 
-// 150 random scenes, 0.05 s each.
+// 90 random scenes, 0.05 s each. The first 90 of the seed's stream cover every outcome that its 150
+// did (measured 2026-12-01: 44 finite to the end, 3 integrator gave up with the rope's cause kept, 2
+// stopped at the step limit, the rest invalid_argument at set-up); scenes 90-149 added no kind but
+// 44 % of the run time (56 of 126 s wall on a loaded machine: five of them take 4-20 s each).
 TEST(Robustness, RandomScenesSimulateOrFailCleanly) {
     Hostile h(777);
     std::map<std::string, int> outcomes;
     std::map<std::string, std::string> example;
-    for (int trial = 0; trial < 150; ++trial) {
+    for (int trial = 0; trial < 90; ++trial) {
         const SceneOutcome r = randomScene(h);
         ++outcomes[r.kind];
         if (!example.count(r.kind)) example[r.kind] = r.message.substr(0, 300);
@@ -220,5 +223,5 @@ TEST(Robustness, RandomScenesSimulateOrFailCleanly) {
     }
     std::printf("random scenes:\n");
     for (const auto& [k, v] : outcomes) std::printf("  %4d  %s   e.g. %s\n", v, k.c_str(), example[k].c_str());
-    EXPECT_GT(outcomes["simulation: finite to the end"], 40);
+    EXPECT_GT(outcomes["simulation: finite to the end"], 40);  // measured 44 of 90 (2026-12-01)
 }
