@@ -4,6 +4,9 @@
 # (taskset -c 0), the real-time factor (simulated / wall, median of REPEATS runs, default 5) with the
 # steps and right-hand sides; and the cost of the friction events: each scenario again with
 # --friction 10 (the sheave never slips: no stick/slip events), steps, rhs and wall side by side.
+# Not stall at --friction 10: there the machine would haul the car up against a slack counterweight
+# side, which goes into slip with the raw-strain capstan law on a compressed (slack) side and fails
+# (a known limit, bench/RESULTS.md "Traction elevator").
 set -euo pipefail
 build="${1:-build}"
 repeats="${2:-5}"
@@ -16,6 +19,7 @@ printf '| scenario | mu | traction | transitions | steps | rhs | wall [s] (media
 printf '|---|---|---|---|---|---|---|---|\n'
 for scenario in trip loading emergency-stop stall; do
     for mu in 0.2 10; do
+        [ "$scenario" = stall ] && [ "$mu" = 10 ] && continue
         walls=()
         for ((i = 0; i < repeats; i++)); do
             taskset -c 0 "$exe" --scenario "$scenario" --friction "$mu" --no-plots --quiet --out "$tmp/$scenario-$mu" >/dev/null
