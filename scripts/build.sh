@@ -2,6 +2,5 @@
 # Configures and builds SimbodyReeving (Release) into build/. Used by demo.sh and test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-./scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+./scripts/configure.sh
 cmake --build build -j"$(nproc)"

@@ -17,7 +17,6 @@ elif [ "${1:-}" = elevator ]; then
     demo=reeving-elevator
     shift
 fi
-./scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+./scripts/configure.sh
 cmake --build build -j"$(nproc)" --target "$demo"
 exec "./build/examples/$demo" "$@"
