@@ -24,13 +24,13 @@ function(simbodyreeving_use_pch target pch)
   target_precompile_headers(${target} REUSE_FROM ${pch})
 endfunction()
 
-# simbodyreeving_use_library_pch(<target>): an example or benchmark reuses the Simbody layer's own
-# precompiled header (<Simbody.h>), so a build that needs one demo compiles one PCH, not two. The
+# simbodyreeving_use_library_pch(<target>): an example or benchmark reuses the Simbody layer's
+# precompiled header (<Simbody.h>, target SimbodyReevingSimbodyPch in plugin/CMakeLists.txt), so a build that needs one demo compiles one PCH, not two. The
 # target takes the flags the library's PCH was compiled with (-fPIC, which CMake gives a library
 # with POSITION_INDEPENDENT_CODE, where an executable would get -fPIE; Eigen's run-time assertions
 # off as in the library): GCC rejects a PCH whose flags differ (see above).
 function(simbodyreeving_use_library_pch target)
   target_compile_options(${target} PRIVATE -fPIC)
   target_compile_definitions(${target} PRIVATE $<$<NOT:$<CONFIG:Debug>>:EIGEN_NO_DEBUG>)
-  target_precompile_headers(${target} REUSE_FROM SimbodyReeving)
+  target_precompile_headers(${target} REUSE_FROM SimbodyReevingSimbodyPch)
 endfunction()
