@@ -1,4 +1,4 @@
-// reeving-elevator: a 1:1 roped traction elevator (issue 21) through EN 81-50's traction checks:
+// reeving-elevator: a traction elevator, roped 1:1 or 2:1 (issue 21), through EN 81-50's traction checks:
 // a trip, loading to 125 %, an emergency stop and a stalled counterweight, the hoist ropes over a
 // traction sheave that sticks and slips (capstan law). See --help and README.md.
 #include "common/Cli.h"
@@ -32,7 +32,7 @@ namespace {
 constexpr const char* kProgram = "reeving-elevator";
 
 struct Options {
-    std::string scenario = "all";
+    std::string scenario = "all", roping = "1:1";
     ElevatorParameters parameters;
     int axialModes = 1, transverseModes = 1;
     std::string integrator = "rk-merson";
@@ -72,10 +72,11 @@ Row observe(const ElevatorScene& scene, const State& s, double e0) {
     r.pCar = scene.carSideForce(s);
     r.pCwt = scene.counterweightSideForce(s);
     r.ratio = r.pCar / r.pCwt;
-    r.limit = rv.getTractionLimit(s, 0, 1);
-    r.mode = static_cast<int>(rv.getTractionMode(s, 0, 1));
-    r.slipRate = rv.getSlipRate(s, 0, 1);
-    r.slipDistance = rv.getSlipDistance(s, 0, 1);
+    const int node = scene.tractionNode();
+    r.limit = rv.getTractionLimit(s, 0, node);
+    r.mode = static_cast<int>(rv.getTractionMode(s, 0, node));
+    r.slipRate = rv.getSlipRate(s, 0, node);
+    r.slipDistance = rv.getSlipDistance(s, 0, node);
     r.frictionWork = rv.getTotalFrictionWork(s);
     r.dampingWork = rv.getDampingWork(s);
     r.machineWork = scene.workMeter().getWork(s);
@@ -114,7 +115,7 @@ Result run(const Options& o, ElevatorScenario scenario) {
     r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhs = integ->getNumRealizations();
-    r.transitions = scene.reeving().getNumTractionTransitions(ts.getState(), 0, 1);
+    r.transitions = scene.reeving().getNumTractionTransitions(ts.getState(), 0, scene.tractionNode());
     return r;
 }
 
@@ -172,7 +173,59 @@ Json summarize(const Result& r) {
     return j;
 }
 
-void plot(const fs::path& dir, const std::vector<Result>& results) {
+// Snapshots of the machine at five instants of a run (gnuplot commands for one multiplot row):
+// the traction sheave, the rope's falls (green in stick, red in slip), car and counterweight as
+// boxes under their hitches, the 2:1 sheaves on car and counterweight. The falls are drawn straight:
+// their sag under the rope's weight is below a millimetre here.
+void writeSnapshots(std::ostream& g, const Result& r, const ElevatorParameters& p) {
+    const double R = p.sheaveRadius, rc = p.carSheaveRadius;
+    const bool twoToOne = p.roping == 2;
+    const double xRail = twoToOne ? R + rc : R;
+    g << "set multiplot layout 1,5 title 'reeving-elevator: " << r.scenario << ", " << p.roping
+      << ":1 roping (rope green in stick, red in slip)'\n"
+      << "unset key\nunset grid\nunset xlabel\nset ylabel 'height [m]'\nset size ratio -1\nset xrange [-3:3]\n"
+      << "set yrange [" << -p.hoistway - 4 << ":2]\nset xtics 2\nset ytics 5\n";
+    for (int k = 0; k < 5; ++k) {
+        const Row& w = r.rows[std::min(r.rows.size() - 1, static_cast<size_t>(k * (r.rows.size() - 1) / 4))];
+        const char* colour = w.mode == static_cast<int>(TractionMode::Stick) ? "#2a9d3f" : "#d62728";
+        g << "unset object\nunset arrow\nunset label\n";
+        g << "set title sprintf('t = %.2f s, slip %.3f m', " << w.t << ", " << w.slipDistance << ")\n";
+        int id = 1;
+        auto line = [&](double x1, double y1, double x2, double y2) {
+            g << "set arrow " << id++ << " from " << x1 << "," << y1 << " to " << x2 << "," << y2 << " nohead lw 2 lc rgb '"
+              << colour << "'\n";
+        };
+        auto circle = [&](double x, double y, double radius) {
+            g << "set object " << id++ << " circle at " << x << "," << y << " size " << radius
+              << " fs empty border lc rgb 'black' lw 1.5\n";
+        };
+        auto box = [&](double x, double yTop, double half, double height, const char* fill) {
+            g << "set object " << id++ << " rect from " << x - half << "," << yTop - height << " to " << x + half << ","
+              << yTop << " fc rgb '" << fill << "' fs solid 0.6 border lc rgb 'black'\n";
+        };
+        circle(0, 0, R);
+        if (twoToOne) {
+            line(-(R + 2 * rc), 0, -(R + 2 * rc), w.carY);
+            line(-R, 0, -R, w.carY);
+            line(R, 0, R, w.cwtY);
+            line(R + 2 * rc, 0, R + 2 * rc, w.cwtY);
+            circle(-xRail, w.carY, rc);
+            circle(xRail, w.cwtY, rc);
+        } else {
+            line(-R, 0, -R, w.carY);
+            line(R, 0, R, w.cwtY);
+        }
+        box(-xRail - 0.6, w.carY - (twoToOne ? rc : 0), 0.75, 2.4, "#9ecae1");  // car
+        box(xRail + 0.3, w.cwtY - (twoToOne ? rc : 0), 0.25, 3.0, "#969696");   // counterweight
+        g << "set object " << id++ << " rect from -3," << -p.hoistway - 4 << " to 3," << -p.hoistway - 2.5
+          << " fc rgb '#d9d9d9' fs solid border lc rgb '#d9d9d9' behind\n";  // pit floor
+        g << "plot NaN\n";
+    }
+    g << "unset multiplot\nunset object\nunset arrow\nunset title\nset size noratio\nset autoscale xy\n"
+      << "set xtics autofreq\nset ytics autofreq\nset grid\nset key top left\n";
+}
+
+void plot(const fs::path& dir, const std::vector<Result>& results, const ElevatorParameters& parameters) {
     if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
         std::cerr << kProgram << ": gnuplot not found, figures skipped (apt-get install gnuplot-nox)\n";
         return;
@@ -184,13 +237,16 @@ void plot(const fs::path& dir, const std::vector<Result>& results) {
         const std::string csv = "timeseries_" + r.scenario + ".csv";
         g << "set output 'elevator_" << r.scenario << ".png'\nset multiplot layout 3,1 title 'reeving-elevator: "
           << r.scenario << "'\n"
-          << "set ylabel 'm'\nplot '" << csv << "' u 1:($2-$2[1]) w l t 'car rise', '" << csv
+          << "set ylabel 'm'\nplot '" << csv << "' u 1:($2-(" << r.rows.front().carY << ")) w l t 'car rise', '" << csv
           << "' u 1:(-$7) w l t 'rope travel (car up)', '" << csv << "' u 1:14 w l t 'slip distance'\n"
           << "set ylabel 'kN'\nplot '" << csv << "' u 1:($8/1000) w l t 'car side P_a', '" << csv
           << "' u 1:($9/1000) w l t 'counterweight side P_b'\n"
           << "set ylabel 'ratio'\nset xlabel 't [s]'\nplot '" << csv << "' u 1:10 w l t 'P_a / P_b', '" << csv
           << "' u 1:11 w l dt 2 t 'e^(mu alpha)', '" << csv << "' u 1:(1/$11) w l dt 2 t 'e^(-mu alpha)'\n"
           << "unset multiplot\nunset xlabel\n";
+        g << "set terminal pngcairo size 1500,900 noenhanced\nset output 'elevator_" << r.scenario << "_machine.png'\n";
+        writeSnapshots(g, r, parameters);
+        g << "set terminal pngcairo size 1200,900 noenhanced\n";
     }
     gp.commit();
     const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp";
@@ -203,11 +259,12 @@ int main(int argc, char** argv) {
     using namespace demo_common;
     Options o;
     CLI::App app(
-        "reeving-elevator: a 1:1 roped traction elevator (car with its rated load, counterweight at car +\n"
+        "reeving-elevator: a traction elevator, roped 1:1 or 2:1 (car with its rated load, counterweight at car +\n"
         "half the rated load, the rope set as one rope) through EN 81-50's traction checks, the hoist ropes\n"
         "over a traction sheave that sticks and slips by the capstan law P_tight = e^(mu alpha) P_slack.\n"
         "Outputs in DIR: timeseries_<scenario>.csv, summary.json (the traction table: held or slipped,\n"
-        "margin) and, with gnuplot, elevator_<scenario>.png.",
+        "margin) and, with gnuplot, elevator_<scenario>.png (time plots) and elevator_<scenario>_machine.png\n"
+        "(snapshots of the machine).",
         kProgram);
     applyConventions(app);
     app.footer(
@@ -216,6 +273,10 @@ int main(int argc, char** argv) {
         "nothing written).");
     app.add_option("--scenario", o.scenario, "trip, loading, emergency-stop, stall or all (default all)")
         ->check(oneOf({"all", "trip", "loading", "emergency-stop", "stall"}));
+    app.add_option("--roping", o.roping,
+                   "1:1 (rope ends on car and counterweight) or 2:1 (sheaves on car and counterweight, rope ends\n"
+                   "at the hoistway's top) (default 1:1)")
+        ->check(oneOf({"1:1", "2:1"}));
     app.add_option("--friction", o.parameters.friction, "effective groove friction coefficient mu (default 0.2)")
         ->check(positiveNumber());
     app.add_option("--rated-load", o.parameters.ratedLoad, "[kg] (default 630)")->check(positiveNumber());
@@ -237,6 +298,7 @@ int main(int argc, char** argv) {
     app.add_flag("--visualize", o.visualize, "show the runs in Simbody's Visualizer (headless without a display)");
     const int status = parseOrExitStatus(app, argc, argv);
     if (status >= 0) return status;
+    o.parameters.roping = o.roping == "2:1" ? 2 : 1;
     if (o.parameters.retardationTime < 0) {
         std::cerr << usageErrorText(kProgram, "--retardation-time: '" + numberText(o.parameters.retardationTime) +
                                                   "' must be >= 0");
@@ -259,6 +321,7 @@ int main(int argc, char** argv) {
     std::vector<Result> results;
     Json summary;
     summary["program"] = kProgram;
+    summary["roping"] = o.roping;
     summary["friction"] = jsonNumber(o.parameters.friction);
     summary["wrap_angle_rad"] = jsonNumber(o.parameters.wrapAngle);
     summary["rated_load_kg"] = jsonNumber(o.parameters.ratedLoad);
@@ -291,7 +354,7 @@ int main(int argc, char** argv) {
         writeJson(f.stream(), summary);
         f.commit();
     }
-    if (o.plots) plot(dir, results);
+    if (o.plots) plot(dir, results, o.parameters);
     if (!o.quiet) std::cout << kProgram << ": outputs in " << dir.string() << "\n";
     return 0;
 }

@@ -1,7 +1,7 @@
 // The reeving-elevator executable end to end (issue 21, acceptance 5): the traction table in
 // summary.json, the stalled counterweight slips (the car rises far less than the machine's rope
-// travel would lift it), the trip follows its profile within the rope's stretch, bad input exits 2
-// and writes nothing.
+// travel would lift it; also at mu = 10), the trip follows its profile within the rope's stretch,
+// 1:1 and 2:1, the figures include the machine's snapshots, bad input exits 2 and writes nothing.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -78,31 +78,88 @@ TEST(ElevatorDemo, StallSlipsAndTheCarRisesFarLessThanTheRopeTravel) {
     EXPECT_LE(t.at("energy_residual_relative").get<double>(), 1e-4);
 }
 
-TEST(ElevatorDemo, TripFollowsItsProfileWithinTheRopeStretchAndHolds) {
-    const fs::path out = scratch("trip");
-    ASSERT_EQ(run("--scenario trip --no-plots --quiet --out '" + out.string() + "'", out.string() + ".log"), 0);
+// The trip of `roping` (1 or 2): the car's rise is the rope hauled in divided by the roping, up to
+// the change of the car falls' stretch.
+void checkTrip(int roping) {
+    const fs::path out = scratch("trip" + std::to_string(roping));
+    ASSERT_EQ(run("--scenario trip --roping " + std::to_string(roping) + ":1 --no-plots --quiet --out '" + out.string() +
+                      "'",
+                  out.string() + ".log"),
+              0);
     const nlohmann::json s = readJson(out / "summary.json");
+    EXPECT_EQ(s.at("roping"), std::to_string(roping) + ":1");
     const nlohmann::json t = s.at("traction_table").at(0);
     EXPECT_EQ(t.at("traction"), "held");
     EXPECT_GT(t.at("traction_margin").get<double>(), 1.0);
     std::vector<std::string> h;
     const auto rows = readCsv(out / "timeseries_trip.csv", h);
     const int cy = column(h, "car_y_m"), tr = column(h, "rope_travel_m"), pa = column(h, "car_side_force_N");
-    // The car's rise equals the rope hauled in (-travel) up to the change of the car fall's stretch,
-    // P l / EA with l = 40 m - rise (the rope set's EA = 16 MN; P at the sheave, the fall's mean
-    // force is lower by half its weight, 1.7 %): 4.1 cm at the start, 1.2 cm less at the end.
+    // The car's rise equals the rope hauled in (-travel) / roping up to the change of a car fall's
+    // stretch, P l / EA with l = 40 m - rise (the rope set's EA = 16 MN; P at the sheave, the fall's
+    // mean force is lower by half its weight, 1.7 % in 1:1; in 2:1 the two car falls each stretch by
+    // P l / EA and the car takes half of their sum): 1:1 4.1 cm at the start, 1.2 cm less at the end.
     double worstMiss = 0, largest = 0;
     const double l0 = 40.0, EA = 1.6e7;
     for (const auto& r : rows) {
         const double rise = r[cy] - rows[0][cy];
         const double predicted = (r[pa] * (l0 - rise) - rows[0][pa] * l0) / EA;  // stretch change [m]
-        worstMiss = std::max(worstMiss, std::abs((rise - (-r[tr])) - (-predicted)));
+        worstMiss = std::max(worstMiss, std::abs((rise - (-r[tr]) / roping) - (-predicted)));
         largest = std::max(largest, std::abs(predicted));
     }
-    std::printf("trip: largest stretch change %.4f m, car path off it by at most %.5f m\n", largest, worstMiss);
-    EXPECT_GT(largest, 0.005);
-    EXPECT_LE(worstMiss, 0.1 * largest);
+    // At rest the car fall at the sheave carries 1 / roping of the car and its own weight (40 m of
+    // 1.4 kg/m; in 2:1 the fall from the car sheave).
+    const double carWeight = (1000.0 + 630.0) * 9.81, fallWeight = 1.4 * 9.81 * 40.0;
+    const double atRest = carWeight / roping + fallWeight;
+    std::printf("trip %d:1: largest stretch change %.4f m, car path off it by at most %.5f m; car fall at rest "
+                "%.1f N vs %.1f N\n",
+                roping, largest, worstMiss, rows[0][pa], atRest);
+    EXPECT_GT(largest, 0.005 / roping);
+    // Measured: 1:1 0.25 mm of 16 mm (1.6 %); 2:1 0.54 mm of 8.4 mm (6.4 %: the one-fall stretch
+    // model above leaves out how the car's frictionless sheave shares the stretch between the two
+    // falls while they accelerate). Bounds 10 % and 70 %: a wrong roping ratio misses by metres.
+    EXPECT_LE(worstMiss, (roping == 1 ? 0.1 : 0.7) * largest);
+    // Measured 0.42 % (1:1) and 0.65 % (2:1) low: one sine mode (n_a = 1) represents the fall's
+    // linear strain gradient under its weight with an error at its ends.
+    EXPECT_NEAR(rows[0][pa] / atRest, 1.0, 0.02);
     EXPECT_EQ(h.size(), 18u);
+}
+
+TEST(ElevatorDemo, TripFollowsItsProfileWithinTheRopeStretchAndHolds) { checkTrip(1); }
+
+TEST(ElevatorDemo, TwoToOneTripMovesTheCarHalfTheRopeTravelAndHolds) { checkTrip(2); }
+
+// The stall at mu = 10 (e^(mu alpha) = 4.4e13): the counterweight's fall is slack, so the groove
+// still cannot haul the car up, and the slack side must not break the traction sheave (it did
+// before the tension-ratio row was scaled: RopeModel's weightBefore_ / weightAfter_). With the
+// figures: the machine's snapshots are drawn.
+// The energy balance is checked with n_a = 0: with quasi-static axial modes (the default n_a = 1)
+// the rope's potential energy jumps by 16 J at the stick -> slip transition (6.4e-4 of the largest
+// term; the condensed amplitudes of the slipping phase differ from the sticking phase's), a known
+// open point (issue 21's note); with n_a = 0 the residual is 2.2e-7.
+TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
+    const fs::path out = scratch("stall_mu10");
+    ASSERT_EQ(run("--scenario stall --friction 10 --quiet --out '" + out.string() + "'", out.string() + ".log"), 0);
+    const nlohmann::json t = readJson(out / "summary.json").at("traction_table").at(0);
+    EXPECT_EQ(t.at("traction"), "slipped");
+    std::vector<std::string> h;
+    const auto rows = readCsv(out / "timeseries_stall.csv", h);
+    const double rise = rows.back()[column(h, "car_y_m")] - rows[0][column(h, "car_y_m")];
+    const double travel = -rows.back()[column(h, "rope_travel_m")];
+    std::printf("stall at mu = 10: car rose %.4f m for %.3f m of rope driven\n", rise, travel);
+    EXPECT_GT(travel, 2.0);
+    EXPECT_LT(rise, 0.1 * travel);  // measured 0.051 m of 2.5 m
+    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+        ASSERT_TRUE(fs::exists(out / "elevator_stall_machine.png"));
+        EXPECT_GT(fs::file_size(out / "elevator_stall_machine.png"), 10000u);
+        EXPECT_GT(fs::file_size(out / "elevator_stall.png"), 10000u);
+    }
+    const fs::path out0 = scratch("stall_mu10_na0");
+    ASSERT_EQ(run("--scenario stall --friction 10 --axial-modes 0 --no-plots --quiet --out '" + out0.string() + "'",
+                  out0.string() + ".log"),
+              0);
+    const nlohmann::json t0 = readJson(out0 / "summary.json").at("traction_table").at(0);
+    EXPECT_EQ(t0.at("traction"), "slipped");
+    EXPECT_LE(t0.at("energy_residual_relative").get<double>(), 1e-5);  // measured 2.2e-7
 }
 
 TEST(ElevatorDemo, TractionTableHasEveryScenario) {
@@ -121,7 +178,7 @@ TEST(ElevatorDemo, TractionTableHasEveryScenario) {
 TEST(ElevatorDemo, BadInputExitsTwoAndWritesNothing) {
     for (const std::string& args : {std::string("--scenario nope"), std::string("--friction -1"),
                                     std::string("--retardation-time -0.1"), std::string("--t-end 0"),
-                                    std::string("--rated-load abc")}) {
+                                    std::string("--rated-load abc"), std::string("--roping 3:1")}) {
         const fs::path out = scratch("bad");
         EXPECT_EQ(run(args + " --out '" + out.string() + "'", out.string() + ".log"), 2) << args;
         EXPECT_FALSE(fs::exists(out / "summary.json")) << args;

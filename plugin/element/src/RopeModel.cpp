@@ -60,6 +60,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         if (nodeKind_[k] == MaterialNode::Fixed) ++numFixed_;
     }
     slipRatio_.assign(N + 1, 1.0);
+    weightBefore_.assign(N + 1, 1.0);
+    weightAfter_.assign(N + 1, 1.0);
     condensedOffset_.assign(N, -1);
     for (int j = 0; j < N; ++j) {
         const SpanModel<Dim>& sp = spans_[j];
@@ -265,6 +267,8 @@ void RopeModel<Dim>::setSlipRatio(int node, double kappa) {
         throw std::invalid_argument(msg.str());
     }
     slipRatio_[node] = kappa;
+    weightBefore_[node] = 1.0 / std::max(1.0, kappa);
+    weightAfter_[node] = kappa / std::max(1.0, kappa);
 }
 
 template <int Dim>
@@ -350,13 +354,14 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         }
         for (int row = 0; row < nc; ++row) {
             const int k = slidingNode_[row];
-            const double kappa = slipRatio_[k];  // 1 but at Slipping nodes: eps_{k-1} = kappa eps_k
-            C[row] = data.ws().secondEnd[k - 1].strain - kappa * data.ws().firstEnd[k].strain;
-            scatter(row, k - 1, data.ws().secondEnd[k - 1].gradient, 1.0);
-            scatter(row, k, data.ws().firstEnd[k].gradient, -kappa);
+            // 1, 1 but at Slipping nodes: eps_{k-1} = kappa eps_k, scaled (see weightBefore_)
+            const double wb = weightBefore_[k], wa = weightAfter_[k];
+            C[row] = wb * data.ws().secondEnd[k - 1].strain - wa * data.ws().firstEnd[k].strain;
+            scatter(row, k - 1, data.ws().secondEnd[k - 1].gradient, wb);
+            scatter(row, k, data.ws().firstEnd[k].gradient, -wa);
             if (withRates)
                 data.ws().bias[row] =
-                    data.ws().secondEnd[k - 1].accelerationBias - kappa * data.ws().firstEnd[k].accelerationBias;
+                    wb * data.ws().secondEnd[k - 1].accelerationBias - wa * data.ws().firstEnd[k].accelerationBias;
         }
         return;
     }
@@ -405,25 +410,26 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         for (int i = 0; i < spans_[j].axialModes(); ++i) {
             const int row = condensedOffset_[j] + i;
             addTerm(row, j, kj.phi(i), invEA);
-            addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -slipRatio_[j]);
-            addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), 1.0);
+            addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -weightAfter_[j]);
+            addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), weightBefore_[j + 1]);
         }
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + ki;
-        addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), 1.0);
-        addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -slipRatio_[k]);
+        addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), weightBefore_[k]);
+        addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -weightAfter_[k]);
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + nc + ki;
         // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
         addTerm(row, k - 1, kernels_[k - 1].lengthDerivative(), invEA);
         addTerm(row, k, kernels_[k].lengthDerivative(), -invEA);
-        // sum_m nu_m dC_m/ds_k with C_m = eps2_{m-1}(l_{m-1}) - kappa_m eps1_m(l_m), l_j = s_{j+1} - s_j.
-        addProduct(row, k, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::Second), 1.0);
-        addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), slipRatio_[k]);
-        addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -1.0);
-        addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -slipRatio_[k - 1]);
+        // sum_m nu_m dC_m/ds_k with C_m = wb_m eps2_{m-1}(l_{m-1}) - wa_m eps1_m(l_m), l_j = s_{j+1} - s_j
+        // (wb, wa: weightBefore_, weightAfter_).
+        addProduct(row, k, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::Second), weightBefore_[k]);
+        addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), weightAfter_[k]);
+        addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -weightBefore_[k + 1]);
+        addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -weightAfter_[k - 1]);
         // A Slipping node: the friction force F_f = EA (eps1_k - eps2_{k-1}) on s_k is an applied
         // force, so the stationarity reads dU/ds_k / EA + sum nu dC/ds_k - F_f / EA = 0.
         if (nodeKind_[k] == MaterialNode::Slipping) {

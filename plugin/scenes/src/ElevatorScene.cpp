@@ -49,6 +49,8 @@ void ElevatorParameters::validate() const {
     check("brakeDeceleration [m/s^2]", brakeDeceleration, brakeDeceleration > 0, "finite and > 0");
     check("stallSpeed [m/s]", stallSpeed, stallSpeed > 0, "finite and > 0");
     check("bufferStiffness [N/m]", bufferStiffness, bufferStiffness > 0, "finite and > 0");
+    check("roping [-]", roping, roping == 1 || roping == 2, "1 (1:1) or 2 (2:1)");
+    check("carSheaveRadius [m]", carSheaveRadius, carSheaveRadius > 0, "finite and > 0");
 }
 
 namespace {
@@ -93,10 +95,17 @@ double ElevatorScene::duration() const {
     switch (p.scenario) {
         case ElevatorScenario::Trip: return 1.0 + p.tripDistance / p.ratedSpeed + p.tripRamp + 2.0;
         case ElevatorScenario::Loading: return 3.0;
-        case ElevatorScenario::EmergencyStop: return 15.0 * p.ratedSpeed / (8.0 * p.brakeDeceleration) + 2.0;
+        case ElevatorScenario::EmergencyStop: return brakeTime() + 2.0;
         case ElevatorScenario::Stall: return 6.0;
     }
     return 1.0;
+}
+
+// The brake's stop time T: the surface speed roping * ratedSpeed falls to 0 along the quintic
+// r(t / T), whose peak rate 15 / 8 of the mean is brakeDeceleration.
+double ElevatorScene::brakeTime() const {
+    const ElevatorParameters& p = parameters_;
+    return 15.0 * p.roping * p.ratedSpeed / (8.0 * p.brakeDeceleration);
 }
 
 ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOptions& spans) : parameters_(parameters) {
@@ -112,11 +121,13 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
                                                    Body::Rigid(MassProperties(200, Vec3(0), Inertia(p.sheaveInertia))),
                                                    Transform());
     const Rotation slideUp(Pi / 2, ZAxis);  // the sliders' x axis along Ground's y: q is the height
-    car_ = std::make_unique<MobilizedBody::Slider>(matter_->Ground(), Transform(slideUp, Vec3(-R, 0, 0)),
+    const bool twoToOne = p.roping == 2;
+    const double r = p.carSheaveRadius, xRail = twoToOne ? R + r : R;
+    car_ = std::make_unique<MobilizedBody::Slider>(matter_->Ground(), Transform(slideUp, Vec3(-xRail, 0, 0)),
                                                    Body::Rigid(MassProperties(carTotalMass(), Vec3(0), Inertia(500))),
                                                    Transform(slideUp));
     counterweight_ = std::make_unique<MobilizedBody::Slider>(
-        matter_->Ground(), Transform(slideUp, Vec3(R, 0, 0)),
+        matter_->Ground(), Transform(slideUp, Vec3(xRail, 0, 0)),
         Body::Rigid(MassProperties(p.counterweight(), Vec3(0), Inertia(100))), Transform(slideUp));
     // Heights at t = 0: the car at the bottom landing (Trip, Loading, Stall) or mid-shaft
     // (EmergencyStop); the counterweight where the rope puts it, 2 m below the sheave in the first.
@@ -124,18 +135,18 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     const double cwtStart = p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -2.0;
     switch (p.scenario) {
         case ElevatorScenario::Trip: {
-            MotionProfile lift;  // car height gained; the sheave turns -1/R rad per metre
+            MotionProfile lift;  // car height gained; the sheave turns -roping / R rad per metre
             lift.moves.push_back({1.0, p.tripDistance / p.ratedSpeed + p.tripRamp, p.tripRamp, p.tripDistance});
-            prescribeProfile(*sheave_, lift, -1.0 / R);
+            prescribeProfile(*sheave_, lift, -p.roping / R);
             break;
         }
         case ElevatorScenario::Loading: Motion::Steady(*sheave_, 0.0); break;
         case ElevatorScenario::EmergencyStop:
             // The car runs down: rope towards the car, theta increasing.
-            Motion::Custom(*sheave_, new BrakeStop(p.ratedSpeed / R, 15.0 * p.ratedSpeed / (8.0 * p.brakeDeceleration)));
+            Motion::Custom(*sheave_, new BrakeStop(p.roping * p.ratedSpeed / R, brakeTime()));
             break;
         case ElevatorScenario::Stall: {
-            MotionProfile drive;  // the machine drives the car up at stallSpeed after a 1 s ramp
+            MotionProfile drive;  // the machine's surface drives at stallSpeed after a 1 s ramp
             const double D = 100.0;
             drive.moves.push_back({0.5, D, 1.0, p.stallSpeed * (D - 1.0)});
             prescribeProfile(*sheave_, drive, -1.0 / R);
@@ -148,23 +159,32 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     reeving_ = std::make_unique<ReevingSubsystem>(*system_);
     RopeSpec rope;
     rope.name = "hoist ropes";
-    rope.start = RopeAnchor{*car_, Vec3(0)};
     TractionSheave ts;
     ts.body = *sheave_;
     ts.radius = R;
     ts.frictionCoefficient = p.friction;
     ts.wrapAngle = p.wrapAngle;
-    ts.materialCoordinateAtZeroAngle = -carStart_;
     ts.sense = 1;
-    rope.sheaves = {ts};
-    rope.end = RopeAnchor{*counterweight_, Vec3(0)};
+    if (twoToOne) {
+        // Chords from the top hitches down to the sheaves' centres and up to the traction sheave.
+        rope.start = RopeAnchor{matter_->Ground(), Vec3(-(R + 2 * r), 0, 0)};
+        ts.materialCoordinateAtZeroAngle = -2 * carStart_;
+        rope.sheaves = {DeviationSheave{*car_, Vec3(0), r}, ts, DeviationSheave{*counterweight_, Vec3(0), r}};
+        rope.end = RopeAnchor{matter_->Ground(), Vec3(R + 2 * r, 0, 0)};
+        rope.unstretchedLength = -2 * carStart_ - 2 * cwtStart;
+    } else {
+        rope.start = RopeAnchor{*car_, Vec3(0)};
+        ts.materialCoordinateAtZeroAngle = -carStart_;
+        rope.sheaves = {ts};
+        rope.end = RopeAnchor{*counterweight_, Vec3(0)};
+        rope.unstretchedLength = -carStart_ - cwtStart;
+    }
     rope.properties = {p.rhoA, p.EA, 0.0, true};
     rope.properties.axialRetardationTime = p.retardationTime;
-    rope.unstretchedLength = -carStart_ - cwtStart;
     rope.spanDefaults = spans;
     rope.planeNormal = Vec3(0, 0, 1);
     reeving_->addRope(rope);
-    reeving_->setDecorationForceScale(1.5 * (p.carMass + p.ratedLoad) * p.g);
+    reeving_->setDecorationForceScale(1.5 * (p.carMass + p.ratedLoad) * p.g / p.roping);
     workMeter_ = std::make_unique<MotionWorkMeter>(*system_);
     system_->realizeTopology();
 }
@@ -195,13 +215,16 @@ double ElevatorScene::counterweightHeight(const SimTK::State& s) const { return 
 double ElevatorScene::carVelocity(const SimTK::State& s) const { return car_->getOneU(s, 0); }
 double ElevatorScene::carAcceleration(const SimTK::State& s) const { return car_->getOneUDot(s, 0); }
 double ElevatorScene::ropeTravel(const SimTK::State& s) const { return parameters_.sheaveRadius * sheave_->getOneQ(s, 0); }
+// Spans tractionNode() - 1 and tractionNode() meet at the traction sheave.
 double ElevatorScene::carSideForce(const SimTK::State& s) const {
-    const auto range = reeving_->getSpanMaterialRange(s, 0, 0);
-    return reeving_->getAxialForce(s, 0, 0, range.second);
+    const int span = tractionNode() - 1;
+    const auto range = reeving_->getSpanMaterialRange(s, 0, span);
+    return reeving_->getAxialForce(s, 0, span, range.second);
 }
 double ElevatorScene::counterweightSideForce(const SimTK::State& s) const {
-    const auto range = reeving_->getSpanMaterialRange(s, 0, 1);
-    return reeving_->getAxialForce(s, 0, 1, range.first);
+    const int span = tractionNode();
+    const auto range = reeving_->getSpanMaterialRange(s, 0, span);
+    return reeving_->getAxialForce(s, 0, span, range.first);
 }
 double ElevatorScene::energyResidual(const SimTK::State& s, double e0) const {
     return reeving_->calcMechanicalEnergy(s) - e0 + reeving_->getTotalFrictionWork(s) + reeving_->getDampingWork(s) -

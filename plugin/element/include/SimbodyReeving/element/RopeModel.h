@@ -340,6 +340,12 @@ private:
     std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
     std::vector<int> slidingNode_;                 // sliding index -> node (Sliding and Slipping nodes)
     std::vector<double> slipRatio_;                // per node: kappa of a Slipping node, else 1
+    // The tension-equality row of node k is written w_before eps_{k-1} - w_after eps_k = 0 with
+    // (w_before, w_after) = (1, kappa) / max(1, kappa): the same equation as eps_{k-1} = kappa eps_k,
+    // with coefficients of at most 1, so its round-off stays at the strains' own (about 1e-16) for
+    // any kappa. Unscaled, a large kappa (e^(mu alpha) = 4e13 at mu = 10) multiplies the slack
+    // side's round-off past the Newton's tolerance.
+    std::vector<double> weightBefore_, weightAfter_;
     int numFixed_ = 0;
     struct Storage {
         int node = -1;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// A 1:1 roped traction elevator as a ready Simbody scene: car and counterweight on vertical guide
-/// rails (sliders), one rope (the rope set as one rope of the set's rhoA and EA) over a traction
+/// A traction elevator, roped 1:1 or 2:1, as a ready Simbody scene: car and counterweight on vertical
+/// guide rails (sliders), one rope (the rope set as one rope of the set's rhoA and EA) over a traction
 /// sheave (RopeNodeKind::TractionSheave) at the top of the hoistway, and the four scenarios of
 /// EN 81-50's traction checks.
 
@@ -56,6 +56,11 @@ struct ElevatorParameters {
     double brakeDeceleration = 3.0; ///< EmergencyStop: peak deceleration of the sheave surface [m/s^2], > 0
     double stallSpeed = 0.5;        ///< Stall: surface speed the machine keeps driving at [m/s], > 0
     double bufferStiffness = 2e6;   ///< Stall: counterweight buffer [N/m], > 0
+    /// 1 (1:1: the rope's ends on car and counterweight) or 2 (2:1: the rope's ends on the hoistway's
+    /// top, passing under a sheave on the car and a sheave on the counterweight; the car moves half
+    /// the rope travel and each fall carries half its weight).
+    int roping = 1;
+    double carSheaveRadius = 0.2;   ///< 2:1: radius of the car's and the counterweight's sheaves [m], > 0
     /// @throws std::invalid_argument naming the first parameter out of range.
     void validate() const;
     double counterweight() const { return counterweightMass > 0 ? counterweightMass : carMass + 0.5 * ratedLoad; }
@@ -63,11 +68,16 @@ struct ElevatorParameters {
 
 /// The elevator in the x-y plane (y up). Bodies: the machine sheave, a MobilizedBody::Pin (axis z) at
 /// the origin, prescribed in every scenario (the trip's speed profile, held in Loading, the brake's
-/// stop in EmergencyStop, the stalled drive); the car and the counterweight, MobilizedBody::Sliders along y (q = the
-/// height of the rope hitch [m]), at x = -R and x = +R. Rope: car hitch (start) -> TractionSheave
-/// (sense +1: a positive sheave angle moves rope towards the car, lowering it) -> counterweight hitch
-/// (end); tension-only, spans with the library's default options. A MotionWorkMeter holds the
-/// machine's work: energy residual = E(t) - E(0) + W_friction + W_damping - W_machine.
+/// stop in EmergencyStop, the stalled drive); the car and the counterweight, MobilizedBody::Sliders
+/// along y (q = the height of the rope hitch, in 2:1 of the sheave's centre [m]).
+/// - 1:1: car and counterweight at x = -R and x = +R. Rope: car hitch (start) -> TractionSheave
+///   (node 1) -> counterweight hitch (end).
+/// - 2:1: car and counterweight at x = -(R + r) and x = +(R + r), r = carSheaveRadius. Rope: hitch on
+///   Ground at (-(R + 2 r), 0) (start) -> DeviationSheave on the car -> TractionSheave (node 2) ->
+///   DeviationSheave on the counterweight -> hitch on Ground at (R + 2 r, 0) (end).
+/// The traction sheave's sense is +1: a positive sheave angle moves rope towards the car, lowering
+/// it. Tension-only rope, spans with the given options. A MotionWorkMeter holds the machine's work:
+/// energy residual = E(t) - E(0) + W_friction + W_damping - W_machine.
 class ElevatorScene {
 public:
     /// @throws std::invalid_argument for bad parameters or span options.
@@ -84,6 +94,9 @@ public:
     double carTotalMass() const;
     /// The end of the scenario's run [s].
     double duration() const;
+    /// The traction sheave's node in the rope (1 in 1:1, 2 in 2:1): the node argument of the
+    /// ReevingSubsystem's traction queries (getTractionMode(state, 0, tractionNode()), ...).
+    int tractionNode() const { return parameters_.roping; }
 
     /// The state at t = 0: static equilibrium (in stick) of car, counterweight and rope (in Loading
     /// with the rated load, then the car's mass raised to 125 %; in Stall with the counterweight
@@ -98,12 +111,16 @@ public:
     double carAcceleration(const SimTK::State& s) const;     ///< [m/s^2] (Stage::Acceleration)
     /// The machine's rope travel since t = 0: R (theta - theta_0) [m] (positive: rope towards the car).
     double ropeTravel(const SimTK::State& s) const;
-    double carSideForce(const SimTK::State& s) const;  ///< axial force of the car fall at the sheave [N]
+    /// Axial force of the car-side fall at the traction sheave [N] (2:1: one of the two falls that
+    /// carry the car).
+    double carSideForce(const SimTK::State& s) const;
     double counterweightSideForce(const SimTK::State& s) const;  ///< [N]
     /// E(t) - E(0) + W_friction + W_damping - W_machine [J] (Stage::Velocity), e0 = E(0).
     double energyResidual(const SimTK::State& s, double e0) const;
 
 private:
+    double brakeTime() const;
+
     ElevatorParameters parameters_;
     std::unique_ptr<SimTK::MultibodySystem> system_;
     std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter_;
