@@ -3,10 +3,8 @@
 # The traction elevator's cost (issue 21): for each scenario of reeving-elevator, pinned to one core
 # (taskset -c 0), the real-time factor (simulated / wall, median of REPEATS runs, default 5) with the
 # steps and right-hand sides; and the cost of the friction events: each scenario again with
-# --friction 10 (the sheave never slips: no stick/slip events), steps, rhs and wall side by side.
-# Not stall at --friction 10: there the machine would haul the car up against a slack counterweight
-# side, which goes into slip with the raw-strain capstan law on a compressed (slack) side and fails
-# (a known limit, bench/RESULTS.md "Traction elevator").
+# --friction 10 (the sheave slips only in the stall, where the counterweight's fall is slack: no
+# other stick/slip events), steps, rhs and wall side by side; then each scenario roped 2:1 (mu 0.2).
 set -euo pipefail
 build="${1:-build}"
 repeats="${2:-5}"
@@ -15,21 +13,25 @@ exe="$build/examples/reeving-elevator"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 field() { python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['traction_table'][0]; print(t[sys.argv[2]])" "$1" "$2"; }
-printf '| scenario | mu | traction | transitions | steps | rhs | wall [s] (median of %s) | real-time factor |\n' "$repeats"
-printf '|---|---|---|---|---|---|---|---|\n'
-for scenario in trip loading emergency-stop stall; do
-    for mu in 0.2 10; do
-        [ "$scenario" = stall ] && [ "$mu" = 10 ] && continue
-        walls=()
-        for ((i = 0; i < repeats; i++)); do
-            taskset -c 0 "$exe" --scenario "$scenario" --friction "$mu" --no-plots --quiet --out "$tmp/$scenario-$mu" >/dev/null
-            walls+=("$(field "$tmp/$scenario-$mu/summary.json" wall_s)")
+printf '| roping | scenario | mu | traction | transitions | steps | rhs | wall [s] (median of %s) | real-time factor |\n' "$repeats"
+printf '|---|---|---|---|---|---|---|---|---|\n'
+for roping in 1:1 2:1; do
+    for scenario in trip loading emergency-stop stall; do
+        for mu in 0.2 10; do
+            [ "$roping" = 2:1 ] && [ "$mu" = 10 ] && continue
+            out="$tmp/${roping/:/-}-$scenario-$mu"
+            walls=()
+            for ((i = 0; i < repeats; i++)); do
+                taskset -c 0 "$exe" --roping "$roping" --scenario "$scenario" --friction "$mu" --no-plots --quiet \
+                    --out "$out" >/dev/null
+                walls+=("$(field "$out/summary.json" wall_s)")
+            done
+            median="$(printf '%s\n' "${walls[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')"
+            s="$out/summary.json"
+            simulated="$(field "$s" simulated_s)"
+            printf '| %s | %s | %s | %s | %s | %s | %s | %.3f | %.2f |\n' "$roping" "$scenario" "$mu" "$(field "$s" traction)" \
+                "$(field "$s" stick_slip_transitions)" "$(field "$s" steps)" "$(field "$s" rhs_evaluations)" "$median" \
+                "$(python3 -c "print($simulated / $median)")"
         done
-        median="$(printf '%s\n' "${walls[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')"
-        s="$tmp/$scenario-$mu/summary.json"
-        simulated="$(field "$s" simulated_s)"
-        printf '| %s | %s | %s | %s | %s | %s | %.3f | %.2f |\n' "$scenario" "$mu" "$(field "$s" traction)" \
-            "$(field "$s" stick_slip_transitions)" "$(field "$s" steps)" "$(field "$s" rhs_evaluations)" "$median" \
-            "$(python3 -c "print($simulated / $median)")"
     done
 done

@@ -162,6 +162,20 @@ TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
     EXPECT_LE(t0.at("energy_residual_relative").get<double>(), 1e-5);  // measured 2.2e-7
 }
 
+// Roped 2:1 the emergency stop holds: the car decelerates at half the surface's 3 m/s^2.
+TEST(ElevatorDemo, TwoToOneEmergencyStopHolds) {
+    const fs::path out = scratch("stop21");
+    ASSERT_EQ(run("--scenario emergency-stop --roping 2:1 --no-plots --quiet --out '" + out.string() + "'",
+                  out.string() + ".log"),
+              0);
+    const nlohmann::json t = readJson(out / "summary.json").at("traction_table").at(0);
+    std::printf("2:1 emergency stop: %s, margin %.4f\n", t.at("traction").get<std::string>().c_str(),
+                t.at("traction_margin").get<double>());
+    EXPECT_EQ(t.at("traction"), "held");
+    EXPECT_GT(t.at("traction_margin").get<double>(), 1.0);  // measured 1.094
+    EXPECT_EQ(t.at("stick_slip_transitions"), 0);
+}
+
 TEST(ElevatorDemo, TractionTableHasEveryScenario) {
     const fs::path out = scratch("all");
     ASSERT_EQ(run("--t-end 0.5 --no-plots --quiet --out '" + out.string() + "'", out.string() + ".log"), 0);
