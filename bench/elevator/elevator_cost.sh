@@ -4,7 +4,8 @@
 # (taskset -c 0), the real-time factor (simulated / wall, median of REPEATS runs, default 5) with the
 # steps and right-hand sides; and the cost of the friction events: each scenario again with
 # --friction 10 (the sheave slips only in the stall, where the counterweight's fall is slack: no
-# other stick/slip events), steps, rhs and wall side by side; then each scenario roped 2:1 (mu 0.2).
+# other stick/slip events), steps, rhs and wall side by side; then each scenario roped 2:1 and each
+# 1:1 with the compensating rope (mu 0.2).
 set -euo pipefail
 build="${1:-build}"
 repeats="${2:-5}"
@@ -15,14 +16,16 @@ trap 'rm -rf "$tmp"' EXIT
 field() { python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['traction_table'][0]; print(t[sys.argv[2]])" "$1" "$2"; }
 printf '| roping | scenario | mu | traction | transitions | steps | rhs | wall [s] (median of %s) | real-time factor |\n' "$repeats"
 printf '|---|---|---|---|---|---|---|---|---|\n'
-for roping in 1:1 2:1; do
+for roping in 1:1 2:1 1:1+compensation; do
     for scenario in trip loading emergency-stop stall; do
         for mu in 0.2 10; do
-            [ "$roping" = 2:1 ] && [ "$mu" = 10 ] && continue
-            out="$tmp/${roping/:/-}-$scenario-$mu"
+            [ "$roping" != 1:1 ] && [ "$mu" = 10 ] && continue
+            extra=(--roping "${roping%%+*}")
+            [ "$roping" = 1:1+compensation ] && extra+=(--compensation)
+            out="$tmp/${roping/[:+]/-}-$scenario-$mu"
             walls=()
             for ((i = 0; i < repeats; i++)); do
-                taskset -c 0 "$exe" --roping "$roping" --scenario "$scenario" --friction "$mu" --no-plots --quiet \
+                taskset -c 0 "$exe" "${extra[@]}" --scenario "$scenario" --friction "$mu" --no-plots --quiet \
                     --out "$out" >/dev/null
                 walls+=("$(field "$out/summary.json" wall_s)")
             done

@@ -43,7 +43,7 @@ struct Options {
 
 struct Row {
     double t, carY, carV, carA, cwtY, travel, pCar, pCwt, ratio, limit, slipRate, slipDistance, frictionWork,
-        dampingWork, machineWork, residual;
+        dampingWork, machineWork, residual, pitY;
     int mode;
 };
 
@@ -68,6 +68,7 @@ Row observe(const ElevatorScene& scene, const State& s, double e0) {
     r.carV = scene.carVelocity(s);
     r.carA = scene.carAcceleration(s);
     r.cwtY = scene.counterweightHeight(s);
+    r.pitY = scene.pitSheaveHeight(s);
     r.travel = scene.ropeTravel(s);
     r.pCar = scene.carSideForce(s);
     r.pCwt = scene.counterweightSideForce(s);
@@ -124,7 +125,7 @@ void writeTimeseries(const fs::path& path, const Result& r) {
     auto& out = f.stream();
     out << "t_s,car_y_m,car_v_mps,car_a_mps2,car_jerk_mps3,counterweight_y_m,rope_travel_m,car_side_force_N,"
            "counterweight_side_force_N,force_ratio,traction_limit,mode,slip_rate_mps,slip_distance_m,"
-           "friction_work_J,damping_work_J,machine_work_J,energy_residual_J\n";
+           "friction_work_J,damping_work_J,machine_work_J,energy_residual_J,pit_sheave_y_m\n";
     out.precision(10);
     for (size_t i = 0; i < r.rows.size(); ++i) {
         const Row& w = r.rows[i];
@@ -134,7 +135,7 @@ void writeTimeseries(const fs::path& path, const Result& r) {
         out << w.t << ',' << w.carY << ',' << w.carV << ',' << w.carA << ',' << jerk << ',' << w.cwtY << ','
             << w.travel << ',' << w.pCar << ',' << w.pCwt << ',' << w.ratio << ',' << w.limit << ',' << w.mode << ','
             << w.slipRate << ',' << w.slipDistance << ',' << w.frictionWork << ',' << w.dampingWork << ','
-            << w.machineWork << ',' << w.residual << '\n';
+            << w.machineWork << ',' << w.residual << ',' << w.pitY << '\n';
     }
     f.commit();
 }
@@ -181,10 +182,11 @@ void writeSnapshots(std::ostream& g, const Result& r, const ElevatorParameters& 
     const double R = p.sheaveRadius, rc = p.carSheaveRadius;
     const bool twoToOne = p.roping == 2;
     const double xRail = twoToOne ? R + rc : R;
+    const double floorY = -p.hoistway - (p.compensation ? 11.0 : 4.0);  // under the pit sheave
     g << "set multiplot layout 1,5 title 'reeving-elevator: " << r.scenario << ", " << p.roping
-      << ":1 roping (rope green in stick, red in slip)'\n"
+      << ":1 roping" << (p.compensation ? ", compensated" : "") << " (rope green in stick, red in slip)'\n"
       << "unset key\nunset grid\nunset xlabel\nset ylabel 'height [m]'\nset size ratio -1\nset xrange [-3:3]\n"
-      << "set yrange [" << -p.hoistway - 4 << ":2]\nset xtics 2\nset ytics 5\n";
+      << "set yrange [" << floorY << ":2]\nset xtics 2\nset ytics 5\n";
     for (int k = 0; k < 5; ++k) {
         const Row& w = r.rows[std::min(r.rows.size() - 1, static_cast<size_t>(k * (r.rows.size() - 1) / 4))];
         const char* colour = w.mode == static_cast<int>(TractionMode::Stick) ? "#2a9d3f" : "#d62728";
@@ -215,9 +217,16 @@ void writeSnapshots(std::ostream& g, const Result& r, const ElevatorParameters& 
             line(-R, 0, -R, w.carY);
             line(R, 0, R, w.cwtY);
         }
+        if (std::isfinite(w.pitY)) {  // the compensating rope (black) around the pit sheave
+            g << "set arrow " << id++ << " from " << -xRail << "," << w.carY - 2.5 << " to " << -xRail << "," << w.pitY
+              << " nohead lw 1.5 lc rgb 'black'\n";
+            g << "set arrow " << id++ << " from " << xRail << "," << w.cwtY - 3.0 << " to " << xRail << "," << w.pitY
+              << " nohead lw 1.5 lc rgb 'black'\n";
+            circle(0, w.pitY, xRail);
+        }
         box(-xRail - 0.6, w.carY - (twoToOne ? rc : 0), 0.75, 2.4, "#9ecae1");  // car
         box(xRail + 0.3, w.cwtY - (twoToOne ? rc : 0), 0.25, 3.0, "#969696");   // counterweight
-        g << "set object " << id++ << " rect from -3," << -p.hoistway - 4 << " to 3," << -p.hoistway - 2.5
+        g << "set object " << id++ << " rect from -3," << floorY << " to 3," << floorY + 1.5
           << " fc rgb '#d9d9d9' fs solid border lc rgb '#d9d9d9' behind\n";  // pit floor
         g << "plot NaN\n";
     }
@@ -277,6 +286,8 @@ int main(int argc, char** argv) {
                    "1:1 (rope ends on car and counterweight) or 2:1 (sheaves on car and counterweight, rope ends\n"
                    "at the hoistway's top) (default 1:1)")
         ->check(oneOf({"1:1", "2:1"}));
+    app.add_flag("--compensation", o.parameters.compensation,
+                 "a compensating rope under car and counterweight over a weighted pit sheave (500 kg)");
     app.add_option("--friction", o.parameters.friction, "effective groove friction coefficient mu (default 0.2)")
         ->check(positiveNumber());
     app.add_option("--rated-load", o.parameters.ratedLoad, "[kg] (default 630)")->check(positiveNumber());
@@ -322,6 +333,7 @@ int main(int argc, char** argv) {
     Json summary;
     summary["program"] = kProgram;
     summary["roping"] = o.roping;
+    summary["compensation"] = o.parameters.compensation;
     summary["friction"] = jsonNumber(o.parameters.friction);
     summary["wrap_angle_rad"] = jsonNumber(o.parameters.wrapAngle);
     summary["rated_load_kg"] = jsonNumber(o.parameters.ratedLoad);

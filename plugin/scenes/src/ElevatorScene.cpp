@@ -51,6 +51,8 @@ void ElevatorParameters::validate() const {
     check("bufferStiffness [N/m]", bufferStiffness, bufferStiffness > 0, "finite and > 0");
     check("roping [-]", roping, roping == 1 || roping == 2, "1 (1:1) or 2 (2:1)");
     check("carSheaveRadius [m]", carSheaveRadius, carSheaveRadius > 0, "finite and > 0");
+    check("compensationRhoA [kg/m]", compensationRhoA, compensationRhoA >= 0, "finite and >= 0 (0: rhoA)");
+    check("pitSheaveMass [kg]", pitSheaveMass, pitSheaveMass > 0, "finite and > 0");
 }
 
 namespace {
@@ -184,6 +186,26 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     rope.spanDefaults = spans;
     rope.planeNormal = Vec3(0, 0, 1);
     reeving_->addRope(rope);
+    if (p.compensation) {
+        // Hitch offsets under car and counterweight, and the pit sheave 6 m under the car's bottom at
+        // the bottom landing (the point sheave's chords then lean at most 3 degrees).
+        const double carBottom = -2.5, cwtBottom = -3.0;
+        pitStart_ = -p.hoistway + carBottom - 6.0;
+        pitSheave_ = std::make_unique<MobilizedBody::Slider>(
+            matter_->Ground(), Transform(slideUp, Vec3(0, 0, 0)),
+            Body::Rigid(MassProperties(p.pitSheaveMass, Vec3(0), Inertia(10))), Transform(slideUp));
+        RopeSpec comp;
+        comp.name = "compensating ropes";
+        comp.start = RopeAnchor{*car_, Vec3(0, carBottom, 0)};
+        comp.sheaves = {DeviationSheave{*pitSheave_, Vec3(0), xRail}};
+        comp.end = RopeAnchor{*counterweight_, Vec3(0, cwtBottom, 0)};
+        comp.properties = {p.compensationRhoA > 0 ? p.compensationRhoA : p.rhoA, p.EA, 0.0, true};
+        comp.properties.axialRetardationTime = p.retardationTime;
+        comp.unstretchedLength = (carStart_ + carBottom - pitStart_) + (cwtStart + cwtBottom - pitStart_);
+        comp.spanDefaults = spans;
+        comp.planeNormal = Vec3(0, 0, 1);
+        reeving_->addRope(comp);
+    }
     reeving_->setDecorationForceScale(1.5 * (p.carMass + p.ratedLoad) * p.g / p.roping);
     workMeter_ = std::make_unique<MotionWorkMeter>(*system_);
     system_->realizeTopology();
@@ -196,6 +218,7 @@ SimTK::State ElevatorScene::makeInitialState() const {
     s.setTime(0);
     car_->setOneQ(s, 0, carStart_);
     counterweight_->setOneQ(s, 0, p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -2.0);
+    if (pitSheave_) pitSheave_->setOneQ(s, 0, pitStart_);
     system_->realize(s, Stage::Time);
     system_->prescribe(s);
     reeving_->findStaticEquilibrium(s, 1e-10);
@@ -212,6 +235,9 @@ SimTK::State ElevatorScene::makeInitialState() const {
 
 double ElevatorScene::carHeight(const SimTK::State& s) const { return car_->getOneQ(s, 0); }
 double ElevatorScene::counterweightHeight(const SimTK::State& s) const { return counterweight_->getOneQ(s, 0); }
+double ElevatorScene::pitSheaveHeight(const SimTK::State& s) const {
+    return pitSheave_ ? pitSheave_->getOneQ(s, 0) : SimTK::NaN;
+}
 double ElevatorScene::carVelocity(const SimTK::State& s) const { return car_->getOneU(s, 0); }
 double ElevatorScene::carAcceleration(const SimTK::State& s) const { return car_->getOneUDot(s, 0); }
 double ElevatorScene::ropeTravel(const SimTK::State& s) const { return parameters_.sheaveRadius * sheave_->getOneQ(s, 0); }

@@ -61,6 +61,12 @@ struct ElevatorParameters {
     /// the rope travel and each fall carries half its weight).
     int roping = 1;
     double carSheaveRadius = 0.2;   ///< 2:1: radius of the car's and the counterweight's sheaves [m], > 0
+    /// A compensating rope: from under the car (2.5 m below its hitch) down around a weighted pit
+    /// sheave and up to under the counterweight (3 m below its hitch), a second rope in the same
+    /// ReevingSubsystem. It balances the hoist ropes' weight moving from one side to the other.
+    bool compensation = false;
+    double compensationRhoA = 0;          ///< its mass per length [kg/m], >= 0 (0: rhoA, full compensation)
+    double pitSheaveMass = 500.0;         ///< pit sheave with its tensioning weight, on a vertical guide [kg], > 0
     /// @throws std::invalid_argument naming the first parameter out of range.
     void validate() const;
     double counterweight() const { return counterweightMass > 0 ? counterweightMass : carMass + 0.5 * ratedLoad; }
@@ -75,6 +81,10 @@ struct ElevatorParameters {
 /// - 2:1: car and counterweight at x = -(R + r) and x = +(R + r), r = carSheaveRadius. Rope: hitch on
 ///   Ground at (-(R + 2 r), 0) (start) -> DeviationSheave on the car -> TractionSheave (node 2) ->
 ///   DeviationSheave on the counterweight -> hitch on Ground at (R + 2 r, 0) (end).
+/// With compensation: a pit sheave (MobilizedBody::Slider along y at x = 0, free: its weight
+/// tensions the rope) of radius x_rail, its centre 6 m below the car's bottom at the bottom landing;
+/// rope 1: car (start) -> DeviationSheave on the pit sheave -> counterweight (end), EA as the hoist
+/// ropes', tension-only.
 /// The traction sheave's sense is +1: a positive sheave angle moves rope towards the car, lowering
 /// it. Tension-only rope, spans with the given options. A MotionWorkMeter holds the machine's work:
 /// energy residual = E(t) - E(0) + W_friction + W_damping - W_machine.
@@ -107,6 +117,8 @@ public:
     // ---- observables (Stage::Position unless said otherwise)
     double carHeight(const SimTK::State& s) const;           ///< car hitch height [m]
     double counterweightHeight(const SimTK::State& s) const; ///< [m]
+    /// Height of the pit sheave's centre [m]; NaN without compensation.
+    double pitSheaveHeight(const SimTK::State& s) const;
     double carVelocity(const SimTK::State& s) const;         ///< [m/s] (Stage::Velocity)
     double carAcceleration(const SimTK::State& s) const;     ///< [m/s^2] (Stage::Acceleration)
     /// The machine's rope travel since t = 0: R (theta - theta_0) [m] (positive: rope towards the car).
@@ -128,8 +140,8 @@ private:
     std::unique_ptr<ReevingSubsystem> reeving_;
     std::unique_ptr<MotionWorkMeter> workMeter_;
     std::unique_ptr<SimTK::MobilizedBody::Pin> sheave_;
-    std::unique_ptr<SimTK::MobilizedBody::Slider> car_, counterweight_;
-    double carStart_ = 0;
+    std::unique_ptr<SimTK::MobilizedBody::Slider> car_, counterweight_, pitSheave_;
+    double carStart_ = 0, pitStart_ = 0;
 };
 
 }  // namespace SimbodyReeving
