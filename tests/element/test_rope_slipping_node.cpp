@@ -62,17 +62,25 @@ TEST(RopeSlippingNode, UnitRatioIsASlidingNodeWithAnUnloadedSheaveCoordinate) {
         sliding.computeDynamics(atwoodNodes(), vel, qm, qmd, a);
         const Eigen::VectorXd sheave = Eigen::VectorXd::Constant(1, 7.0), sheaveRate = Eigen::VectorXd::Constant(1, 0.5);
         slipping.computeDynamics(atwoodNodes(), vel, sheave, sheaveRate, qm, qmd, b);
+        // Dynamic axial modes: the same equations, to round-off. QuasiStatic: a Sliding node's condensed
+        // amplitudes solve the constrained stationarity (the tension-equality multiplier nu_k in
+        // their rows), a Slipping node's the unconstrained one (nu_k = 0, so that stick and slip
+        // share it: continuous transitions; RopeModel::evaluateConstraints), so they agree to the
+        // modal truncation. Measured for QuasiStatic: s 3.0e-7 m, node mass 1.0e-6 (2.2e-7 of its
+        // largest entry), node force 3.1e-7 N (1.0e-11 of its largest), sheave reaction 7.3e-9 N
+        // (2.3e-13), kinetic energy 2.1e-8 relative; bounds 10x those.
+        const bool exact = axial == AxialDynamics::Dynamic;
         const double scale = a.nodeMass.cwiseAbs().maxCoeff();
-        EXPECT_LE((a.materialCoordinates - b.materialCoordinates).cwiseAbs().maxCoeff(), 1e-13);
-        EXPECT_LE((a.nodeMass - b.nodeMass.topLeftCorner(6, 6)).cwiseAbs().maxCoeff(), 1e-12 * scale);
+        EXPECT_LE((a.materialCoordinates - b.materialCoordinates).cwiseAbs().maxCoeff(), exact ? 1e-13 : 3e-6);
+        EXPECT_LE((a.nodeMass - b.nodeMass.topLeftCorner(6, 6)).cwiseAbs().maxCoeff(), (exact ? 1e-12 : 2.2e-6) * scale);
         EXPECT_EQ(b.nodeMass.row(6).cwiseAbs().maxCoeff(), 0.0);
         EXPECT_EQ(b.nodeMass.col(6).cwiseAbs().maxCoeff(), 0.0);
         const double forceScale = a.nodeForce.cwiseAbs().maxCoeff();
-        EXPECT_LE((a.nodeForce - b.nodeForce.head(6)).cwiseAbs().maxCoeff(), 1e-12 * forceScale);
+        EXPECT_LE((a.nodeForce - b.nodeForce.head(6)).cwiseAbs().maxCoeff(), (exact ? 1e-12 : 1e-10) * forceScale);
         // The reaction on the sheave coordinate is P_0 - P_1, the tension-equality residual (a few
         // Newton tolerances, 1e-15 EA = 1.7e-8 N).
-        EXPECT_LE(std::abs(b.nodeForce[6]), 1e-13 * forceScale);
-        EXPECT_NEAR(a.kineticEnergy, b.kineticEnergy, 1e-12 * a.kineticEnergy);
+        EXPECT_LE(std::abs(b.nodeForce[6]), (exact ? 1e-13 : 2.3e-12) * forceScale);
+        EXPECT_NEAR(a.kineticEnergy, b.kineticEnergy, (exact ? 1e-12 : 2e-7) * a.kineticEnergy);
     }
 }
 

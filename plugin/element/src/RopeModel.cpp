@@ -390,8 +390,10 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     };
     // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too. Only Sliding nodes
     // m have a constraint C_m and a multiplier; the terms of other nodes vanish.
+    // A Slipping node's multiplier is held at zero (its row below): the capstan row alone fixes s_m,
+    // so its terms vanish here too.
     auto addProduct = [&](int row, int m, int j, int quantity, double coef) {
-        if (m < 1 || m > N - 1 || slidingIndex_[m] < 0) return;
+        if (m < 1 || m > N - 1 || slidingIndex_[m] < 0 || nodeKind_[m] == MaterialNode::Slipping) return;
         const int mi = slidingIndex_[m];
         const auto& K = data.ws().condensation[j];
         const double nu = data.multipliers[mi];
@@ -421,6 +423,20 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + nc + ki;
+        // A Slipping node: the capstan row eps_{k-1} = kappa eps_k fixes s_k; the friction force
+        // (computeDynamics) is applied to it, and the row of its multiplier reads nu_k = 0. So no
+        // multiplier of the ratio enters the amplitudes' stationarity: the condensed amplitudes
+        // solve the same equations in stick and in slip, and at a stick -> slip transition (where
+        // the ratio row holds already) the dependent coordinates are continuous. (With the
+        // stationarity in s_k here and nu_k in the amplitudes' rows, they jumped: 16 J of the
+        // rope's potential energy in the elevator's stall at mu = 10.)
+        if (nodeKind_[k] == MaterialNode::Slipping) {
+            if (!withRates) {
+                C[row] = data.multipliers[ki];
+                jac.push_back({row, nw + nqc + nc + ki, 1.0});
+            }
+            continue;
+        }
         // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
         addTerm(row, k - 1, kernels_[k - 1].lengthDerivative(), invEA);
         addTerm(row, k, kernels_[k].lengthDerivative(), -invEA);
@@ -430,12 +446,6 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), weightAfter_[k]);
         addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -weightBefore_[k + 1]);
         addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -weightAfter_[k - 1]);
-        // A Slipping node: the friction force F_f = EA (eps1_k - eps2_{k-1}) on s_k is an applied
-        // force, so the stationarity reads dU/ds_k / EA + sum nu dC/ds_k - F_f / EA = 0.
-        if (nodeKind_[k] == MaterialNode::Slipping) {
-            addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), 1.0);
-            addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -1.0);
-        }
     }
 }
 

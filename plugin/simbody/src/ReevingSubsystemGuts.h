@@ -319,8 +319,9 @@ public:
     /// Slip rate sdot_k - dsdTheta thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).
     double slipRate(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
     /// Witness of traction sheave d's next transition (Stage::Velocity), positive until it is due:
-    /// stick: the smaller of e^(mu alpha) P_b - P_a and e^(mu alpha) P_a - P_b, plus a hysteresis of
-    /// kTractionHysteresis (|P_a| + |P_b|) [N]; slip: the slip rate in the slip's direction plus
+    /// stick: the smaller of P_b - P_a e^(-mu alpha) and P_a - P_b e^(-mu alpha) (the capstan
+    /// margins divided by e^(mu alpha), so a large limit does not amplify round-off), plus a
+    /// hysteresis of kTractionHysteresis (|P_a| + |P_b|) [N]; slip: the slip rate in the slip's direction plus
     /// kSlipRateHysteresis [m/s].
     double tractionWitness(const SimTK::State& s, int rope, int driven) const;
     /// The transition of traction sheave d (its witness fell through zero): stick -> slip towards the

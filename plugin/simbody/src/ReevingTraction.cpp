@@ -113,8 +113,11 @@ double ReevingSubsystem::Guts::tractionWitness(const State& s, int rope, int dri
         const auto [pa, pb] = nodeAxialForces(s, r, d.node);
         const double scale = std::abs(pa) + std::abs(pb);
         if (!(std::max(pa, pb) > 0)) return scale + 1.0;  // both sides slack: no traction to lose
+        // min(limit P_b - P_a, limit P_a - P_b) / limit: divided by the limit (>= 1), so that a large
+        // e^(mu alpha) (4.4e13 at mu = 10) does not multiply the slack side's round-off (1e-9 N)
+        // past the hysteresis; the sign, and so the event, is the same.
         const double limit = tractionLimit(s, r, d);
-        return std::min(limit * pb - pa, limit * pa - pb) + kTractionHysteresis * scale;
+        return std::min(pb - pa / limit, pa - pb / limit) + kTractionHysteresis * scale;
     }
     const double v = slipRate(s, r, d);
     return (t.mode == TractionMode::SlipTowardStart ? v : -v) + kSlipRateHysteresis;

@@ -41,8 +41,13 @@ enum class MaterialNode {
     /// so a Simbody layer can switch a sheave between Driven (stick) and Slipping (slip) without
     /// changing the external coordinates. The friction power on the rope's material and the sheave
     /// together is -(P_{k-1} - P_k)(sdot_k - sdot_sheave) <= 0 when kappa is chosen on the side the
-    /// rope slides towards. kappa = 1 is a Sliding node plus an unloaded sheave coordinate.
-    /// Interior nodes only.
+    /// rope slides towards. With AxialDynamics::QuasiStatic spans the capstan row alone fixes s_k:
+    /// no multiplier of it enters the condensed amplitudes' stationarity, so they solve the same
+    /// equations as with the node Driven (stick), and switching between the two kinds at a
+    /// configuration where the ratio holds keeps every dependent coordinate continuous. kappa = 1 is
+    /// then a Sliding node plus an unloaded sheave coordinate exactly with AxialDynamics::Dynamic
+    /// spans, and to the modal truncation with QuasiStatic ones (a Sliding node's amplitudes carry
+    /// the tension equality's multiplier). Interior nodes only.
     Slipping,
 };
 
