@@ -42,7 +42,12 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
 
     // Generalized force residual at zero velocity: bodies M udot, ropes Mbar_mm qddot_m; and the
     // scale: the largest applied generalized force on bodies and rope modes.
+    // Evaluated at rest: every speed zero, the prescribed mobilities' too (System::project, below,
+    // gives them their prescribed speeds back). Otherwise a drum or brake prescribed to turn at t = 0
+    // would feed velocity-dependent forces into the balance (the rope's Kelvin-Voigt damping as the
+    // rope is dragged over a turning sheave under bodies at rest), which is no static equilibrium.
     auto residual = [&](State& st, double* scale) {
+        st.updU() = 0;
         mbs.realize(st, Stage::Acceleration);
         Eigen::VectorXd r(n);
         Vector Mudot;
@@ -91,11 +96,17 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
         mbs.project(st, 1e-12);
     };
 
+    // On return: free speeds zero, prescribed ones at their motion's values.
+    auto restorePrescribedSpeeds = [&](double rel) {
+        mbs.realize(state, Stage::Time);
+        mbs.prescribe(state);
+        return rel;
+    };
     double scale = 0;
     Eigen::VectorXd r = residual(state, &scale);
     for (int iter = 0; iter < maxIterations; ++iter) {
         const double rel = r.cwiseAbs().maxCoeff() / scale;
-        if (rel <= relativeTolerance) return rel;
+        if (rel <= relativeTolerance) return restorePrescribedSpeeds(rel);
         // Jacobian of the accelerations by central differences in (u-space, modal) coordinates.
         Eigen::MatrixXd J(n, n);
         for (int k = 0; k < n; ++k) {
@@ -157,7 +168,8 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
         if (!moved) break;  // no acceptable step: report the residual reached
     }
     const double rel = r.cwiseAbs().maxCoeff() / scale;
-    if (rel <= relativeTolerance) return rel;
+    if (rel <= relativeTolerance) return restorePrescribedSpeeds(rel);
+    restorePrescribedSpeeds(rel);
     std::ostringstream msg;
     msg << "ReevingSubsystem::findStaticEquilibrium: no convergence in " << maxIterations
         << " iterations (relative residual " << rel << ")";

@@ -159,6 +159,27 @@ struct TurningSheave {
 /// groove wear and pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
 /// undefined: both forces at or below 0 keep the sheave in its mode. Planar ropes only for now
 /// (addRope throws for a spatial rope with a TractionSheave).
+///
+/// With Kelvin-Voigt rope damping (RopeProperties::axialRetardationTime c > 0) the capstan law and
+/// the stick limit act on the elastic forces P = EA eps at the node, not on EA (eps + c Deps/Dt).
+/// In slip the elastic ratio is held at e^(mu alpha) at every instant, so the strain rates at
+/// the node keep that ratio too and the total forces follow it (exactly for uniform strain along
+/// the spans; otherwise up to c EA times the strain gradient times the slip rate, measured below
+/// 7e-9 relative in the elevator, from reported forces). What differs is the onset of slip, which waits
+/// until the elastic ratio reaches e^(mu alpha): about c later than the total force ratio does
+/// (measured in the elevator's emergency stop at c = 0.01 s: 12 ms later, while the damping
+/// stress at the sheave is up to 3.7 % of the rope force; slip distance 1.1 % above the undamped
+/// run's). The exact law makes s_k a state relaxing with time constant c in slip (not built).
+///
+/// Chatter: where neither mode is consistent, the sheave switches at the scale of the events'
+/// hysteresis (1e-9 of the rope force, 1e-9 m/s). Seen with a slack side and a huge mu alpha
+/// (the elevator's stall at mu = 10, e^(mu alpha) = 4.4e13): slip decelerates to zero rate while
+/// the slack side is at zero force, and stick lets the slack side go slack at once. The motion is
+/// the Filippov average of both (rope at the groove's speed, slack side at zero force), and the
+/// energy still closes (1.3e-6), but it costs 3 421 transitions in 15 ms (real-time factor 0.27
+/// against 2.8 with 1000x and 100x the hystereses, which in turn break the mu = 0 = DeviationSheave
+/// equivalence at 1e-9 m). With the groove coefficients of real sheaves (mu <= 0.3) no chatter
+/// was seen.
 struct TractionSheave {
     SimTK::MobilizedBody body;
     double radius = 0;
@@ -410,10 +431,14 @@ public:
     /// rates set to zero): Newton's method on the accelerations, until the generalized force
     /// residual is <= relativeTolerance times the largest applied generalized force. Mobilities
     /// with prescribed motion (SimTK::Motion) keep it: they are neither unknowns nor residuals
-    /// (a drum held by its motion is a fixed drum here). Each iteration moves a mobility or modal
-    /// coordinate by at most 0.5 (m or rad), so a body hanging from a slack tension-only rope
-    /// (no stiffness) falls until the rope takes it; trial states the rope cannot evaluate are
-    /// rejected by the line search.
+    /// (a drum held by its motion is a fixed drum here). The balance is that of a system at rest:
+    /// it is evaluated with every speed zero, the prescribed ones included, so velocity-dependent
+    /// forces (Kelvin-Voigt rope damping, a rope dragged over a sheave prescribed to turn) do not
+    /// enter it; on return the prescribed mobilities have their motion's speeds again (the state is
+    /// ready for a run that starts in steady motion: set the free speeds after this call). Each
+    /// iteration moves a mobility or modal coordinate by at most 0.5 (m or rad), so a body hanging
+    /// from a slack tension-only rope (no stiffness) falls until the rope takes it; trial states
+    /// the rope cannot evaluate are rejected by the line search.
     /// Returns the achieved relative residual.
     /// @throws std::runtime_error if it does not converge in maxIterations.
     double findStaticEquilibrium(SimTK::State& state, double relativeTolerance = 1e-10, int maxIterations = 50) const;
