@@ -78,7 +78,7 @@ TEST(RopeSlippingNode, UnitRatioIsASlidingNodeWithAnUnloadedSheaveCoordinate) {
         const double forceScale = a.nodeForce.cwiseAbs().maxCoeff();
         EXPECT_LE((a.nodeForce - b.nodeForce.head(6)).cwiseAbs().maxCoeff(), (exact ? 1e-12 : 1e-10) * forceScale);
         // The reaction on the sheave coordinate is P_0 - P_1, the tension-equality residual (a few
-        // Newton tolerances, 1e-15 EA = 1.7e-8 N).
+        // Newton tolerances; its tolerance 1e-14 in strain is 1.7e-7 N here).
         EXPECT_LE(std::abs(b.nodeForce[6]), (exact ? 1e-13 : 2.3e-12) * forceScale);
         EXPECT_NEAR(a.kineticEnergy, b.kineticEnergy, (exact ? 1e-12 : 2e-7) * a.kineticEnergy);
     }
@@ -97,7 +97,7 @@ TEST(RopeSlippingNode, ForcesKeepTheCapstanRatioAndTheSheaveCarriesTheirDifferen
             rope.computeDynamics(atwoodNodes(), Eigen::Matrix2Xd::Zero(2, 3), sheave, zero1, qm, qm, d);
             const double pa = endForce(rope, d, 0, SpanEnd::Second), pb = endForce(rope, d, 1, SpanEnd::First);
             ASSERT_GT(pb, 1e3);
-            // The Newton's tolerance 1e-15 in strain: 1.7e-8 N of forces of ~1e5 N.
+            // The Newton's tolerance 1e-14 in strain: 1.7e-7 N of forces of ~1e5 N.
             EXPECT_NEAR(pa / pb, kappa, 1e-11) << "axial " << static_cast<int>(axial);
             EXPECT_NEAR(rope.constraintError(d, 1), pa - pb, 1e-9 * pb);
             // At rest the rope's generalized force on the sheave coordinate is the friction's reaction.

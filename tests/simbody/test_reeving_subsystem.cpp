@@ -170,7 +170,7 @@ TEST(ReevingSubsystem, StaticTensionApproachesHangingRopeSolution) {
         const State s = scene.makeInitialState(0, 0);
         const ReevingSubsystem& rv = scene.reeving();
         // Measured 3.7e-9 N = 2.2e-16 EA (2026-12-01, 2e3eafb); the bound is the sheave Newton's acceptance
-        // (RopeModel: residual <= 1e-15 in strain units, or stagnation below 1e-12).
+        // (RopeModel: residual <= 1e-14 in strain units, or stagnation below 1e-12).
         EXPECT_LE(rv.getMaxConstraintError(s), 1e-12 * p.EA);
         const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, 1);
         double worst = 0;
@@ -457,9 +457,9 @@ TEST(ReevingSubsystem, ModalStateChangedAloneGivesTheSameResultsAsAFreshRealize)
     EXPECT_EQ(rv.calcRopePotentialEnergy(s), rv.calcRopePotentialEnergy(fresh));
     for (int i = 0; i < s.getNZ(); ++i) EXPECT_EQ(s.getZDot()[i], fresh.getZDot()[i]) << "zdot " << i;
     for (int i = 0; i < s.getNU(); ++i) EXPECT_EQ(s.getUDot()[i], fresh.getUDot()[i]) << "udot " << i;
-    // The sheave constraint holds for the new modal coordinates: to the Newton's tolerance, 1e-15
-    // in strain (EA 1e-15 = 1.65e-8 N; measured 1.8e-9 N; a solution left at the old modal
-    // coordinates would be off by about 1e3 N).
+    // The sheave constraint holds for the new modal coordinates: within 1e-15 in strain (EA 1e-15 =
+    // 1.65e-8 N; measured 1.8e-9 N; the Newton's tolerance is 1e-14, a solution left at the old
+    // modal coordinates would be off by about 1e3 N).
     EXPECT_LT(std::abs(rv.getConstraintError(s, 0, 1)), 1e-15 * PendulumParameters{}.EA);
 }
 

@@ -158,7 +158,7 @@ TEST(TractionSheave, SlippingMassesAccelerateAsTheCapstanAtwoodMachine) {
     EXPECT_GT(wf, 0);
     // Measured 6.5e-10 of 171 J (RK-Merson 1e-8); margin 15x (the issue asks 1e-6).
     EXPECT_LE(std::abs(de + wf), 1e-8 * std::max(std::abs(de), wf));
-    EXPECT_NEAR(a.reeving->getTractionRatio(s, 0, 1), kLimit, 1e-9);  // the Newton's 1e-15 strain tolerance
+    EXPECT_NEAR(a.reeving->getTractionRatio(s, 0, 1), kLimit, 1e-9);  // the Newton's 1e-14 strain tolerance
     EXPECT_GT(a.reeving->getSlipRate(s, 0, 1), 0);
 }
 

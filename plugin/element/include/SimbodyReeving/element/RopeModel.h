@@ -241,7 +241,7 @@ public:
 
     /// Solves the constraints for the dependent coordinates, s_1..s_{N-1} and the condensed axial
     /// amplitudes, by Newton's method (starting from data if it holds an admissible guess, else
-    /// from s split in proportion to the chord lengths and zero amplitudes) to a residual <= 1e-15
+    /// from s split in proportion to the chord lengths and zero amplitudes) to a residual <= 1e-14
     /// (strain units), or until it stagnates at round-off below 1e-12. Steps that do not reduce
     /// |C|_2 are halved (damped Newton; the rounded tension-only law of quasi-static spans changes
     /// curvature sharply where points go slack); a failed warm start is retried once from the
