@@ -132,9 +132,9 @@ TEST(ElevatorDemo, TwoToOneTripMovesTheCarHalfTheRopeTravelAndHolds) { checkTrip
 // still cannot haul the car up, and the slack side must not break the traction sheave (it did
 // before the tension-ratio row was scaled: RopeModel's weightBefore_ / weightAfter_). With the
 // figures: the machine's snapshots are drawn.
-// Energy: the run chatters between stick and slip for 15 ms at t = 4.25 s (3 421 transitions:
-// the slip rate returns to zero while the ratio stays at the limit) and closes to 1.3e-6 of the
-// largest term; with n_a = 0 (one transition) to 2.2e-7.
+// Energy: closes to 1.2e-6 of the largest term (7 transitions; at af00e15, Newton at 1e-15, the run
+// chattered for 15 ms at t = 4.25 s, 3 421 transitions, and closed to 1.3e-6: see TractionSheave);
+// with n_a = 0 (one transition) to 2.2e-7.
 TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
     const fs::path out = scratch("stall_mu10");
     ASSERT_EQ(run("--scenario stall --friction 10 --quiet --out '" + out.string() + "'", out.string() + ".log"), 0);
@@ -146,8 +146,8 @@ TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
     const double travel = -rows.back()[column(h, "rope_travel_m")];
     std::printf("stall at mu = 10: car rose %.4f m for %.3f m of rope driven\n", rise, travel);
     EXPECT_GT(travel, 2.0);
-    EXPECT_LT(rise, 0.1 * travel);  // measured 0.042 m of 2.5 m
-    EXPECT_LE(t.at("energy_residual_relative").get<double>(), 1e-5);  // measured 1.3e-6
+    EXPECT_LT(rise, 0.1 * travel);  // measured 0.061 m of 2.5 m (0.042 m at af00e15: sensitive to round-off)
+    EXPECT_LE(t.at("energy_residual_relative").get<double>(), 1e-5);  // measured 1.2e-6
     if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
         ASSERT_TRUE(fs::exists(out / "elevator_stall_machine.png"));
         EXPECT_GT(fs::file_size(out / "elevator_stall_machine.png"), 10000u);

@@ -176,10 +176,12 @@ struct TurningSheave {
 /// (the elevator's stall at mu = 10, e^(mu alpha) = 4.4e13): slip decelerates to zero rate while
 /// the slack side is at zero force, and stick lets the slack side go slack at once. The motion is
 /// the Filippov average of both (rope at the groove's speed, slack side at zero force), and the
-/// energy still closes (1.3e-6), but it costs 3 421 transitions in 15 ms (real-time factor 0.27
-/// against 2.8 with 1000x and 100x the hystereses, which in turn break the mu = 0 = DeviationSheave
-/// equivalence at 1e-9 m). With the groove coefficients of real sheaves (mu <= 0.3) no chatter
-/// was seen.
+/// energy still closes (1.3e-6), but it cost 3 421 transitions in 15 ms (real-time factor 0.27;
+/// 2.8 with 1000x and 100x the hystereses, which in turn break the mu = 0 = DeviationSheave
+/// equivalence at 1e-9 m). Whether a run enters it depends on round-off (the slack side's force
+/// is round-off there): with the Newton's tolerance at 1e-14 instead of 1e-15 the same stall takes
+/// 7 transitions (real-time factor 3.0). With the groove coefficients of real sheaves (mu <= 0.3)
+/// no chatter was seen.
 struct TractionSheave {
     SimTK::MobilizedBody body;
     double radius = 0;
