@@ -132,16 +132,26 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                 for (size_t a = 0; a < rc.rows.size(); ++a) ws.SJ.row(rc.rows[a]) = ws.ropeSX.row(rc.external[a]);
             }
             ws.rhs = ws.SJ.col(k) - ws.h;
-            ws.lhs.noalias() = ws.SJ.leftCols(k) * ws.JUMinv.transpose();
+            // I + S Lambda = I + A B^T with A = S J_U, B = J_U Minv_UU (n x k each), so by the
+            // Woodbury identity f = r - A (I_k + B^T A)^-1 B^T r: a k x k factorization, not n x n.
+            ws.f = ws.rhs;
+            if (k > 0) {  // no mobilities (coupled coordinates on prescribed bodies only): f = r
+                ws.lhs.noalias() = ws.JUMinv.transpose() * ws.SJ.leftCols(k);
+                ws.lhs.diagonal().array() += 1.0;
+                ws.lu.compute(ws.lhs);
+                ws.reducedRhs.noalias() = ws.JUMinv.transpose() * ws.rhs;
+                ws.reducedSolution = ws.lu.solve(ws.reducedRhs);
+                ws.f.noalias() -= ws.SJ.leftCols(k) * ws.reducedSolution;
+            }
         } else {
             ws.rhs.noalias() = ws.S * ws.a0;
             ws.rhs -= ws.h;
             ws.lhs.noalias() = ws.S * ws.Lambda;
+            ws.lhs.diagonal().array() += 1.0;
+            ws.lu.compute(ws.lhs);
+            ws.f = ws.lu.solve(ws.rhs);
         }
         ws.rdd = ws.a0;
-        ws.lhs.diagonal().array() += 1.0;
-        ws.lu.compute(ws.lhs);
-        ws.f = ws.lu.solve(ws.rhs);
         ws.rdd.noalias() -= ws.Lambda * ws.f;
         // MobilizedBody::applyForceToBodyPoint / applyOneMobilityForce, with this evaluation's
         // offsets and u indices.

@@ -174,6 +174,7 @@ struct CouplingWorkspace {
     // each rope's multiplyByNodeMass of X = its rows of [J_U | a0] (ropeX, ropeSX: per rope, scratch).
     Eigen::MatrixXd SJ, ropeX, ropeSX;
     Eigen::VectorXd h, f, rdd, a0, aUnit, rhs, responseU;
+    Eigen::VectorXd reducedRhs, reducedSolution;  // the product route's k x k system (Woodbury)
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     std::vector<int> U;                    // mobilities (u indices), ascending
     std::vector<int> angleU;               // per MobileAngle: its pin's u index
