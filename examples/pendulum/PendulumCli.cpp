@@ -68,6 +68,18 @@ void defineOptions(CLI::App& app, Options& o) {
         ->type_name("KIND")
         ->check(oneOf({"quasi-static", "dynamic"}));
     app.add_option_function<std::string>(
+           "--quasi-static-transverse",
+           [&o](const std::string& v) {
+               o.quasiStaticTransverse = v == "all"          ? Options::QuasiStaticTransverse::All
+                                         : v == "horizontal" ? Options::QuasiStaticTransverse::Horizontal
+                                                             : Options::QuasiStaticTransverse::None;
+           },
+           "none (default: transverse modes are states, the spans vibrate as\n"
+           "strings), horizontal (the 3 m span's transverse modes condensed: its\n"
+           "static sag without its 21 Hz string mode) or all")
+        ->type_name("SPANS")
+        ->check(oneOf({"none", "horizontal", "all"}));
+    app.add_option_function<std::string>(
            "--axial-law", [&o](const std::string& v) { o.parameters.tensionOnly = v == "tension-only"; },
            "tension-only (default: a rope cannot push; slack spans carry no\n"
            "axial force) or linear (the paper's law: P = EA eps, may push)")
@@ -121,6 +133,15 @@ void defineOptions(CLI::App& app, Options& o) {
 
 }  // namespace
 
+std::string quasiStaticTransverseName(Options::QuasiStaticTransverse q) {
+    switch (q) {
+        case Options::QuasiStaticTransverse::All: return "all";
+        case Options::QuasiStaticTransverse::Horizontal: return "horizontal";
+        case Options::QuasiStaticTransverse::None: break;
+    }
+    return "none";
+}
+
 std::string axialDynamicsName(SimbodyReeving::AxialDynamics a) {
     return a == SimbodyReeving::AxialDynamics::Dynamic ? "dynamic" : "quasi-static";
 }
@@ -140,6 +161,13 @@ Options parseCommandLine(int argc, char** argv) {
     if (!o.help && o.reportInterval > o.tEnd)
         throw UsageError("--report-interval: " + numberText(o.reportInterval) + " s must not exceed --t-end (" +
                          numberText(o.tEnd) + " s)");
+    if (!o.help && o.quasiStaticTransverse != Options::QuasiStaticTransverse::None &&
+        o.axialDynamics == SimbodyReeving::AxialDynamics::Dynamic)
+        for (int na : o.axialModes)
+            if (na > 0)
+                throw UsageError("--quasi-static-transverse " + quasiStaticTransverseName(o.quasiStaticTransverse) +
+                                 " requires --axial-dynamics quasi-static when n_a > 0 (got n_a = " +
+                                 std::to_string(na) + ")");
     return o;
 }
 

@@ -18,6 +18,9 @@ struct Options {
     std::vector<int> axialModes{0, 1, 2, 3};
     int transverseModes = 1;
     SimbodyReeving::AxialDynamics axialDynamics = SimbodyReeving::AxialDynamics::QuasiStatic;
+    /// Which spans' transverse modes are condensed (TransverseDynamics::QuasiStatic): none (default),
+    /// the horizontal 3 m span only, or both.
+    enum class QuasiStaticTransverse { None, Horizontal, All } quasiStaticTransverse = QuasiStaticTransverse::None;
     double tEnd = 20.0;            // [s]
     double vx0 = 1.0, vy0 = 0.0;   // [m/s], added after static equilibrium
     std::string integrator = "rk-merson";
@@ -36,6 +39,7 @@ Options parseCommandLine(int argc, char** argv);
 
 /// "dynamic" or "quasi-static".
 std::string axialDynamicsName(SimbodyReeving::AxialDynamics a);
+std::string quasiStaticTransverseName(Options::QuasiStaticTransverse q);
 
 /// The --help text.
 std::string usage();

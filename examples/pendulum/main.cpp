@@ -76,7 +76,13 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     spans.axialModes = na;
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
-    PendulumScene scene(o.parameters, spans);
+    SpanOptions condensed = spans;
+    condensed.transverseDynamics = TransverseDynamics::QuasiStatic;
+    using QST = Options::QuasiStaticTransverse;
+    if (o.quasiStaticTransverse == QST::All) spans = condensed;
+    PendulumScene scene(o.parameters, spans, true,
+                        o.quasiStaticTransverse == QST::Horizontal ? std::optional<SpanOptions>(condensed)
+                                                                   : std::nullopt);
     CaseResult r;
     r.axialModes = na;
     State s = scene.makeInitialState(o.vx0, o.vy0);
@@ -153,6 +159,7 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
     js["axial_modes"] = r.axialModes;
     js["transverse_modes"] = o.transverseModes;
     js["axial_dynamics"] = axialDynamicsName(o.axialDynamics);
+    js["quasi_static_transverse"] = quasiStaticTransverseName(o.quasiStaticTransverse);
     js["axial_law"] = o.parameters.tensionOnly ? "tension-only" : "linear";
     js["t_end"] = jsonNumber(o.tEnd);
     js["vx0"] = jsonNumber(o.vx0);

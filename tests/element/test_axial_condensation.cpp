@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <random>
 
@@ -18,12 +19,13 @@ namespace {
 const RopeProperties kRope{0.8, 2.0e4, 3.0, false};  // rhoA [kg/m], EA [N], EI [N m^2], the paper's linear law
 
 template <int Dim>
-SpanModel<Dim> makeSpan(int na, int nt, bool tensionOnly = false, double transition = 1e-6) {
+SpanModel<Dim> makeSpan(int na, int nt, bool tensionOnly = false, double transition = 1e-6, bool transverse = false) {
     SpanOptions o;
     o.quasiStaticSlackTransitionStrain = transition;
     o.axialModes = na;
     o.transverseModes = nt;
     o.axialDynamics = AxialDynamics::QuasiStatic;
+    if (transverse) o.transverseDynamics = TransverseDynamics::QuasiStatic;
     o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
     Eigen::Matrix<double, Dim, 1> g = Eigen::Matrix<double, Dim, 1>::Zero();
     g[0] = 1.3;
@@ -44,11 +46,17 @@ Eigen::VectorXd valuesOf(const AxialCondensation<Dim>& c, const Eigen::VectorXd&
 
 /// transition > 0 (tension-only): the rounded law with eps_s = transition, at states whose strains
 /// lie within a few eps_s of 0 (chord rescaled, modes scaled down), so many points are in (0, eps_s).
+/// transverse: the transverse modes condensed too (TransverseDynamics::QuasiStatic): Phi and the end
+/// strains' slopes then run over all n_c = n_a + (Dim - 1) n_t modal amplitudes.
 template <int Dim>
-void checkAgainstSpanEnergy(int na, int nt, bool tensionOnly = false, double transition = 0) {
+void checkAgainstSpanEnergy(int na, int nt, bool tensionOnly = false, double transition = 0, bool transverse = false) {
     SCOPED_TRACE("Dim " + std::to_string(Dim) + " n_a " + std::to_string(na) + " n_t " + std::to_string(nt) +
-                 (tensionOnly ? " tension-only" : "") + " eps_s " + std::to_string(transition));
-    const SpanModel<Dim> span = makeSpan<Dim>(na, nt, tensionOnly, transition > 0 ? transition : 1e-6);
+                 (tensionOnly ? " tension-only" : "") + " eps_s " + std::to_string(transition) +
+                 (transverse ? " transverse condensed" : ""));
+    const SpanModel<Dim> span = makeSpan<Dim>(na, nt, tensionOnly, transition > 0 ? transition : 1e-6, transverse);
+    const int nc = span.numCondensedModes();
+    EXPECT_EQ(nc, na + (transverse ? (Dim - 1) * nt : 0));
+    EXPECT_EQ(AxialCondensation<Dim>(span).numCondensedModes(), nc);
     const AxialCondensation<Dim> cond(span);
     std::mt19937 rng(7 + na + 10 * nt);
     int mixed = 0;  // states with both slack and taut points (tension-only)
@@ -87,15 +95,15 @@ void checkAgainstSpanEnergy(int na, int nt, bool tensionOnly = false, double tra
         span.evaluate(q, zero, sd);
         const Eigen::VectorXd Q = sd.elasticForces + sd.gravityForces;
         const double scale = Q.cwiseAbs().maxCoeff();
-        for (int i = 0; i < na; ++i)
-            EXPECT_NEAR(d.value[cond.phi(i)], -Q[span.axialModeIndex(i)], 1e-11 * scale) << "phi " << i;
+        for (int i = 0; i < nc; ++i)
+            EXPECT_NEAR(d.value[cond.phi(i)], -Q[2 * Dim + i], 1e-11 * scale) << "phi " << i;
         // Measured at most 2.2e-12 of scale (2026-12-01, 2e3eafb); margin 52x.
         EXPECT_NEAR(d.value[cond.lengthDerivative()], -Q[span.s2Index()], 5e-12 * scale);
-        for (int i = 0; i < na; ++i) {
+        for (int i = 0; i < nc; ++i) {
             const double h = transition > 0 ? 1e-8 : 1e-6;  // the rounding is sharp: small steps
             Eigen::VectorXd qp = q, qm = q;
-            qp[span.axialModeIndex(i)] += h;
-            qm[span.axialModeIndex(i)] -= h;
+            qp[2 * Dim + i] += h;
+            qm[2 * Dim + i] -= h;
             EXPECT_NEAR(d.value[cond.phi(i)], (potential(qp) - potential(qm)) / (2 * h), 1e-6 * scale);
         }
         // End strains and their partial derivatives against SpanModel::endStrain.
@@ -103,8 +111,8 @@ void checkAgainstSpanEnergy(int na, int nt, bool tensionOnly = false, double tra
             EndStrain<Dim> es;
             span.endStrain(q, zero, end, es);
             EXPECT_NEAR(d.value[cond.endStrain(end)], es.strain, 1e-15);
-            for (int i = 0; i < na; ++i)
-                EXPECT_NEAR(d.value[cond.endStrainAxialSlope(end, i)], es.gradient[span.axialModeIndex(i)], 1e-13);
+            for (int i = 0; i < nc; ++i)
+                EXPECT_NEAR(d.value[cond.endStrainModeSlope(end, i)], es.gradient[2 * Dim + i], 1e-13);
             // Measured at most 4.4e-16 (values ~0.5) (2026-12-01, 2e3eafb); margin 45x.
             EXPECT_NEAR(d.value[cond.endStrainLengthSlope(end)], es.gradient[span.s2Index()], 2e-14);
         }
@@ -181,6 +189,17 @@ TEST(AxialCondensation, TensionOnlyQuantitiesMatchSpanModelAndFiniteDifferences)
     checkAgainstSpanEnergy<3>(2, 1, true, 1e-3);
 }
 
+// TransverseDynamics::QuasiStatic: the transverse amplitudes are condensed too (their Phi rows carry
+// the string, bending and gravity terms, and for a tension-only rope U_delta,t).
+TEST(AxialCondensation, CondensedTransverseModesMatchSpanModelAndFiniteDifferences) {
+    checkAgainstSpanEnergy<2>(0, 1, false, 0, true);
+    checkAgainstSpanEnergy<2>(3, 2, false, 0, true);
+    checkAgainstSpanEnergy<3>(2, 2, false, 0, true);
+    checkAgainstSpanEnergy<2>(3, 1, true, 0, true);
+    checkAgainstSpanEnergy<2>(3, 1, true, 1e-3, true);
+    checkAgainstSpanEnergy<3>(2, 1, true, 1e-3, true);
+}
+
 TEST(AxialCondensation, BadInputThrows) {
     SpanOptions o;
     o.axialModes = 2;
@@ -192,4 +211,39 @@ TEST(AxialCondensation, BadInputThrows) {
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("QuasiStatic"), std::string::npos) << e.what();
     }
+    // TransverseDynamics::QuasiStatic: with PaperLiteral, under Dynamic axial modes, with transverse
+    // damping, and delta_t out of range.
+    auto expectThrow = [](SpanOptions options, const char* what) {
+        try {
+            SpanModel<2>(kRope, options, Eigen::Vector2d(0, -9.81));
+            ADD_FAILURE() << "must throw: " << what;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    SpanOptions t;
+    t.axialModes = 2;
+    t.transverseDynamics = TransverseDynamics::QuasiStatic;
+    SpanOptions literal = t;
+    literal.axialModes = 0;
+    literal.elasticModel = ElasticEnergyModel::PaperLiteral;
+    expectThrow(literal, "transverseDynamics = QuasiStatic requires elasticModel = Consistent");
+    SpanOptions dynamicAxial = t;
+    dynamicAxial.axialDynamics = AxialDynamics::Dynamic;
+    expectThrow(dynamicAxial, "requires axialDynamics = QuasiStatic when n_a > 0");
+    SpanOptions damped = t;
+    damped.transverseDampingRatio = 0.01;
+    expectThrow(damped, "transverseDampingRatio");
+    for (double bad : {0.0, 1e-2, std::nan("")}) {
+        SpanOptions o2 = t;
+        o2.quasiStaticTransverseSlackStiffness = bad;
+        expectThrow(o2, "quasiStaticTransverseSlackStiffness");
+    }
+    // Dynamic axial modes with n_a = 0 and no transverse modes are fine.
+    SpanOptions fine = t;
+    fine.axialModes = 0;
+    fine.axialDynamics = AxialDynamics::Dynamic;
+    EXPECT_EQ(SpanModel<2>(kRope, fine, Eigen::Vector2d(0, -9.81)).numCondensedModes(), 1);
+    fine.transverseModes = 0;
+    EXPECT_EQ(SpanModel<2>(kRope, fine, Eigen::Vector2d(0, -9.81)).numCondensedModes(), 0);
 }

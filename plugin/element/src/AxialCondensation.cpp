@@ -49,7 +49,12 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
     rhoA_ = span.properties().massPerLength;
     EI_ = span.properties().bendingStiffness;
     law_ = span.axialLaw();
-    slackStiffness_ = span.slackRegularised() ? 0.5 * o.quasiStaticSlackStiffness * EA_ : 0.0;
+    nc_ = span.numCondensedModes();
+    ncAxial_ = span.condensesAxialModes() ? na_ : 0;
+    ncTransverse_ = span.condensesTransverseModes() ? nt_ : 0;
+    slackStiffness_ = span.slackRegularised() && ncAxial_ > 0 ? 0.5 * o.quasiStaticSlackStiffness * EA_ : 0.0;
+    transverseSlackStiffness_ =
+        span.slackRegularised() && ncTransverse_ > 0 ? 0.5 * o.quasiStaticTransverseSlackStiffness * EA_ : 0.0;
     gravity_ = span.gravity();
     referenceFrame_ = span.referenceFrame();
     // The span's own strain rule (SpanModel::quadratureNodes: Gauss-Legendre, automatic or explicit
@@ -91,17 +96,23 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
         Scalar lambda = chordLength;
         for (int i = 0; i < na_; ++i) lambda += slopes_(k, i) * axial[i];
         Scalar t2 = lambda * lambda;
+        Scalar tau[Dim];
         for (int d = 0; d + 1 < Dim; ++d) {
-            Scalar tau(0.0);
-            for (int i = 0; i < nt_; ++i) tau += slopes_(k, i) * transverse[d * nt_ + i];
-            t2 += tau * tau;
+            tau[d] = Scalar(0.0);
+            for (int i = 0; i < nt_; ++i) tau[d] += slopes_(k, i) * transverse[d * nt_ + i];
+            t2 += tau[d] * tau[d];
         }
         const Scalar eps = 0.5 * (t2 * invL2) - Scalar(0.5);
         const double e0 = primal(eps);
         if (law_.slack(e0)) continue;  // slack point: no axial force, no energy
         const Scalar f = law_.f(eps, e0);
         const Scalar fLambda = f * lambda;
-        for (int i = 0; i < na_; ++i) out[phi(i)] += (weights_[k] * slopes_(k, i)) * fLambda;
+        for (int i = 0; i < ncAxial_; ++i) out[phi(i)] += (weights_[k] * slopes_(k, i)) * fLambda;
+        for (int d = 0; d + 1 < Dim; ++d) {
+            const Scalar fTau = f * tau[d];
+            for (int i = 0; i < ncTransverse_; ++i)
+                out[phi(ncAxial_ + d * ncTransverse_ + i)] += (weights_[k] * slopes_(k, i)) * fTau;
+        }
         axialLength += weights_[k] * (law_.F(eps, e0) - f * (2.0 * eps + Scalar(1.0)));
     }
     // Gravity: U_g = -rhoA l (g . r_mean + sum_d (g . A_e col d) ubar_d).
@@ -109,8 +120,15 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
     for (int i = 0; i < na_; ++i) gravityOnModes += sinMean_[i] * (gravityOnFrame[0] * axial[i]);
     for (int d = 0; d + 1 < Dim; ++d)
         for (int i = 0; i < nt_; ++i) gravityOnModes += sinMean_[i] * (gravityOnFrame[d + 1] * transverse[d * nt_ + i]);
-    for (int i = 0; i < na_; ++i)
+    for (int i = 0; i < ncAxial_; ++i)
         out[phi(i)] = EA_ * (invL * out[phi(i)]) - (rhoA_ * sinMean_[i]) * (spanLength * gravityOnFrame[0]);
+    // Condensed transverse: Phi_dj = EA / l int f tau_d S_j' - rhoA l m_j (g . A_e col d) + EI f_j b_dj / l^3.
+    for (int d = 0; d + 1 < Dim; ++d)
+        for (int i = 0; i < ncTransverse_; ++i) {
+            const int row = phi(ncAxial_ + d * ncTransverse_ + i);
+            out[row] = EA_ * (invL * out[row]) - (rhoA_ * sinMean_[i]) * (spanLength * gravityOnFrame[d + 1]);
+            if (EI_ > 0) out[row] += (EI_ * bendFactor_[i]) * (transverse[d * nt_ + i] * (invL2 * invL));
+        }
     // Bending (transverse modes only, Consistent): U_b = EI / (2 l^3) sum f_i b_i^2, dU_b/dl = -3 U_b / l.
     Scalar bending(0.0);
     if (EI_ > 0)
@@ -122,12 +140,23 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
     // Slack regularisation: Phi_i += delta EA k_i^2 a_i / (2 l), dU/dl -= delta EA / (4 l^2) sum k_i^2 a_i^2.
     if (slackStiffness_ > 0) {
         Scalar sum(0.0);
-        for (int i = 0; i < na_; ++i) {
+        for (int i = 0; i < ncAxial_; ++i) {
             const double k2 = SpanModel<Dim>::axialModeWavenumberSquared(i);
             out[phi(i)] += (slackStiffness_ * k2) * (axial[i] * invL);
             sum += k2 * (axial[i] * axial[i]);
         }
         out[lengthDerivative()] += (-0.5 * slackStiffness_) * (sum * invL2);
+    }
+    if (transverseSlackStiffness_ > 0) {
+        Scalar sum(0.0);
+        for (int d = 0; d + 1 < Dim; ++d)
+            for (int i = 0; i < ncTransverse_; ++i) {
+                const double k2 = SpanModel<Dim>::axialModeWavenumberSquared(i);
+                const Scalar& bi = transverse[d * nt_ + i];
+                out[phi(ncAxial_ + d * ncTransverse_ + i)] += (transverseSlackStiffness_ * k2) * (bi * invL);
+                sum += k2 * (bi * bi);
+            }
+        out[lengthDerivative()] += (-0.5 * transverseSlackStiffness_) * (sum * invL2);
     }
     // End strains and their slopes.
     for (int end = 0; end < 2; ++end) {
@@ -135,15 +164,21 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
         Scalar lambda = chordLength;
         for (int i = 0; i < na_; ++i) lambda += endSlope_[end][i] * axial[i];
         Scalar t2 = lambda * lambda;
+        Scalar tau[Dim];
         for (int d = 0; d + 1 < Dim; ++d) {
-            Scalar tau(0.0);
-            for (int i = 0; i < nt_; ++i) tau += endSlope_[end][i] * transverse[d * nt_ + i];
-            t2 += tau * tau;
+            tau[d] = Scalar(0.0);
+            for (int i = 0; i < nt_; ++i) tau[d] += endSlope_[end][i] * transverse[d * nt_ + i];
+            t2 += tau[d] * tau[d];
         }
         const Scalar eps = 0.5 * (t2 * invL2) - Scalar(0.5);
         out[endStrain(E)] = eps;
         const Scalar lambdaOverL2 = lambda * invL2;
-        for (int i = 0; i < na_; ++i) out[endStrainAxialSlope(E, i)] = endSlope_[end][i] * lambdaOverL2;
+        for (int i = 0; i < ncAxial_; ++i) out[endStrainModeSlope(E, i)] = endSlope_[end][i] * lambdaOverL2;
+        for (int d = 0; d + 1 < Dim; ++d) {
+            const Scalar tauOverL2 = tau[d] * invL2;
+            for (int i = 0; i < ncTransverse_; ++i)
+                out[endStrainModeSlope(E, ncAxial_ + d * ncTransverse_ + i)] = endSlope_[end][i] * tauOverL2;
+        }
         out[endStrainLengthSlope(E)] = (-1.0) * ((2.0 * eps + Scalar(1.0)) * invL);
     }
 }
@@ -195,7 +230,7 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
         const double fLambda = f * lambda;
         const double dEL = fp * lambda * lambda / l2 + f;          // d(f lambda)/d lambda
         const double dELdl = -fp * lambda * (2.0 * eps + 1.0) / l;  // d(f lambda)/dl
-        for (int i = 0; i < na_; ++i) {
+        for (int i = 0; i < ncAxial_; ++i) {
             const double c = w * S[i];
             d.value[phi(i)] += c * fLambda;
             G(phi(i), xChord) += c * dEL;
@@ -206,6 +241,22 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
                 for (int j = 0; j < nt_; ++j) G(phi(i), xModal + na_ + dir * nt_ + j) += ft * S[j];
             }
         }
+        // Condensed transverse: T_dj = int f tau_d S_j', d(f tau_d) = f' tau_d d eps + f d tau_d.
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int i = 0; i < ncTransverse_; ++i) {
+                const int row = phi(ncAxial_ + dir * ncTransverse_ + i);
+                const double c = w * S[i];
+                const double cft = c * fp * tau[dir];  // times d eps
+                d.value[row] += c * f * tau[dir];
+                G(row, xChord) += cft * lambda / l2;
+                G(row, xLength) += -cft * (2.0 * eps + 1.0) / l;
+                for (int j = 0; j < na_; ++j) G(row, xModal + j) += cft * lambda * S[j] / l2;
+                for (int dir2 = 0; dir2 + 1 < Dim; ++dir2) {
+                    const double coef = cft * tau[dir2] / l2;
+                    for (int j = 0; j < nt_; ++j) G(row, xModal + na_ + dir2 * nt_ + j) += coef * S[j];
+                }
+                for (int j = 0; j < nt_; ++j) G(row, xModal + na_ + dir * nt_ + j) += c * f * S[j];
+            }
         // A = sum w (F - f (2 eps + 1)): dA = w (-f - f' (2 eps + 1)) d eps (linear law: -3/2 eps^2 - eps
         // and -3 eps - 1).
         const int u = lengthDerivative();
@@ -218,19 +269,35 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
             for (int j = 0; j < nt_; ++j) G(u, xModal + na_ + dir * nt_ + j) += c * tau[dir] * S[j] / l2;
     }
     // Phi_i = EA P_i / l - rhoA m_i l (g . i_e).
-    for (int i = 0; i < na_; ++i) {
+    for (int i = 0; i < ncAxial_; ++i) {
         const double Pi = d.value[phi(i)];
         for (int x = 0; x < P; ++x) G(phi(i), x) *= EA_ / l;
         G(phi(i), xLength) += -EA_ * Pi / l2 - rhoA_ * sinMean_[i] * gA[0];
         G(phi(i), xFrame) += -rhoA_ * sinMean_[i] * l;
         d.value[phi(i)] = EA_ * Pi / l - rhoA_ * sinMean_[i] * l * gA[0];
     }
+    // Phi_dj = EA T_dj / l - rhoA m_j l (g . A_e col d) + EI f_j b_dj / l^3.
+    for (int dir = 0; dir + 1 < Dim; ++dir)
+        for (int i = 0; i < ncTransverse_; ++i) {
+            const int row = phi(ncAxial_ + dir * ncTransverse_ + i);
+            const double T = d.value[row];
+            for (int x = 0; x < P; ++x) G(row, x) *= EA_ / l;
+            G(row, xLength) += -EA_ * T / l2 - rhoA_ * sinMean_[i] * gA[dir + 1];
+            G(row, xFrame + dir + 1) += -rhoA_ * sinMean_[i] * l;
+            d.value[row] = EA_ * T / l - rhoA_ * sinMean_[i] * l * gA[dir + 1];
+            if (EI_ > 0) {
+                const double bi = b[dir * nt_ + i], kb = EI_ * bendFactor_[i] / l3;
+                d.value[row] += kb * bi;
+                G(row, xModal + na_ + dir * nt_ + i) += kb;
+                G(row, xLength) += -3.0 * kb * bi / l;
+            }
+        }
     // Slack regularisation U_delta = (delta EA / 2) / (2 l) sum k_i^2 a_i^2 (k_i = i pi):
     // Phi_i += mu_i a_i with mu_i = (delta EA / 2) k_i^2 / l; dU/dl -= U_delta / l.
     if (slackStiffness_ > 0) {
         const int u = lengthDerivative();
         double Ud = 0;
-        for (int i = 0; i < na_; ++i) {
+        for (int i = 0; i < ncAxial_; ++i) {
             const double mu = slackStiffness_ * SpanModel<Dim>::axialModeWavenumberSquared(i) / l;
             d.value[phi(i)] += mu * a[i];
             G(phi(i), xModal + i) += mu;
@@ -238,6 +305,23 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
             Ud += 0.5 * mu * a[i] * a[i];
             G(u, xModal + i) += -mu * a[i] / l;
         }
+        d.value[u] += -Ud / l;
+        G(u, xLength) += 2.0 * Ud / l2;
+    }
+    if (transverseSlackStiffness_ > 0) {  // the same on condensed transverse amplitudes, with delta_t
+        const int u = lengthDerivative();
+        double Ud = 0;
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int i = 0; i < ncTransverse_; ++i) {
+                const int row = phi(ncAxial_ + dir * ncTransverse_ + i), col = xModal + na_ + dir * nt_ + i;
+                const double mu = transverseSlackStiffness_ * SpanModel<Dim>::axialModeWavenumberSquared(i) / l;
+                const double bi = b[dir * nt_ + i];
+                d.value[row] += mu * bi;
+                G(row, col) += mu;
+                G(row, xLength) += -mu * bi / l;
+                Ud += 0.5 * mu * bi * bi;
+                G(u, col) += -mu * bi / l;
+            }
         d.value[u] += -Ud / l;
         G(u, xLength) += 2.0 * Ud / l2;
     }
@@ -294,13 +378,21 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
         for (int x = 0; x < P; ++x) G(il, x) = -2.0 * G(ie, x) / l;
         G(il, xLength) += (2.0 * eps + 1.0) / l2;
         // d eps_E / da_i = lambda_E S_i'(E) / l^2
-        for (int i = 0; i < na_; ++i) {
-            const int ia = endStrainAxialSlope(E, i);
+        for (int i = 0; i < ncAxial_; ++i) {
+            const int ia = endStrainModeSlope(E, i);
             d.value[ia] = lambda * S[i] / l2;
             G(ia, xChord) = S[i] / l2;
             G(ia, xLength) = -2.0 * lambda * S[i] / l3;
             for (int j = 0; j < na_; ++j) G(ia, xModal + j) = S[i] * S[j] / l2;
         }
+        // d eps_E / db_di = tau_d,E S_i'(E) / l^2
+        for (int dir = 0; dir + 1 < Dim; ++dir)
+            for (int i = 0; i < ncTransverse_; ++i) {
+                const int ib = endStrainModeSlope(E, ncAxial_ + dir * ncTransverse_ + i);
+                d.value[ib] = tau[dir] * S[i] / l2;
+                G(ib, xLength) = -2.0 * tau[dir] * S[i] / l3;
+                for (int j = 0; j < nt_; ++j) G(ib, xModal + na_ + dir * nt_ + j) = S[i] * S[j] / l2;
+            }
     }
     // Chain to the span coordinates: |e| and g.A_e through e = r2 - r1, g.r_mean through both
     // nodes, l = s2 - s1.
@@ -346,7 +438,7 @@ void AxialCondensation<Dim>::evaluateRates(const Eigen::Ref<const Eigen::VectorX
     const double gMean = 0.5 * gravity_.dot(q.template segment<Dim>(0) + q.template segment<Dim>(Dim));
     // Rates and second time derivatives along qdot (qddot = 0): the chord moves as e + edot tau, so
     // |e|^2 is a quadratic in tau; the frame's projections follow from ChordFrame's Adot and Addot.
-    Taylor2 gA[Dim], modal[2 * kMaxModesPerDirection], out[AxialCondensationData<Dim>::kMaxQuantities];
+    Taylor2 gA[Dim], modal[Dim * kMaxModesPerDirection], out[AxialCondensationData<Dim>::kMaxQuantities];
     const Taylor2 chordT = sqrt(Taylor2(e.squaredNorm(), 2.0 * e.dot(ed), 2.0 * ed.squaredNorm()));
     const Taylor2 lT(l, qdot[iS2] - qdot[iS1], 0.0);
     const Taylor2 gMeanT(gMean, 0.5 * gravity_.dot(qdot.template segment<Dim>(0) + qdot.template segment<Dim>(Dim)),

@@ -66,10 +66,10 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     for (int j = 0; j < N; ++j) {
         const SpanModel<Dim>& sp = spans_[j];
         modalOffset_.push_back(numModal_);
-        if (sp.options().axialDynamics == AxialDynamics::QuasiStatic && sp.axialModes() > 0) {
+        if (sp.numCondensedModes() > 0) {
             condensedOffset_[j] = numCondensed_;
-            numCondensed_ += sp.axialModes();
-            numModal_ += sp.numModalCoordinates() - sp.axialModes();
+            numCondensed_ += sp.numCondensedModes();
+            numModal_ += sp.numModalCoordinates() - sp.numCondensedModes();
         } else {
             numModal_ += sp.numModalCoordinates();
         }
@@ -99,7 +99,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             map[d] = Dim * j + d;
             map[Dim + d] = Dim * (j + 1) + d;
         }
-        const int na = sp.axialModes();
+        const int na = sp.numCondensedModes();
         for (int i = 0; i < sp.numModalCoordinates(); ++i) {
             if (isCondensed(j))
                 map[2 * Dim + i] = i < na ? nw + condensedOffset_[j] + i : nx + modalOffset_[j] + i - na;
@@ -123,7 +123,7 @@ void RopeModel<Dim>::buildChainOrder() {
     // stationarity rows), node k -> 2 k (its material coordinate, multiplier and rows).
     std::vector<int> zKey(nz, -1), rowKey(nd, -1), rowSpan(nd, -1), rowNode(nd, -1);
     for (int j = 0; j < N; ++j) {
-        const int na = isCondensed(j) ? spans_[j].axialModes() : 0;
+        const int na = spans_[j].numCondensedModes();
         for (int i = 0; i < spans_[j].numModalCoordinates() - na; ++i) zKey[nx + modalOffset_[j] + i] = 2 * j + 1;
         for (int i = 0; i < na; ++i) {
             zKey[nw + condensedOffset_[j] + i] = 2 * j + 1;
@@ -301,7 +301,7 @@ void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen
     q.template segment<Dim>(Dim) = nodes.col(j + 1);
     const int nmSpan = sp.numModalCoordinates();
     if (isCondensed(j)) {
-        const int na = sp.axialModes();
+        const int na = sp.numCondensedModes();
         q.segment(2 * Dim, na) = data.condensedAmplitudes.segment(condensedOffset_[j], na);
         q.segment(2 * Dim + na, nmSpan - na) = qm.segment(modalOffset_[j], nmSpan - na);
     } else {
@@ -409,11 +409,11 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     for (int j = 0; j < N; ++j) {
         if (!isCondensed(j)) continue;
         const AxialCondensation<Dim>& kj = kernels_[j];
-        for (int i = 0; i < spans_[j].axialModes(); ++i) {
+        for (int i = 0; i < kj.numCondensedModes(); ++i) {
             const int row = condensedOffset_[j] + i;
             addTerm(row, j, kj.phi(i), invEA);
-            addProduct(row, j, j, kj.endStrainAxialSlope(SpanEnd::First, i), -weightAfter_[j]);
-            addProduct(row, j + 1, j, kj.endStrainAxialSlope(SpanEnd::Second, i), weightBefore_[j + 1]);
+            addProduct(row, j, j, kj.endStrainModeSlope(SpanEnd::First, i), -weightAfter_[j]);
+            addProduct(row, j + 1, j, kj.endStrainModeSlope(SpanEnd::Second, i), weightBefore_[j + 1]);
         }
     }
     for (int ki = 0; ki < nc; ++ki) {
@@ -628,9 +628,9 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
     if (row < nqc) {
         int span = 0;
         for (int j = 0; j < N; ++j)
-            if (condensedOffset_[j] >= 0 && row >= condensedOffset_[j] && row < condensedOffset_[j] + spans_[j].axialModes())
+            if (condensedOffset_[j] >= 0 && row >= condensedOffset_[j] && row < condensedOffset_[j] + spans_[j].numCondensedModes())
                 span = j;
-        where << "span " << span << " (quasi-static axial amplitudes)";
+        where << "span " << span << " (quasi-static modal amplitudes)";
     } else if (row < nqc + numSliding_) {
         const int k = slidingNode_[row - nqc];
         where << "sheave node " << k << " (tension equality of spans " << k - 1 << " and " << k << ")";
@@ -640,7 +640,7 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
     }
     std::ostringstream msg;
     msg << "RopeModel: the dependent coordinates (sheave tension equality"
-        << (nqc > 0 ? ", quasi-static axial modes" : "") << ") did not converge in " << kMaxIterations << " Newton iterations "
+        << (nqc > 0 ? ", quasi-static modes" : "") << ") did not converge in " << kMaxIterations << " Newton iterations "
         << "(max residual " << C.cwiseAbs().maxCoeff() << " in strain units, at " << where.str()
         << "); the configuration may be infeasible (a span shorter than its chord allows, nodes crossing)";
     throw std::runtime_error(msg.str());
@@ -659,7 +659,7 @@ bool RopeModel<Dim>::positionsMatch(const NodeMatrix& nodes, const Eigen::Vector
     for (int j = 0; j < N; ++j) {
         const auto& q = data.ws().spanQ[j];
         const int nmSpan = spans_[j].numModalCoordinates();
-        const int na = isCondensed(j) ? spans_[j].axialModes() : 0;
+        const int na = spans_[j].numCondensedModes();
         if (q.size() != spans_[j].numCoordinates() || q.template segment<Dim>(0) != nodes.col(j) ||
             q.template segment<Dim>(Dim) != nodes.col(j + 1) ||
             q.segment(2 * Dim + na, nmSpan - na) != qm.segment(modalOffset_[j], nmSpan - na))
@@ -711,7 +711,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             qd.template segment<Dim>(Dim) = nodeVelocities.col(j + 1);
             const int nmSpan = sp.numModalCoordinates();
             if (isCondensed(j)) {
-                const int na = sp.axialModes();
+                const int na = sp.numCondensedModes();
                 qd.segment(2 * Dim, na) = data.condensedRates.segment(condensedOffset_[j], na);
                 qd.segment(2 * Dim + na, nmSpan - na) = qmdot.segment(modalOffset_[j], nmSpan - na);
             } else {
@@ -1065,7 +1065,8 @@ void RopeModel<Dim>::recoveredSpanCoordinates(int j, const NodeMatrix& nodes, co
     if (numCondensed_ == 0 || !data.inertialCorrectionValid) return;
     const auto& sp = spans_[j];
     if (isCondensed(j))
-        q.segment(2 * Dim, sp.axialModes()) += data.inertialCorrection.segment(condensedOffset_[j], sp.axialModes());
+        q.segment(2 * Dim, sp.numCondensedModes()) +=
+            data.inertialCorrection.segment(condensedOffset_[j], sp.numCondensedModes());
     if (slidingIndex_[j] >= 0) q[sp.s1Index()] += data.inertialCorrection[numCondensed_ + slidingIndex_[j]];
     if (slidingIndex_[j + 1] >= 0) q[sp.s2Index()] += data.inertialCorrection[numCondensed_ + slidingIndex_[j + 1]];
 }

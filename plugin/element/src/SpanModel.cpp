@@ -102,6 +102,23 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     if (!(options_.quasiStaticSlackTransitionStrain >= 1e-12 && options_.quasiStaticSlackTransitionStrain <= 1e-3))
         throwInvalid("SpanModel", "SpanOptions::quasiStaticSlackTransitionStrain (eps_s)",
                      options_.quasiStaticSlackTransitionStrain, "must be in [1e-12, 1e-3]");
+    if (!(options_.quasiStaticTransverseSlackStiffness >= 1e-12 && options_.quasiStaticTransverseSlackStiffness <= 1e-3))
+        throwInvalid("SpanModel", "SpanOptions::quasiStaticTransverseSlackStiffness (delta_t)",
+                     options_.quasiStaticTransverseSlackStiffness, "must be in [1e-12, 1e-3]");
+    if (condensesTransverseModes()) {
+        if (options_.elasticModel == ElasticEnergyModel::PaperLiteral)
+            throw std::invalid_argument(
+                "SpanModel: SpanOptions::transverseDynamics = QuasiStatic requires elasticModel = Consistent (got "
+                "PaperLiteral)");
+        if (options_.axialDynamics == AxialDynamics::Dynamic && options_.axialModes > 0)
+            throw std::invalid_argument(
+                "SpanModel: SpanOptions::transverseDynamics = QuasiStatic requires axialDynamics = QuasiStatic when "
+                "n_a > 0 (the axial modes are the stiffer ones: condense them too, or keep the transverse modes "
+                "Dynamic)");
+        if (options_.transverseDampingRatio > 0)
+            throwInvalid("SpanModel", "SpanOptions::transverseDampingRatio (zeta_t)", options_.transverseDampingRatio,
+                         "must be 0 with transverseDynamics = QuasiStatic (condensed modes do not vibrate)");
+    }
     law_ = AxialLaw(properties_, slackRegularised() ? options_.quasiStaticSlackTransitionStrain : 0.0);
     if (properties_.tensionOnly && options_.elasticModel == ElasticEnergyModel::PaperLiteral)
         throw std::invalid_argument(
@@ -590,12 +607,24 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
     if (slackRegularised()) {
         const double c = options_.quasiStaticSlackStiffness * EA / (4.0 * l);
         double sum = 0;
-        for (int i = 0; i < na; ++i) {
-            const double k2 = axialModeWavenumberSquared(i);
-            sum += k2 * qm[i] * qm[i];
-            gradU[iM + i] += 2.0 * c * k2 * qm[i];
-        }
+        if (condensesAxialModes())
+            for (int i = 0; i < na; ++i) {
+                const double k2 = axialModeWavenumberSquared(i);
+                sum += k2 * qm[i] * qm[i];
+                gradU[iM + i] += 2.0 * c * k2 * qm[i];
+            }
         d.slackRegularisationEnergy = c * sum;
+        // Condensed transverse amplitudes: delta_t EA / (4 l) sum (i pi)^2 |q_t,i|^2.
+        if (condensesTransverseModes()) {
+            const double ct = options_.quasiStaticTransverseSlackStiffness * EA / (4.0 * l);
+            double sumT = 0;
+            for (int j = na; j < nm; ++j) {
+                const double k2 = axialModeWavenumberSquared((j - na) % nt);
+                sumT += k2 * qm[j] * qm[j];
+                gradU[iM + j] += 2.0 * ct * k2 * qm[j];
+            }
+            d.slackRegularisationEnergy += ct * sumT;
+        }
         gradU[iS1] += d.slackRegularisationEnergy / l;
         gradU[iS2] -= d.slackRegularisationEnergy / l;
     }

@@ -26,7 +26,8 @@ void PendulumParameters::validate() const {
     check("J", J, J > 0, "> 0");
 }
 
-PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spans, bool planarRope)
+PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spans, bool planarRope,
+                             const std::optional<SpanOptions>& horizontalSpan)
     : parameters_(p) {
     p.validate();
     using namespace SimTK;
@@ -54,6 +55,7 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
     rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     rope.unstretchedLength = p.a + p.L;
     rope.spanDefaults = spans;
+    if (horizontalSpan) rope.spanOverrides = {{0, *horizontalSpan}};
     rope.planeNormal = planarRope ? Vec3(0, 0, 1) : Vec3(0);
     reeving_->addRope(rope);
     // Rope colours (drawing only): red at twice the payload's weight.

@@ -208,7 +208,9 @@ void ReevingSubsystem::Guts::setZWeights(const State& s, const RopeRecord& r,
             w[r.zOffset + k] = weight;
             w[r.zOffset + r.numModal + k] = 1.0 / (kAxialWeightStrain * wave);
         }
-        for (int i = 0; i < (r.planar ? 1 : 2) * o.transverseModes; ++i, ++k) {
+        const int transverseStates =
+            o.transverseDynamics == TransverseDynamics::Dynamic ? (r.planar ? 1 : 2) * o.transverseModes : 0;
+        for (int i = 0; i < transverseStates; ++i, ++k) {
             w[r.zOffset + k] = 1.0;
             w[r.zOffset + r.numModal + k] = 1.0;
         }
@@ -637,7 +639,9 @@ int ReevingSubsystem::Guts::changeSpanFrames(State& s, int rope, bool onlyDue) c
         const Eigen::Matrix3d next = makeReferenceFrame(e, frame.A.col(2));
         const int nt = span.transverseModes();
         const int first = model.modalOffset(j) + (model.isCondensed(j) ? 0 : span.axialModes());
-        reReferenceTransverseModes(e, edot, span.referenceFrame(), next,
+        // Condensed transverse amplitudes are not states: the next solve finds them in the new frame.
+        if (!span.condensesTransverseModes())
+            reReferenceTransverseModes(e, edot, span.referenceFrame(), next,
                                    span.options().velocityModel == VelocityModel::Complete, q.segment(first, nt),
                                    q.segment(first + nt, nt), qdot.segment(first, nt), qdot.segment(first + nt, nt));
         references.back() = next;

@@ -248,8 +248,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             for (int j = 0; j < r.numSpans(); ++j) {
                 const SpanModel<2> probe(spec.properties, r.spanOptions[j], Eigen::Vector2d::Zero());
                 r.numModal += probe.numModalCoordinates();
-                if (r.spanOptions[j].axialDynamics == AxialDynamics::QuasiStatic)
-                    r.numModal -= probe.axialModes();  // condensed: not states
+                r.numModal -= probe.numCondensedModes();  // condensed: not states
             }
             // Validates the rope as a chain (material kinds, lengths) now rather than at topology.
             std::vector<SpanModel<2>> spans;
@@ -262,8 +261,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             for (int j = 0; j < r.numSpans(); ++j) {
                 const SpanModel<3> probe(spec.properties, r.spanOptions[j], gravity);  // validates options
                 r.numModal += probe.numModalCoordinates();
-                if (r.spanOptions[j].axialDynamics == AxialDynamics::QuasiStatic)
-                    r.numModal -= probe.axialModes();  // condensed: not states
+                r.numModal -= probe.numCondensedModes();  // condensed: not states
             }
         }
     } catch (const std::invalid_argument& e) {

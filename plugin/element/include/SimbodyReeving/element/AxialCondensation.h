@@ -1,9 +1,10 @@
 #pragma once
 /// @file
-/// What the condensation of AxialDynamics::QuasiStatic axial modes needs from one span: the
-/// derivatives of its potential energy with respect to its axial amplitudes and its material length,
-/// and its end strains, each with gradient and exact second time derivative (pure C++17/Eigen, no
-/// Simbody include).
+/// What the condensation of quasi-static modes (AxialDynamics::QuasiStatic axial,
+/// TransverseDynamics::QuasiStatic transverse) needs from one span: the derivatives of its potential
+/// energy with respect to its condensed modal amplitudes and its material length, and its end
+/// strains, each with gradient and exact second time derivative (pure C++17/Eigen, no Simbody
+/// include).
 
 #include "SimbodyReeving/element/ChordFrame.h"
 #include "SimbodyReeving/element/SpanModel.h"
@@ -18,7 +19,7 @@ namespace SimbodyReeving {
 /// qdot^T (d^2 f/dq^2) qdot (the second time derivative with qddot = 0).
 template <int Dim>
 struct AxialCondensationData {
-    static constexpr int kMaxQuantities = 3 * kMaxModesPerDirection + 5;
+    static constexpr int kMaxQuantities = 3 * Dim * kMaxModesPerDirection + 5;
     using Values = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxQuantities, 1>;
     using Gradients = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxQuantities,
                                     SpanData<Dim>::kMaxCoordinates>;
@@ -29,8 +30,9 @@ struct AxialCondensationData {
 
 /// Derivatives of one span's potential energy U = U_ax + U_bend + U_g (ElasticEnergyModel::Consistent)
 /// and of its end strains, as needed by the quasi-static condensation of axial modes (RopeModel):
-/// - Phi_i = dU/da_i, i = 1..n_a (a = q_a, the axial amplitudes): zero when the axial modes are
-///   stationary at fixed material coordinates;
+/// - Phi_i = dU/da_i, i = 1..n_c (a = the span's condensed amplitudes, SpanModel::numCondensedModes:
+///   the axial amplitudes q_a if condensed, then the transverse ones q_t if condensed): zero when
+///   the condensed modes are stationary at fixed material coordinates;
 /// - dU/dl at fixed nodes and modes, l = s2 - s1 the span's material length: the energy change when
 ///   material enters the span over its second end (dU/ds2 = dU/dl = -dU/ds1);
 /// - the Green strain at both ends, eps_E, and its partial derivatives d eps_E / da_i and
@@ -38,9 +40,12 @@ struct AxialCondensationData {
 ///
 /// In the element frame the tangent is A_e^T r_xi = (lambda, tau) with lambda = |e| + sum S_i' a_i
 /// along the chord and tau the transverse slopes, eps = (lambda^2 + |tau|^2) / (2 l^2) - 1/2, so
-///     Phi_i   = (EA / l) int eps lambda S_i' dxi - rhoA l (g . i_e) m_i,
+///     Phi_i   = (EA / l) int eps lambda S_i' dxi - rhoA l (g . i_e) m_i           (axial a_i),
+///     Phi_dj  = (EA / l) int eps tau_d S_j' dxi + EI (j pi)^4 b_dj / (2 l^3)
+///               - rhoA l (g . A_e col d) m_j                                      (transverse b_dj),
 ///     dU/dl   = EA int (-3/2 eps^2 - eps) dxi - 3 U_bend / l - rhoA g . (r_mean + A_e ubar),
-///     d eps_E / da_i = lambda_E S_i'(xi_E) / l^2,   d eps_E / dl = -(2 eps_E + 1) / l,
+///     d eps_E / da_i = lambda_E S_i'(xi_E) / l^2,   d eps_E / db_dj = tau_d,E S_j'(xi_E) / l^2,
+///     d eps_E / dl = -(2 eps_E + 1) / l,
 /// with m_i = int S_i dxi, ubar = int S q_m dxi and r_mean = (r1 + r2)/2. Under the span's axial
 /// law P = EA f(eps), U_ax = EA l int F(eps) dxi (AxialLaw; linear: f = eps, F = eps^2/2) these read
 ///     Phi_i (axial part) = (EA / l) int f(eps) lambda S_i' dxi,
@@ -48,7 +53,8 @@ struct AxialCondensationData {
 /// so a tension-only rope's slack points drop out, and a span with SpanModel::slackRegularised()
 /// adds the derivatives of
 /// U_delta = delta EA / (4 l) sum_i (i pi)^2 a_i^2 (SpanOptions::quasiStaticSlackStiffness):
-/// Phi_i += delta EA (i pi)^2 a_i / (2 l), dU/dl -= U_delta / l. The end strains stay the unclamped
+/// Phi_i += delta EA (i pi)^2 a_i / (2 l), dU/dl -= U_delta / l (and the same with delta_t,
+/// SpanOptions::quasiStaticTransverseSlackStiffness, on condensed transverse amplitudes). The end strains stay the unclamped
 /// eps (the sheave condition is strain equality). Everything depends on
 /// the configuration through |e|, g . A_e (the frame's columns projected on gravity), g . r_mean,
 /// l and the modal amplitudes; it is written once for a generic scalar and evaluated with
@@ -66,16 +72,18 @@ public:
     explicit AxialCondensation(const SpanModel<Dim>& span);
 
     int numAxialModes() const { return na_; }
-    int numQuantities() const { return 3 * na_ + 5; }
+    /// n_c: the span's condensed amplitudes (SpanModel::numCondensedModes), the first n_c modal coordinates.
+    int numCondensedModes() const { return nc_; }
+    int numQuantities() const { return 3 * nc_ + 5; }
 
     /// Row indices of the quantities in Data.
-    int phi(int i) const { return i; }                      ///< dU/da_i [N]
-    int lengthDerivative() const { return na_; }             ///< dU/dl [N]
-    int endStrain(SpanEnd end) const { return na_ + 1 + (end == SpanEnd::Second); }  ///< eps_E [-]
-    int endStrainAxialSlope(SpanEnd end, int i) const {      ///< d eps_E / da_i [1/m]
-        return na_ + 3 + (end == SpanEnd::Second ? na_ : 0) + i;
+    int phi(int i) const { return i; }                      ///< dU/da_i, i < n_c [N]
+    int lengthDerivative() const { return nc_; }             ///< dU/dl [N]
+    int endStrain(SpanEnd end) const { return nc_ + 1 + (end == SpanEnd::Second); }  ///< eps_E [-]
+    int endStrainModeSlope(SpanEnd end, int i) const {       ///< d eps_E / da_i, i < n_c [1/m]
+        return nc_ + 3 + (end == SpanEnd::Second ? nc_ : 0) + i;
     }
-    int endStrainLengthSlope(SpanEnd end) const { return 3 * na_ + 3 + (end == SpanEnd::Second); }  ///< [1/m]
+    int endStrainLengthSlope(SpanEnd end) const { return 3 * nc_ + 3 + (end == SpanEnd::Second); }  ///< [1/m]
 
     /// Values and gradients at q; with qdot (same size as q) also rates and acceleration biases
     /// (pass an empty qdot to skip them). q must be a configuration SpanModel::evaluate accepts.
@@ -91,9 +99,12 @@ private:
                     const Scalar& gravityOnMean, const Scalar* modal, Scalar* out) const;
 
     int na_ = 0, nt_ = 0, numModal_ = 0, numCoordinates_ = 0;
+    // Condensed amplitudes: n_c in all, the axial ones (n_a or 0) and the transverse ones per direction (n_t or 0).
+    int nc_ = 0, ncAxial_ = 0, ncTransverse_ = 0;
     double EA_ = 0, rhoA_ = 0, EI_ = 0;
     AxialLaw law_;  // the span's axial law (SpanModel::axialLaw)
-    double slackStiffness_ = 0;  // delta EA / 2 when the span is slack-regularised, else 0
+    double slackStiffness_ = 0;  // delta EA / 2 when the span is slack-regularised, else 0 (axial)
+    double transverseSlackStiffness_ = 0;  // delta_t EA / 2 likewise, on condensed transverse amplitudes
     Eigen::Matrix<double, Dim, 1> gravity_;
     Eigen::Matrix<double, Dim, Dim> referenceFrame_;
     // Strain quadrature: weights w_k and mode slopes S_i'(xi_k) (d/dxi), i = 1..max(n_a, n_t).

@@ -115,6 +115,32 @@ enum class AxialDynamics {
     QuasiStatic,
 };
 
+/// How a span's transverse modal amplitudes q_t (the transverse part of q_m, eq 3) evolve.
+///
+/// Dynamic (the default, the paper's) keeps them as states: the span vibrates as a string, and
+/// its first transverse frequency (about pi / l sqrt(P / rhoA): 21 Hz for the Table 1 pendulum's
+/// 3 m span at 9.8 kN) limits the step of explicit integrators. QuasiStatic condenses them exactly
+/// as AxialDynamics::QuasiStatic condenses the axial amplitudes: at every configuration they take
+/// the values that make the span's potential energy (axial Green strain, which holds the taut-string
+/// stiffness P (du_t/ds)^2 / 2, + bending + gravity) stationary, dU/dq_t = 0, together with the
+/// condensed axial amplitudes and the sheave constraints (RopeModel). The span then keeps its static
+/// sag under its own weight at its current tension, and the kinetic energy keeps the rope mass
+/// carried by that sag as the span moves, but it has no string vibration. T + U stays an exact
+/// invariant. Use it when the transverse vibration of a span is not of interest and its frequency is
+/// well above the motion of the bodies (the rope's sag is quasi-static): for the Table 1 pendulum
+/// its effect on the payload and the axial force is measured in bench/RESULTS.md ("Quasi-static
+/// transverse modes"). A span that is slack and straight has no transverse stiffness from its
+/// tension; a tension-only rope's condensed transverse amplitudes are then held by
+/// SpanOptions::quasiStaticTransverseSlackStiffness.
+/// Requires ElasticEnergyModel::Consistent, AxialDynamics::QuasiStatic when n_a > 0 (transverse
+/// modes condensed under dynamic axial modes would be the stiffer ones left as states) and
+/// transverseDampingRatio = 0 (nothing vibrates to damp); the SpanModel constructor throws
+/// otherwise. No effect when n_t = 0.
+enum class TransverseDynamics {
+    Dynamic,      ///< Default: the transverse amplitudes are states (string vibration).
+    QuasiStatic,  ///< Condensed: dU/dq_t = 0 at every configuration (static sag, no vibration).
+};
+
 /// Which integrals of a span a quadrature rule serves.
 enum class Integrand {
     Kinetic,  ///< M, Q_v and T
@@ -137,6 +163,9 @@ struct SpanOptions {
     /// for ElasticEnergyModel::PaperLiteral with n_a > 0); no effect when n_a = 0. See AxialDynamics.
     AxialDynamics axialDynamics = AxialDynamics::QuasiStatic;
     ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
+    /// Transverse amplitudes as states (Dynamic, default) or condensed (QuasiStatic: the span's
+    /// static sag without its string vibration). See TransverseDynamics.
+    TransverseDynamics transverseDynamics = TransverseDynamics::Dynamic;
     /// delta [-], finite, in [1e-9, 1]; used only by a tension-only rope's (RopeProperties::tensionOnly)
     /// spans with AxialDynamics::QuasiStatic axial modes. A fully slack span has no axial
     /// stiffness, so the quasi-static condition dU/dq_a = 0 alone would leave its axial amplitudes
@@ -171,6 +200,16 @@ struct SpanOptions {
     /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
     /// EA eps_s = 165 N is rounded down by up to a fifth of that).
     double quasiStaticSlackTransitionStrain = 1e-5;
+    /// delta_t [-], finite, in [1e-12, 1e-3]; used only by a tension-only rope's spans with
+    /// TransverseDynamics::QuasiStatic. A slack, straight span has no transverse stiffness (its
+    /// tension is zero and EI may be), so dU/dq_t = 0 would not determine its transverse
+    /// amplitudes. Such spans carry
+    ///     U_delta,t = 1/2 delta_t EA int |du_t/ds|^2 ds = delta_t EA / (4 l) sum_i (i pi)^2 |q_t,i|^2,
+    /// the energy of a string at tension delta_t EA (1.65 N for the Table 1 rope at the default
+    /// 1e-7), part of SpanData::slackRegularisationEnergy. In a taut span at tension P it reduces the
+    /// static sag by the factor 1 / (1 + delta_t EA / P) (1.7e-4 relative at the Table 1 pendulum's
+    /// 9.8 kN); a slack span sags until its Green strain tightens it.
+    double quasiStaticTransverseSlackStiffness = 1e-7;
     /// 0 (default) selects the automatic rule: Gauss-Legendre with
     /// SpanModel::automaticQuadraturePoints points for the kinetic and for the strain integrals
     /// (exact to round-off). Otherwise 1..200: that many Gauss-Legendre points for both.
@@ -290,16 +329,32 @@ public:
     ///         makes the axial stiffness depend on the transverse slope twice; the condensation is
     ///         defined for Consistent only),
     ///         RopeProperties::tensionOnly with PaperLiteral, quasiStaticSlackStiffness outside
-    ///         [1e-9, 1] or quasiStaticSlackTransitionStrain outside [1e-12, 1e-3] (or not finite).
+    ///         [1e-9, 1] or quasiStaticSlackTransitionStrain outside [1e-12, 1e-3] (or not finite),
+    ///         TransverseDynamics::QuasiStatic (with n_t > 0) with PaperLiteral, with
+    ///         AxialDynamics::Dynamic and n_a > 0, or with transverseDampingRatio > 0, and
+    ///         quasiStaticTransverseSlackStiffness outside [1e-12, 1e-3] (or not finite).
     SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
               const Mat& referenceFrame = Mat::Identity());
 
     int numCoordinates() const { return 2 * Dim + numModal_ + 2; }
-    /// true if the span carries U_delta (SpanOptions::quasiStaticSlackStiffness): a tension-only
-    /// rope with QuasiStatic axial modes (n_a > 0).
-    bool slackRegularised() const {
-        return properties_.tensionOnly && options_.axialDynamics == AxialDynamics::QuasiStatic &&
-               options_.axialModes > 0;
+    /// true if the span carries U_delta (SpanOptions::quasiStaticSlackStiffness on condensed axial
+    /// amplitudes, quasiStaticTransverseSlackStiffness on condensed transverse ones): a tension-only
+    /// rope with condensed modes (numCondensedModes() > 0).
+    bool slackRegularised() const { return properties_.tensionOnly && numCondensedModes() > 0; }
+    /// Axial amplitudes condensed: AxialDynamics::QuasiStatic with n_a > 0.
+    bool condensesAxialModes() const {
+        return options_.axialDynamics == AxialDynamics::QuasiStatic && options_.axialModes > 0;
+    }
+    /// Transverse amplitudes condensed: TransverseDynamics::QuasiStatic with n_t > 0.
+    bool condensesTransverseModes() const {
+        return options_.transverseDynamics == TransverseDynamics::QuasiStatic && options_.transverseModes > 0;
+    }
+    /// Number of condensed modal coordinates (dependent, not states): n_a if condensesAxialModes(),
+    /// plus (Dim - 1) n_t if condensesTransverseModes(). They are the first numCondensedModes()
+    /// modal coordinates of the span (axial, then transverse direction by direction).
+    int numCondensedModes() const {
+        return (condensesAxialModes() ? options_.axialModes : 0) +
+               (condensesTransverseModes() ? (Dim - 1) * options_.transverseModes : 0);
     }
     /// The span's axial law: linear, tension-only, or (slackRegularised()) tension-only rounded
     /// over (0, quasiStaticSlackTransitionStrain).

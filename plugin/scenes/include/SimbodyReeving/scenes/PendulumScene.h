@@ -7,6 +7,7 @@
 #include <Simbody.h>
 
 #include <memory>
+#include <optional>
 
 namespace SimbodyReeving {
 
@@ -35,10 +36,15 @@ struct PendulumParameters {
 /// (2 M g, ReevingSubsystem::setDecorationForceScale).
 class PendulumScene {
 public:
+    /// @param spans      options of both spans (mode counts, quasi-static modes, ...).
     /// @param planarRope true (default): planar spans in the x-y plane; false: spatial spans (same
     ///        physics for this in-plane motion, with out-of-plane modes and work).
+    /// @param horizontalSpan if given, the options of the horizontal span a (span 0, between the two
+    ///        Ground points) instead of spans: e.g. its transverse modes condensed
+    ///        (TransverseDynamics::QuasiStatic) while the vertical span keeps its string vibration.
     /// @throws std::invalid_argument for bad parameters or span options.
-    PendulumScene(const PendulumParameters& parameters, const SpanOptions& spans, bool planarRope = true);
+    PendulumScene(const PendulumParameters& parameters, const SpanOptions& spans, bool planarRope = true,
+                  const std::optional<SpanOptions>& horizontalSpan = std::nullopt);
 
     SimTK::MultibodySystem& system() { return *system_; }
     const SimTK::MultibodySystem& system() const { return *system_; }
