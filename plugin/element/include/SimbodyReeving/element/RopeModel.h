@@ -88,8 +88,9 @@ template <int Dim>
 struct RopeData {
     // ---- position level
     Eigen::VectorXd materialCoordinates;  ///< s_0..s_N at the nodes [m] (s_0 = 0, s_N = L)
-    /// Axial amplitudes of the AxialDynamics::QuasiStatic spans [m], span by span (also the warm
-    /// start of the next solve).
+    /// Condensed amplitudes [m] (SpanModel::numCondensedModes per span: the axial amplitudes of
+    /// AxialDynamics::QuasiStatic spans, then the transverse ones of TransverseDynamics::QuasiStatic
+    /// spans), span by span (also the warm start of the next solve).
     Eigen::VectorXd condensedAmplitudes;
     /// Multipliers nu_k of the sheave constraints in the condensation's stationarity conditions
     /// (only with condensed spans): dU/ds_k / EA + sum_m nu_m dC_m/ds_k = 0.
@@ -152,8 +153,9 @@ private:
 /// end. Each node's material coordinate is Fixed, Sliding or Driven (MaterialNode; by default the
 /// ends are Fixed anchors and the sheaves Sliding, frictionless). Node positions are given from outside each evaluation
 /// (they are tied to bodies); the modal coordinates q_m of all spans are the rope's own
-/// independent coordinates ("modal state"), except the axial amplitudes of spans with
-/// AxialDynamics::QuasiStatic, which are dependent, solved from dU/dq_a = 0 (AxialCondensation);
+/// independent coordinates ("modal state"), except the condensed amplitudes (the axial ones of
+/// spans with AxialDynamics::QuasiStatic, the transverse ones of spans with
+/// TransverseDynamics::QuasiStatic), which are dependent, solved from dU/dq = 0 (AxialCondensation);
 /// the material coordinates s_1..s_{N-1} at the sheaves are dependent, solved from the tension
 /// equality EA eps_{k-1}(s_k) = EA eps_k(s_k) (paper eq 32), with s_0 = 0 and s_N = L (unstretched
 /// rope length) fixed.
