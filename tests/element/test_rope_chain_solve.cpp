@@ -106,6 +106,17 @@ Eigen::Vector4d chainAgainstDense(const Case<Dim>& c, std::mt19937& rng) {
     rope.modalAccelerations(data, xdd, qmddFormed);
     product = std::max(product, rel(lean.nodeForce, data.nodeForce));
     if (nm > 0) product = std::max(product, rel(qmddLean, qmddFormed));
+    // modalAccelerationsFromLastProduct: xddot = X c from the last product's solutions, no solve.
+    if (nm > 0) {
+        const Eigen::VectorXd weights = Eigen::VectorXd::NullaryExpr(X.cols(), [&] { return u(rng); });
+        rope.multiplyByNodeMass(lean, X, SX);
+        Eigen::VectorXd qmddCombined, qmddSolved;
+        rope.modalAccelerationsFromLastProduct(lean, weights, qmddCombined);
+        rope.modalAccelerations(lean, X * weights, qmddSolved);
+        product = std::max(product, rel(qmddCombined, qmddSolved));
+        EXPECT_THROW(rope.modalAccelerationsFromLastProduct(lean, Eigen::VectorXd::Zero(X.cols() + 1), qmddCombined),
+                     std::invalid_argument);
+    }
     // The stored rope of drums is added after the reduction in both; none here.
     return {rel(data.nodeMass, S), rel(data.nodeForce, h), nm > 0 ? rel(qmdd, qmddDense) : 0.0, product};
 }

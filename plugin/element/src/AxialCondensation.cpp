@@ -59,14 +59,17 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
     referenceFrame_ = span.referenceFrame();
     // The span's own strain rule (SpanModel::quadratureNodes: Gauss-Legendre, automatic or explicit
     // count), so that Phi and dU/dl are the derivatives of the energy SpanModel::evaluate computes.
-    const Eigen::VectorXd& nodes = span.quadratureNodes(Integrand::Strain);
-    const int nq = static_cast<int>(nodes.size());
     const int maxMode = std::max(na_, nt_);
     const double pi = std::acos(-1.0);
-    weights_ = span.quadratureWeights(Integrand::Strain);
-    slopes_.resize(nq, maxMode);
-    for (int k = 0; k < nq; ++k)
-        for (int i = 0; i < maxMode; ++i) slopes_(k, i) = (i + 1) * pi * std::cos((i + 1) * pi * nodes[k]);
+    auto makeRule = [&](const Eigen::VectorXd& nodes, const Eigen::VectorXd& weights, StrainRule& rule) {
+        const int nq = static_cast<int>(nodes.size());
+        rule.weights = weights;
+        rule.slopes.resize(nq, maxMode);
+        for (int k = 0; k < nq; ++k)
+            for (int i = 0; i < maxMode; ++i) rule.slopes(k, i) = (i + 1) * pi * std::cos((i + 1) * pi * nodes[k]);
+    };
+    makeRule(span.quadratureNodes(Integrand::Strain), span.quadratureWeights(Integrand::Strain), rule_);
+    if (span.tautStrainRule()) makeRule(span.tautStrainNodes(), span.tautStrainWeights(), tautRule_);
     sinMean_.resize(maxMode);
     bendFactor_.resize(maxMode);
     endSlope_[0].resize(maxMode);
@@ -82,9 +85,11 @@ AxialCondensation<Dim>::AxialCondensation(const SpanModel<Dim>& span) {
 
 template <int Dim>
 template <class Scalar>
-void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar& spanLength,
+void AxialCondensation<Dim>::quantities(const StrainRule& rule, const Scalar& chordLength, const Scalar& spanLength,
                                         const Scalar* gravityOnFrame, const Scalar& gravityOnMean,
                                         const Scalar* modal, Scalar* out) const {
+    const Eigen::VectorXd& weights = rule.weights;
+    const Eigen::MatrixXd& slopes = rule.slopes;
     const Scalar invL = reciprocal(spanLength);
     const Scalar invL2 = invL * invL;
     const Scalar* axial = modal;
@@ -92,14 +97,14 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
     for (int i = 0; i < numQuantities(); ++i) out[i] = Scalar(0.0);
     // Strain integrals: Phi_i (axial part) and dU_ax/dl.
     Scalar axialLength(0.0);
-    for (int k = 0; k < weights_.size(); ++k) {
+    for (int k = 0; k < weights.size(); ++k) {
         Scalar lambda = chordLength;
-        for (int i = 0; i < na_; ++i) lambda += slopes_(k, i) * axial[i];
+        for (int i = 0; i < na_; ++i) lambda += slopes(k, i) * axial[i];
         Scalar t2 = lambda * lambda;
         Scalar tau[Dim];
         for (int d = 0; d + 1 < Dim; ++d) {
             tau[d] = Scalar(0.0);
-            for (int i = 0; i < nt_; ++i) tau[d] += slopes_(k, i) * transverse[d * nt_ + i];
+            for (int i = 0; i < nt_; ++i) tau[d] += slopes(k, i) * transverse[d * nt_ + i];
             t2 += tau[d] * tau[d];
         }
         const Scalar eps = 0.5 * (t2 * invL2) - Scalar(0.5);
@@ -107,13 +112,13 @@ void AxialCondensation<Dim>::quantities(const Scalar& chordLength, const Scalar&
         if (law_.slack(e0)) continue;  // slack point: no axial force, no energy
         const Scalar f = law_.f(eps, e0);
         const Scalar fLambda = f * lambda;
-        for (int i = 0; i < ncAxial_; ++i) out[phi(i)] += (weights_[k] * slopes_(k, i)) * fLambda;
+        for (int i = 0; i < ncAxial_; ++i) out[phi(i)] += (weights[k] * slopes(k, i)) * fLambda;
         for (int d = 0; d + 1 < Dim; ++d) {
             const Scalar fTau = f * tau[d];
             for (int i = 0; i < ncTransverse_; ++i)
-                out[phi(ncAxial_ + d * ncTransverse_ + i)] += (weights_[k] * slopes_(k, i)) * fTau;
+                out[phi(ncAxial_ + d * ncTransverse_ + i)] += (weights[k] * slopes(k, i)) * fTau;
         }
-        axialLength += weights_[k] * (law_.F(eps, e0) - f * (2.0 * eps + Scalar(1.0)));
+        axialLength += weights[k] * (law_.F(eps, e0) - f * (2.0 * eps + Scalar(1.0)));
     }
     // Gravity: U_g = -rhoA l (g . r_mean + sum_d (g . A_e col d) ubar_d).
     Scalar gravityOnModes(0.0);
@@ -213,9 +218,10 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
     const double* b = q.data() + iM + na_;  // transverse amplitudes, direction by direction
     const double l2 = l * l, l3 = l2 * l;
     // Strain integrals: P_i = int eps lambda S_i' and A = int (-3/2 eps^2 - eps).
-    for (int k = 0; k < weights_.size(); ++k) {
-        const auto S = slopes_.row(k);
-        const double w = weights_[k];
+    const StrainRule& rule = strainRule(chord, l, a);
+    for (int k = 0; k < rule.weights.size(); ++k) {
+        const auto S = rule.slopes.row(k);
+        const double w = rule.weights[k];
         double lambda = chord;
         for (int i = 0; i < na_; ++i) lambda += S[i] * a[i];
         double tau[Dim] = {};
@@ -446,7 +452,7 @@ void AxialCondensation<Dim>::evaluateRates(const Eigen::Ref<const Eigen::VectorX
     for (int c = 0; c < Dim; ++c)
         gA[c] = Taylor2(gravity_.dot(F.A.col(c)), gravity_.dot(F.Adot.col(c)), gravity_.dot(F.Addot.col(c)));
     for (int j = 0; j < numModal_; ++j) modal[j] = Taylor2(q[iM + j], qdot[iM + j], 0.0);
-    quantities(chordT, lT, gA, gMeanT, modal, out);
+    quantities(strainRule(e.norm(), l, q.data() + iM), chordT, lT, gA, gMeanT, modal, out);
     d.rate.resize(nQ);
     d.accelerationBias.resize(nQ);
     for (int k = 0; k < nQ; ++k) {

@@ -84,18 +84,28 @@ void BandedLU::solve(double* b) const {
 }
 
 void BandedLU::solve(double* B, int numRhs) const {
+    if (numRhs == 1) {
+        solve(B);
+        return;
+    }
     const int band = kl_ + ku_, nr = numRhs;
     for (int k = 0; k < n_; ++k) {  // L Y = P B
         const int p = pivot_[k];
         double* bk = B + static_cast<std::size_t>(k) * nr;
         if (p != k) std::swap_ranges(bk, bk + nr, B + static_cast<std::size_t>(p) * nr);
         const int last = std::min(n_ - 1, k + kl_);
-        for (int i = k + 1; i <= last; ++i) axpy(-at(i, k), bk, B + static_cast<std::size_t>(i) * nr, nr);
+        for (int i = k + 1; i <= last; ++i) {
+            const double l = at(i, k);
+            if (l != 0.0) axpy(-l, bk, B + static_cast<std::size_t>(i) * nr, nr);
+        }
     }
     for (int k = n_ - 1; k >= 0; --k) {  // U X = Y
         const int right = std::min(n_ - 1, k + band);
         double* bk = B + static_cast<std::size_t>(k) * nr;
-        for (int j = k + 1; j <= right; ++j) axpy(-at(k, j), B + static_cast<std::size_t>(j) * nr, bk, nr);
+        for (int j = k + 1; j <= right; ++j) {
+            const double u = at(k, j);
+            if (u != 0.0) axpy(-u, B + static_cast<std::size_t>(j) * nr, bk, nr);
+        }
         const double d = at(k, k);
         for (int r = 0; r < nr; ++r) bk[r] /= d;
     }

@@ -336,11 +336,33 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         C.setZero(nd);
         jac.clear();
     }
+    // Entries of one row are merged by column before they join jac (a row sums up to six span
+    // quantities' gradients over the same coordinates): each (row, column) appears once, its value
+    // summed in the order the terms come, as the band matrices summed them before.
+    std::vector<int>& slot = data.ws().rowSlot;
+    std::vector<detail::JacobianEntry>& pending = data.ws().rowPending;
+    if (static_cast<int>(slot.size()) < nw + nd) slot.assign(nw + nd, -1);
+    auto flush = [&]() {
+        for (const detail::JacobianEntry& e : pending) {
+            jac.push_back(e);
+            slot[e.col] = -1;
+        }
+        pending.clear();
+    };
+    auto put = [&](int row, int col, double value) {
+        if (!pending.empty() && pending.front().row != row) flush();
+        if (slot[col] < 0) {
+            slot[col] = static_cast<int>(pending.size());
+            pending.push_back({row, col, value});
+        } else {
+            pending[slot[col]].value += value;
+        }
+    };
     auto scatter = [&](int row, int j, const auto& gradient, double coef) {
         const auto& map = spanToRope_[j];
         for (int i = 0; i < static_cast<int>(map.size()); ++i) {
             const int zi = map[i];
-            if (zi < nw + nd) jac.push_back({row, zi, coef * gradient[i]});
+            if (zi < nw + nd) put(row, zi, coef * gradient[i]);
         }
     };
 
@@ -363,6 +385,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
                 data.ws().bias[row] =
                     wb * data.ws().secondEnd[k - 1].accelerationBias - wa * data.ws().firstEnd[k].accelerationBias;
         }
+        flush();
         return;
     }
 
@@ -404,7 +427,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         }
         C[row] += coef * nu * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef * nu);
-        jac.push_back({row, nw + nqc + nc + mi, coef * K.value[quantity]});
+        put(row, nw + nqc + nc + mi, coef * K.value[quantity]);
     };
     for (int j = 0; j < N; ++j) {
         if (!isCondensed(j)) continue;
@@ -433,7 +456,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         if (nodeKind_[k] == MaterialNode::Slipping) {
             if (!withRates) {
                 C[row] = data.multipliers[ki];
-                jac.push_back({row, nw + nqc + nc + ki, 1.0});
+                put(row, nw + nqc + nc + ki, 1.0);
             }
             continue;
         }
@@ -447,6 +470,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -weightBefore_[k + 1]);
         addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -weightAfter_[k - 1]);
     }
+    flush();
 }
 
 template <int Dim>
@@ -728,6 +752,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     detail::RopeWorkspace<Dim>& ws = data.ws();
     ws.model = this;
     ws.reducedValid = false;
+    ws.productColumns = -1;
     if (nd > 0) {
         factorDependentJacobian(data, ws.dependentLu);
         ws.rowScratch.setZero(nd);
@@ -937,16 +962,24 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
     detail::RopeWorkspace<Dim>& ws = data.scratch();
     const int p = static_cast<int>(X.cols()), nk = kktSize_;
     SX.setZero(nx, p);
+    ws.productColumns = p;
     if (p == 0) return;
     // Right-hand sides -[M_yx X; C_x X] (row-major), and M_xx X into SX.
     Eigen::VectorXd& B = ws.productBlock;
     B.setZero(static_cast<Eigen::Index>(nk) * p);
+    // Rows of X that are zero (nodes that do not move along these directions: Ground, or bodies
+    // outside the coupling) contribute nothing to the right-hand sides: skipped.
+    std::vector<char>& live = ws.liveProductRow;
+    live.assign(nx, 0);
+    for (int c = 0; c < p; ++c)
+        for (int i = 0; i < nx; ++i)
+            if (X(i, c) != 0.0) live[i] = 1;
     for (int j = 0; j < N; ++j) {
         const auto& map = spanToRope_[j];
         const auto& M = ws.spans[j].massMatrix;
         const int n = spans_[j].numCoordinates();
         for (int a = 0; a < n; ++a) {
-            if (map[a] >= nx) continue;
+            if (map[a] >= nx || !live[map[a]]) continue;
             for (int b = 0; b < n; ++b) {
                 const int pb = kktPos_[map[b]];
                 if (pb >= 0) {
@@ -957,12 +990,14 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
             }
         }
     }
-    for (int i = 0; i < nx; ++i)
+    for (int i = 0; i < nx; ++i) {
+        if (!live[i]) continue;
         for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at) {
             const int pr = kktRowPos_[ws.externalColumnRow[at]];
             const double v = ws.externalColumnValue[at];
             for (int c = 0; c < p; ++c) B[pr * p + c] -= v * X(i, c);
         }
+    }
     if (nk > 0) ws.kktLu.solve(B.data(), p);
     // + M_xy Y + C_x^T Mu
     for (int j = 0; j < N; ++j) {
@@ -1013,6 +1048,26 @@ void RopeModel<Dim>::modalAccelerations(const RopeData<Dim>& data, const Eigen::
     const int nx = numExternalCoordinates();
     qmddot.resize(numModal_);
     for (int m = 0; m < numModal_; ++m) qmddot[m] = w.modalFree[m] + w.productBlock[kktPos_[nx + m]];
+}
+
+template <int Dim>
+void RopeModel<Dim>::modalAccelerationsFromLastProduct(const RopeData<Dim>& data, const Eigen::VectorXd& columnWeights,
+                                                       Eigen::VectorXd& qmddot) const {
+    const detail::RopeWorkspace<Dim>& w = data.ws();
+    const int p = w.productColumns;
+    if (p < 0 || columnWeights.size() != p)
+        throw std::invalid_argument("RopeModel::modalAccelerationsFromLastProduct: " +
+                                    std::to_string(columnWeights.size()) + " weights for " + std::to_string(p) +
+                                    " columns of the last multiplyByNodeMass (-1: none since computeDynamics)");
+    qmddot = w.modalFree;
+    if (numModal_ == 0 || kktSize_ == 0) return;
+    const int nx = numExternalCoordinates();
+    for (int m = 0; m < numModal_; ++m) {
+        const double* y = w.productBlock.data() + static_cast<std::ptrdiff_t>(kktPos_[nx + m]) * p;
+        double sum = 0;
+        for (int c = 0; c < p; ++c) sum += y[c] * columnWeights[c];
+        qmddot[m] += sum;
+    }
 }
 
 template <int Dim>

@@ -32,7 +32,9 @@ struct RopeWorkspace {
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
     Eigen::VectorXd w;                    ///< independent velocities [rdot; sdot_driven; qdot_m]
     // ---- the chain solve (every evaluation)
-    std::vector<JacobianEntry> jacobian;  ///< C_z, row by row as the spans produce it
+    std::vector<JacobianEntry> jacobian;  ///< C_z, row by row, each (row, column) once
+    std::vector<int> rowSlot;                ///< per column of z: its entry in rowPending, or -1
+    std::vector<JacobianEntry> rowPending;   ///< the row being merged (RopeModel::evaluateConstraints)
     /// Entries of C_z on the external coordinates x, by column (counting sort of `jacobian`).
     std::vector<int> externalColumnStart, externalColumnRow;
     std::vector<double> externalColumnValue;
@@ -42,6 +44,8 @@ struct RopeWorkspace {
     Eigen::VectorXd chainSolution;  ///< right-hand sides / solutions of the KKT system, row-major
     Eigen::VectorXd supportBlock;   ///< M_xy Y + C_x^T Mu for them, row-major
     Eigen::VectorXd productBlock;   ///< right-hand sides / solutions of multiplyByNodeMass
+    std::vector<char> liveProductRow;  ///< per external coordinate: its row of X is nonzero
+    int productColumns = -1;        ///< columns of the last multiplyByNodeMass (-1: none since computeDynamics)
     Eigen::MatrixXd modalProduct;   ///< S xddot of modalAccelerations without the formed columns
     bool nodeMassFormed = true;     ///< nodeMass and modalCoupling formed by the last computeDynamics
     std::vector<int> solvedColumns; ///< the external coordinates whose column of S is formed

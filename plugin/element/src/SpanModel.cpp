@@ -13,13 +13,9 @@
 
 namespace SimbodyReeving {
 namespace {
-// The exact midpoint strain rule (automaticStrainPoints) is implemented and tested but not the
-// automatic rule yet: measured with it, the crane's motor torque changes by 1.5e-12 relative when
-// the height datum moves (CraneScene.MotorTorqueDoesNotDependOnTheHeightDatum, bound 1e-13; 2.5e-14
-// with Gauss-Legendre), a round-off growth not yet understood. Gauss-Legendre
-// (automaticQuadraturePoints) stays the automatic strain rule; the midpoint rule would save about
-// 25 k instructions per rhs of the default pendulum.
-constexpr bool kUseMidpointStrainRule = false;
+// Taut spans (SpanModel::strainTautEverywhere) evaluate their strain integrals by the exact
+// midpoint rule of automaticStrainPoints: 7 points instead of Gauss-Legendre's 26 at n_max = 3,
+// 3 instead of 17 at n_max = 1, the same integrals to round-off (issue 20).
 }  // namespace
 
 namespace {
@@ -149,11 +145,10 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
 
     const double pi = std::acos(-1.0);
     auto makeTable = [&](Integrand integrand, QuadratureTable& table) {
-        const bool midpoint = kUseMidpointStrainRule && options_.quadraturePoints == 0 && integrand == Integrand::Strain;
-        const int nq = options_.quadraturePoints > 0 ? options_.quadraturePoints
-                       : midpoint ? automaticStrainPoints(options_.axialModes, options_.transverseModes)
-                                  : automaticQuadraturePoints(options_.axialModes, options_.transverseModes, integrand);
-        const GaussLegendreRule rule = midpoint ? makeMidpointRule(nq) : makeGaussLegendreRule(nq);
+        const int nq = options_.quadraturePoints > 0
+                           ? options_.quadraturePoints
+                           : automaticQuadraturePoints(options_.axialModes, options_.transverseModes, integrand);
+        const GaussLegendreRule rule = makeGaussLegendreRule(nq);
         table.xi = Eigen::Map<const Eigen::VectorXd>(rule.nodes.data(), nq);
         table.w = Eigen::Map<const Eigen::VectorXd>(rule.weights.data(), nq);
         table.sin.resize(nq, maxMode_);
@@ -167,6 +162,20 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
     };
     makeTable(Integrand::Kinetic, kineticTable_);
     makeTable(Integrand::Strain, strainTable_);
+    if (options_.quadraturePoints == 0) {
+        const int nq = automaticStrainPoints(options_.axialModes, options_.transverseModes);
+        const GaussLegendreRule rule = makeMidpointRule(nq);
+        tautStrainTable_.xi = Eigen::Map<const Eigen::VectorXd>(rule.nodes.data(), nq);
+        tautStrainTable_.w = Eigen::Map<const Eigen::VectorXd>(rule.weights.data(), nq);
+        tautStrainTable_.sin.resize(nq, maxMode_);
+        tautStrainTable_.dsin.resize(nq, maxMode_);
+        for (int k = 0; k < nq; ++k)
+            for (int i = 0; i < maxMode_; ++i) {
+                const double kw = (i + 1) * pi;
+                tautStrainTable_.sin(k, i) = std::sin(kw * tautStrainTable_.xi[k]);
+                tautStrainTable_.dsin(k, i) = kw * std::cos(kw * tautStrainTable_.xi[k]);
+            }
+    }
     // Moments of the kinetic rule for the closed-form mass matrix.
     {
         const int m = maxMode_;
@@ -541,9 +550,11 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         ModeVectors gModes;    // dU/dq_m per mode number, local directions
         gModes.leftCols(m).setZero();
         double gL = 0;         // dU/dl
-        for (int k = 0; k < strainTable_.xi.size(); ++k) {
-            const double w = strainTable_.w[k];
-            const double* dsinRow = strainTable_.dsin.data() + k * m;
+        // The exact midpoint rule where the bound proves the span taut, else Gauss-Legendre.
+        const QuadratureTable& rule = strainTautEverywhere(e.norm(), l, qm.data()) ? tautStrainTable_ : strainTable_;
+        for (int k = 0; k < rule.xi.size(); ++k) {
+            const double w = rule.w[k];
+            const double* dsinRow = rule.dsin.data() + k * m;
             Vec up = Vec::Zero();  // du/dxi
             for (int i = 0; i < m; ++i) up += dsinRow[i] * U.col(i);
             const Vec t = e + A * up;

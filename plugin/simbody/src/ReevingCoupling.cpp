@@ -153,6 +153,15 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         }
         ws.rdd = ws.a0;
         ws.rdd.noalias() -= ws.Lambda * ws.f;
+        // Product route: rdd = a0 - J_U z with z = Minv_UU J_U^T f, i.e. [J_U | a0] [-z; 1], the
+        // columns each rope has just solved for (multiplyByNodeMass): its modal accelerations are
+        // the same combination of those solutions (no further solve of its chain).
+        if (products) {
+            const int k = static_cast<int>(ws.U.size());
+            ws.productWeights.resize(k + 1);
+            ws.productWeights.head(k).noalias() = -(ws.JUMinv.transpose() * ws.f);
+            ws.productWeights[k] = 1.0;
+        }
         // MobilizedBody::applyForceToBodyPoint / applyOneMobilityForce, with this evaluation's
         // offsets and u indices.
         for (int a = 0; a < m; ++a) {
@@ -182,13 +191,20 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             else
                 c.nodeAccelerations3.col(k) = c.externalAccelerations.segment<3>(3 * k);
         }
-        if (r.planar) {
+        if (products && !rc.rows.empty()) {
+            if (r.planar)
+                c.planarModel->modalAccelerationsFromLastProduct(c.planar, ws.productWeights, c.modalAccelerations);
+            else
+                spatialModel(s, r).modalAccelerationsFromLastProduct(c.spatial, ws.productWeights, c.modalAccelerations);
+        } else if (r.planar) {
             c.planarModel->modalAccelerations(c.planar, c.externalAccelerations, c.modalAccelerations);
+        } else {
+            spatialModel(s, r).modalAccelerations(c.spatial, c.externalAccelerations, c.modalAccelerations);
+        }
+        if (r.planar) {
             c.planarModel->recoverInertialStrain(c.planar, c.externalAccelerations, c.modalAccelerations);
         } else {
-            const RopeModel<3>& model = spatialModel(s, r);
-            model.modalAccelerations(c.spatial, c.externalAccelerations, c.modalAccelerations);
-            model.recoverInertialStrain(c.spatial, c.externalAccelerations, c.modalAccelerations);
+            spatialModel(s, r).recoverInertialStrain(c.spatial, c.externalAccelerations, c.modalAccelerations);
         }
         for (int j = 0; j < r.numModal; ++j) {
             zdot[r.zOffset + j] = z[r.zOffset + r.numModal + j];

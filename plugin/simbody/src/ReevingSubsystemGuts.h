@@ -175,6 +175,7 @@ struct CouplingWorkspace {
     Eigen::MatrixXd SJ, ropeX, ropeSX;
     Eigen::VectorXd h, f, rdd, a0, aUnit, rhs, responseU;
     Eigen::VectorXd reducedRhs, reducedSolution;  // the product route's k x k system (Woodbury)
+    Eigen::VectorXd productWeights;  // [-z; 1]: rdd = [J_U | a0] productWeights (product route)
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     std::vector<int> U;                    // mobilities (u indices), ascending
     std::vector<int> angleU;               // per MobileAngle: its pin's u index

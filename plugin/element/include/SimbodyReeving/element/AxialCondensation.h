@@ -94,9 +94,22 @@ public:
                        Data& data) const;
 
 private:
+    /// A strain rule: weights w_k and mode slopes S_i'(xi_k), i = 1..max(n_a, n_t).
+    struct StrainRule {
+        Eigen::VectorXd weights;
+        Eigen::MatrixXd slopes;
+    };
+    /// The span's Gauss-Legendre strain rule, or its exact midpoint rule where
+    /// strainAboveTransitionEverywhere proves the span taut (SpanModel::strainTautEverywhere).
+    const StrainRule& strainRule(double chordLength, double spanLength, const double* axialAmplitudes) const {
+        return tautRule_.weights.size() > 0 &&
+                       strainAboveTransitionEverywhere(law_, na_, chordLength, spanLength, axialAmplitudes)
+                   ? tautRule_
+                   : rule_;
+    }
     template <class Scalar>
-    void quantities(const Scalar& chordLength, const Scalar& spanLength, const Scalar* gravityOnFrame,
-                    const Scalar& gravityOnMean, const Scalar* modal, Scalar* out) const;
+    void quantities(const StrainRule& rule, const Scalar& chordLength, const Scalar& spanLength,
+                    const Scalar* gravityOnFrame, const Scalar& gravityOnMean, const Scalar* modal, Scalar* out) const;
 
     int na_ = 0, nt_ = 0, numModal_ = 0, numCoordinates_ = 0;
     // Condensed amplitudes: n_c in all, the axial ones (n_a or 0) and the transverse ones per direction (n_t or 0).
@@ -107,9 +120,8 @@ private:
     double transverseSlackStiffness_ = 0;  // delta_t EA / 2 likewise, on condensed transverse amplitudes
     Eigen::Matrix<double, Dim, 1> gravity_;
     Eigen::Matrix<double, Dim, Dim> referenceFrame_;
-    // Strain quadrature: weights w_k and mode slopes S_i'(xi_k) (d/dxi), i = 1..max(n_a, n_t).
-    Eigen::VectorXd weights_;
-    Eigen::MatrixXd slopes_;
+    StrainRule rule_;      // the span's strain rule (Gauss-Legendre)
+    StrainRule tautRule_;  // its exact midpoint rule for taut states (empty: explicit quadraturePoints)
     Eigen::VectorXd sinMean_;     // m_i = int_0^1 S_i dxi
     Eigen::VectorXd bendFactor_;  // int_0^1 (S_i'')^2 dxi = (i pi)^4 / 2
     Eigen::VectorXd endSlope_[2];  // S_i'(0) = i pi, S_i'(1) = i pi (-1)^i

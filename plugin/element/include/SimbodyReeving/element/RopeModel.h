@@ -289,6 +289,15 @@ public:
     void modalAccelerations(const RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                             Eigen::VectorXd& qmddot) const;
 
+    /// As modalAccelerations for xddot = X c, X the matrix of the last multiplyByNodeMass on data and
+    /// c its column weights (X.cols() entries): the solutions of that product's block solve are
+    /// combined, no further solve (a coupling that formed S X along the bodies' motions and a0 finds
+    /// xddot = a0 - J z as such a combination). Same result as modalAccelerations(data, X c) to
+    /// round-off.
+    /// @throws std::invalid_argument if c does not have as many entries as that X had columns.
+    void modalAccelerationsFromLastProduct(const RopeData<Dim>& data, const Eigen::VectorXd& columnWeights,
+                                           Eigen::VectorXd& qmddot) const;
+
     /// Mode-acceleration recovery for ropes with condensed (QuasiStatic) spans. The condensation
     /// makes U stationary, so the strain field it gives carries no share of the rope's own inertial
     /// load (rhoA times the acceleration of each material point). Given the accelerations of the

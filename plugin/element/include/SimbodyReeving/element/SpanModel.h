@@ -17,6 +17,17 @@ namespace SimbodyReeving {
 /// Largest number of sine modes per direction (axial or transverse) a span may carry.
 inline constexpr int kMaxModesPerDirection = 16;
 
+/// The bound of SpanModel::strainTautEverywhere (without its rule check): true if a span with chord
+/// length |e| [m], material length l [m] and axial amplitudes a_1..a_na [m] has its strain above
+/// law.transition everywhere, or the law is linear.
+inline bool strainAboveTransitionEverywhere(const AxialLaw& law, int numAxialModes, double chordLength,
+                                            double spanLength, const double* axialAmplitudes) {
+    if (!law.tensionOnly) return true;
+    double lambdaMin = chordLength;
+    for (int i = 0; i < numAxialModes; ++i) lambdaMin -= (i + 1) * 3.14159265358979323846 * std::abs(axialAmplitudes[i]);
+    return lambdaMin > 0 && lambdaMin * lambdaMin > spanLength * spanLength * (1.0 + 2.0 * law.transition);
+}
+
 /// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
 ///
 /// The default is Complete (issue 19): it is exact, it costs 27-29 % more instructions per span
@@ -399,9 +410,31 @@ public:
     /// 150 points): with n_max = max(n_a, n_t) and k the integrand's largest number of half-waves
     /// on [0, 1] (k = 2 n_max for kinetic, 4 n_max for strain integrals), N = ceil(1.15 k) + 12;
     /// without modes N = 2 (kinetic) and 1 (strain). The automatic rule (SpanOptions::quadraturePoints
-    /// = 0) uses it for both (the exact midpoint rule of automaticStrainPoints, 7 points instead of
-    /// 26 at n_max = 3, is not the automatic rule yet: see SpanModel.cpp, kUseMidpointStrainRule).
+    /// = 0) uses it for both. Where strainTautEverywhere proves a span taut, the strain integrals are
+    /// evaluated by the exact midpoint rule of automaticStrainPoints instead (7 points instead of 26
+    /// at n_max = 3, 3 instead of 17 at n_max = 1): the same integrals to round-off, so the model is
+    /// this Gauss-Legendre rule's either way (tautStrainRule).
     static int automaticQuadraturePoints(int axialModes, int transverseModes, Integrand integrand);
+
+    /// The span's fast strain rule for taut states: true if the automatic rule is in use
+    /// (SpanOptions::quadraturePoints = 0), and then tautStrainNodes / tautStrainWeights are the
+    /// midpoint rule of automaticStrainPoints.
+    bool tautStrainRule() const { return tautStrainTable_.xi.size() > 0; }
+    const Eigen::VectorXd& tautStrainNodes() const { return tautStrainTable_.xi; }
+    const Eigen::VectorXd& tautStrainWeights() const { return tautStrainTable_.w; }
+    /// True if the strain of the span at these coordinates is above the axial law's transition
+    /// strain at every point (or the law is linear), by the bound
+    ///     lambda(xi) = |e| + sum_i S_i'(xi) a_i >= |e| - sum_i i pi |a_i| = lambda_min,
+    ///     eps(xi) >= lambda_min^2 / (2 l^2) - 1/2  (the transverse slopes only add to eps),
+    /// i.e. lambda_min > 0 and lambda_min^2 > l^2 (1 + 2 eps_s). Then every strain integrand is a
+    /// cosine series with at most 4 n_max half-waves, which both the Gauss-Legendre rule and the
+    /// midpoint rule of automaticStrainPoints integrate to round-off, and SpanModel::evaluate and
+    /// AxialCondensation use the cheaper one. False also without tautStrainRule().
+    /// @param chordLength |e| = |r2 - r1| [m]; spanLength l = s2 - s1 [m]; axialAmplitudes a_i [m], n_a of them.
+    bool strainTautEverywhere(double chordLength, double spanLength, const double* axialAmplitudes) const {
+        return tautStrainRule() &&
+               strainAboveTransitionEverywhere(law_, options_.axialModes, chordLength, spanLength, axialAmplitudes);
+    }
 
     /// Points of the exact strain rule, the N-point midpoint rule xi_j = (j + 1/2) / N, w = 1/N
     /// (makeMidpointRule), N = 2 n_max + 1 with n_max = max(n_a, n_t) (1 without modes).
@@ -417,10 +450,11 @@ public:
     /// tests/element/test_strain_quadrature.cpp.
     ///
     /// Where a tension-only span has slack points (strain below the transition strain somewhere),
-    /// the clamped integrand is not a cosine series and neither rule is exact: the midpoint rule
-    /// then samples the strain at its N points, as Gauss-Legendre did at its own. Either way the
-    /// elastic forces are the exact gradient of the energy the rule computes (the same points and
-    /// weights), so T + U stays an invariant; maxStrain() looks at the same points.
+    /// the clamped integrand is not a cosine series and neither rule is exact: the span then keeps
+    /// its Gauss-Legendre rule (strainTautEverywhere is false), whose many points resolve the slack
+    /// region better (with 3 midpoint points the elevator's stall at mu = 10 no longer slipped).
+    /// The switch between the rules is continuous to round-off: where the bound holds, both rules
+    /// give the same integrals. maxStrain() looks at the Gauss-Legendre points.
     static int automaticStrainPoints(int axialModes, int transverseModes);
 
     /// Evaluates M, Q_v, Q_elastic, Q_gravity and all energies at (q, qdot).
@@ -481,6 +515,7 @@ private:
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sin, dsin;  // row k: point k
     };
     QuadratureTable kineticTable_, strainTable_;
+    QuadratureTable tautStrainTable_;  // midpoint rule of automaticStrainPoints (empty: explicit quadraturePoints)
     using ModeVectors = Eigen::Matrix<double, Dim, kMaxModesPerDirection>;
     /// Adds the Kelvin-Voigt damping forces and power to d (evaluate, with U, Ud the modal
     /// amplitudes and rates per mode number; d.frame already computed).
