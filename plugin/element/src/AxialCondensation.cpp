@@ -206,11 +206,11 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
     // then chained to the span coordinates.
     const int P = 3 + Dim + numModal_;
     const int xChord = 0, xLength = 1, xFrame = 2, xMean = 2 + Dim, xModal = 3 + Dim;
-    // G(k, x) = d quantity_k / d x_x, row-major with a compile-time stride (cheap indexing).
-    constexpr int kStride = 3 + Dim + Dim * kMaxModesPerDirection;
-    double Gbuf[AxialCondensationData<Dim>::kMaxQuantities * kStride];
-    for (int k = 0; k < nQ; ++k) std::fill(Gbuf + k * kStride, Gbuf + k * kStride + P, 0.0);
-    auto G = [&Gbuf](int k, int x) -> double& { return Gbuf[k * kStride + x]; };
+    // G(k, x) = d quantity_k / d x_x, row-major with stride P (rows contiguous: one fill clears it).
+    constexpr int kMaxInputs = 3 + Dim + Dim * kMaxModesPerDirection;
+    double Gbuf[AxialCondensationData<Dim>::kMaxQuantities * kMaxInputs];
+    std::fill(Gbuf, Gbuf + nQ * P, 0.0);
+    auto G = [&Gbuf, P](int k, int x) -> double& { return Gbuf[k * P + x]; };
     d.value.setZero(nQ);
     double gA[Dim];
     for (int c = 0; c < Dim; ++c) gA[c] = gravity_.dot(F.A.col(c));
@@ -408,7 +408,7 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
         for (int c = 0; c < Dim; ++c) gdA[m][c] = gravity_.dot(F.dA[m].col(c));
     d.gradient.resize(nQ, numCoordinates_);
     for (int k = 0; k < nQ; ++k) {
-        const double* Gk = Gbuf + k * kStride;
+        const double* Gk = Gbuf + k * P;
         for (int m = 0; m < Dim; ++m) {
             double de = Gk[xChord] * unit[m];
             for (int c = 0; c < Dim; ++c) de += Gk[xFrame + c] * gdA[m][c];
@@ -420,8 +420,8 @@ void AxialCondensation<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q
         d.gradient(k, iS2) = Gk[xLength];
     }
     using RowMajorView = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>, 0,
-                                    Eigen::OuterStride<kStride>>;
-    d.gradient.block(0, iM, nQ, numModal_) = RowMajorView(Gbuf + xModal, nQ, numModal_);
+                                    Eigen::OuterStride<>>;
+    d.gradient.block(0, iM, nQ, numModal_) = RowMajorView(Gbuf + xModal, nQ, numModal_, Eigen::OuterStride<>(P));
     if (!withRates) {
         d.rate.setZero(nQ);
         d.accelerationBias.setZero(nQ);

@@ -60,7 +60,8 @@ bool BandedLU::factor() {
             const double l = at(i, k) * inv;
             at(i, k) = l;
             if (l == 0.0) continue;
-            for (int j = k + 1; j <= right; ++j) at(i, j) -= l * at(k, j);
+            // at(i, j) -= l at(k, j) for j = k + 1..right (rows i and k do not overlap)
+            axpy(-l, &at(k, k + 1), &at(i, k + 1), right - k);
         }
     }
     return true;

@@ -35,6 +35,11 @@ struct RopeWorkspace {
     std::vector<JacobianEntry> jacobian;  ///< C_z, row by row, each (row, column) once
     std::vector<int> rowSlot;                ///< per column of z: its entry in rowPending, or -1
     std::vector<JacobianEntry> rowPending;   ///< the row being merged (RopeModel::evaluateConstraints)
+    /// The recorded structure of `jacobian`: per term added, the entry it lands in (valid for
+    /// patternModel while patternValid).
+    std::vector<int> putTarget;
+    const void* patternModel = nullptr;
+    bool patternValid = false;
     /// Entries of C_z on the external coordinates x, by column (counting sort of `jacobian`).
     std::vector<int> externalColumnStart, externalColumnRow;
     std::vector<double> externalColumnValue;
@@ -45,6 +50,7 @@ struct RopeWorkspace {
     Eigen::VectorXd supportBlock;   ///< M_xy Y + C_x^T Mu for them, row-major
     Eigen::VectorXd productBlock;   ///< right-hand sides / solutions of multiplyByNodeMass
     std::vector<char> liveProductRow;  ///< per external coordinate: its row of X is nonzero
+    std::vector<double> productX, productSX;  ///< X and S X of multiplyByNodeMass, row-major
     int productColumns = -1;        ///< columns of the last multiplyByNodeMass (-1: none since computeDynamics)
     Eigen::MatrixXd modalProduct;   ///< S xddot of modalAccelerations without the formed columns
     bool nodeMassFormed = true;     ///< nodeMass and modalCoupling formed by the last computeDynamics
