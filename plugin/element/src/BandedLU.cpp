@@ -91,12 +91,11 @@ void BandedLU::solve(double* b) const {
     }
 }
 
-void BandedLU::solve(double* B, int numRhs) const {
-    if (numRhs == 1) {
-        solve(B);
-        return;
-    }
-    const int band = kl_ + ku_, nr = numRhs;
+// The block solve for NR right-hand sides (NR > 0: a compile-time count, so the row updates
+// unroll; NR = 0: numRhs at run time). The same operations in the same order either way.
+template <int NR>
+void BandedLU::solveBlock(double* B, int numRhs) const {
+    const int band = kl_ + ku_, nr = NR > 0 ? NR : numRhs;
     for (int k = 0; k < n_; ++k) {  // L Y = P B
         const int p = pivot_[k];
         double* bk = B + static_cast<std::size_t>(k) * nr;
@@ -116,6 +115,20 @@ void BandedLU::solve(double* B, int numRhs) const {
         }
         const double d = at(k, k);
         for (int r = 0; r < nr; ++r) bk[r] /= d;
+    }
+}
+
+void BandedLU::solve(double* B, int numRhs) const {
+    switch (numRhs) {
+        case 1: solve(B); return;
+        case 2: solveBlock<2>(B, numRhs); return;
+        case 3: solveBlock<3>(B, numRhs); return;
+        case 4: solveBlock<4>(B, numRhs); return;
+        case 5: solveBlock<5>(B, numRhs); return;
+        case 6: solveBlock<6>(B, numRhs); return;
+        case 7: solveBlock<7>(B, numRhs); return;
+        case 8: solveBlock<8>(B, numRhs); return;
+        default: solveBlock<0>(B, numRhs); return;
     }
 }
 
