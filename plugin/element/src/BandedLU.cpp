@@ -46,8 +46,12 @@ double BandedLU::entry(int i, int j) const {
     return at(i, j);
 }
 
-bool BandedLU::factor() {
-    const int band = kl_ + ku_;  // upper bandwidth of U
+// The elimination with U's bandwidth BAND = kl + ku known at compile time (BAND > 0; 0: at run
+// time), so the row updates of interior rows (length BAND) unroll. The same operations in the same
+// order either way.
+template <int BAND>
+bool BandedLU::factorBand() {
+    const int band = BAND > 0 ? BAND : kl_ + ku_;  // upper bandwidth of U
     for (int k = 0; k < n_; ++k) {
         const int last = std::min(n_ - 1, k + kl_);
         int p = k;
@@ -63,15 +67,36 @@ bool BandedLU::factor() {
         if (p != k)
             for (int j = k; j <= right; ++j) std::swap(at(k, j), at(p, j));
         const double inv = 1.0 / at(k, k);
+        const bool interior = right - k == band;
         for (int i = k + 1; i <= last; ++i) {
             const double l = at(i, k) * inv;
             at(i, k) = l;
             if (l == 0.0) continue;
             // at(i, j) -= l at(k, j) for j = k + 1..right (rows i and k do not overlap)
-            axpy(-l, &at(k, k + 1), &at(i, k + 1), right - k);
+            if (interior)
+                axpy(-l, &at(k, k + 1), &at(i, k + 1), band);
+            else
+                axpy(-l, &at(k, k + 1), &at(i, k + 1), right - k);
         }
     }
     return true;
+}
+
+bool BandedLU::factor() {
+    switch (kl_ + ku_) {
+        case 4: return factorBand<4>();
+        case 5: return factorBand<5>();
+        case 6: return factorBand<6>();
+        case 7: return factorBand<7>();
+        case 8: return factorBand<8>();
+        case 10: return factorBand<10>();
+        case 12: return factorBand<12>();
+        case 14: return factorBand<14>();
+        case 16: return factorBand<16>();
+        case 18: return factorBand<18>();
+        case 20: return factorBand<20>();
+        default: return factorBand<0>();
+    }
 }
 
 void BandedLU::solve(double* b) const {

@@ -45,6 +45,8 @@ private:
     [[noreturn]] void outOfBand(int i, int j) const;
     template <int NR>
     void solveBlock(double* B, int numRhs) const;
+    template <int BAND>
+    bool factorBand();
     double& at(int i, int j) { return w_[static_cast<std::size_t>(i) * width_ + (j - i + kl_)]; }
     double at(int i, int j) const { return w_[static_cast<std::size_t>(i) * width_ + (j - i + kl_)]; }
     int n_ = 0, kl_ = 0, ku_ = 0, width_ = 1;
