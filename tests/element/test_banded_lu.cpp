@@ -83,6 +83,26 @@ TEST(BandedLU, RejectsEntriesOutsideTheBandAndBadSizes) {
     EXPECT_THROW(lu.reset(3, 0, -2), std::invalid_argument);
 }
 
+TEST(BandedLU, AssemblyAtPrecomputedOffsetsEqualsAddAndChecksTheBand) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 9, kl = 2, ku = 3;
+    BandedLU byIndex, byOffset;
+    byIndex.reset(n, kl, ku);
+    byOffset.reset(n, kl, ku);
+    for (int i = 0; i < n; ++i)
+        for (int j = std::max(0, i - kl); j <= std::min(n - 1, i + ku); ++j) {
+            const double v = u(rng);
+            byIndex.add(i, j, v);
+            byOffset.addAt(BandedLU::offset(n, kl, ku, i, j), v);
+        }
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) EXPECT_EQ(byOffset.entry(i, j), byIndex.entry(i, j));
+    EXPECT_THROW(BandedLU::offset(n, kl, ku, 0, 4), std::out_of_range);  // above the band
+    EXPECT_THROW(BandedLU::offset(n, kl, ku, 5, 2), std::out_of_range);  // below it
+    EXPECT_THROW(BandedLU::offset(n, kl, ku, n, n), std::out_of_range);  // outside the matrix
+}
+
 TEST(BandedLU, BlockSolveEqualsColumnByColumnSolvesExactly) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

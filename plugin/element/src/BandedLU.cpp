@@ -35,10 +35,15 @@ void BandedLU::reset(int n, int kl, int ku) {
     if (pivot_.size() < static_cast<std::size_t>(n)) pivot_.resize(n);
 }
 
-void BandedLU::outOfBand(int i, int j) const {
-    throw std::out_of_range("BandedLU::add: entry (" + std::to_string(i) + ", " + std::to_string(j) +
-                                ") is outside the " + std::to_string(n_) + " x " + std::to_string(n_) +
-                                " band matrix (kl = " + std::to_string(kl_) + ", ku = " + std::to_string(ku_) + ")");
+void BandedLU::outOfBand(int n, int kl, int ku, int i, int j) {
+    throw std::out_of_range("BandedLU: entry (" + std::to_string(i) + ", " + std::to_string(j) + ") is outside the " +
+                            std::to_string(n) + " x " + std::to_string(n) + " band matrix (kl = " + std::to_string(kl) +
+                            ", ku = " + std::to_string(ku) + ")");
+}
+
+std::ptrdiff_t BandedLU::offset(int n, int kl, int ku, int i, int j) {
+    if (i < 0 || j < 0 || i >= n || j >= n || j - i > ku || i - j > kl) outOfBand(n, kl, ku, i, j);
+    return static_cast<std::ptrdiff_t>(i) * (2 * kl + ku + 1) + (j - i + kl);
 }
 
 double BandedLU::entry(int i, int j) const {

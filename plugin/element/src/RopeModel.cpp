@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -112,6 +113,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     }
     buildChainOrder();
     stationaryColumn_.assign(numExternalCoordinates(), 0);
+    static std::atomic<std::uint64_t> nextStructureId{1};
+    structureId_ = nextStructureId.fetch_add(1, std::memory_order_relaxed);
 }
 
 template <int Dim>
@@ -205,6 +208,21 @@ void RopeModel<Dim>::buildChainOrder() {
         for (int a : spanToRope_[j])
             for (int b : spanToRope_[j])
                 if (kktPos_[a] >= 0 && kktPos_[b] >= 0) kktBand_ = std::max(kktBand_, std::abs(kktPos_[a] - kktPos_[b]));
+    jacobianSpanCoordinates_.assign(N, {});
+    kktMassTargets_.assign(N, {});
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const int n = static_cast<int>(map.size());
+        for (int i = 0; i < n; ++i)
+            if (map[i] < nw + nd) jacobianSpanCoordinates_[j].push_back(i);
+        for (int b = 0; b < n; ++b) {  // the order computeDynamics adds them in
+            if (kktPos_[map[b]] < 0) continue;
+            for (int a = 0; a < n; ++a)
+                if (kktPos_[map[a]] >= 0)
+                    kktMassTargets_[j].push_back(
+                        {a + n * b, BandedLU::offset(kktSize_, kktBand_, kktBand_, kktPos_[map[a]], kktPos_[map[b]])});
+        }
+    }
     externalSpans_.assign(nx, {-1, -1, -1, -1});
     for (int j = 0; j < N; ++j)
         for (int a = 0; a < static_cast<int>(spanToRope_[j].size()); ++a) {
@@ -221,8 +239,14 @@ template <int Dim>
 void RopeModel<Dim>::factorDependentJacobian(RopeData<Dim>& data, BandedLU& lu) const {
     const int nw = numExternalCoordinates() + numModal_, nd = numDependent();
     lu.reset(nd, dependentKl_, dependentKu_);
-    for (const detail::JacobianEntry& e : data.ws().jacobian)
-        if (e.col >= nw) lu.add(dependentRowPos_[e.row], dependentColPos_[e.col - nw], e.value);
+    const detail::RopeWorkspace<Dim>& w = data.ws();
+    if (w.dependentOffset.size() == w.jacobian.size()) {  // offsets recorded with the structure
+        for (std::size_t t = 0; t < w.jacobian.size(); ++t)
+            if (w.dependentOffset[t] >= 0) lu.addAt(w.dependentOffset[t], w.jacobian[t].value);
+    } else {
+        for (const detail::JacobianEntry& e : w.jacobian)
+            if (e.col >= nw) lu.add(dependentRowPos_[e.row], dependentColPos_[e.col - nw], e.value);
+    }
     if (!lu.factor())
         throw std::runtime_error(
             "RopeModel: the Jacobian of the sheave and quasi-static constraints on the dependent coordinates is "
@@ -338,7 +362,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     // term lands in, rows merged by column); later ones replay it, adding the terms into the same
     // entries in the same order (bit for bit the recorded sums), checking row and column as they go.
     const bool build = !withRates || kernels_.empty();
-    const bool replay = build && w.patternModel == this && w.patternValid;
+    const bool replay = build && w.patternId == structureId_ && w.patternValid;
     if (build) {
         C.setZero(nd);
         if (replay) {
@@ -346,6 +370,9 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         } else {
             jac.clear();
             w.putTarget.clear();
+            w.dependentOffset.clear();
+            w.kktOffset.clear();
+            w.kktTransposedOffset.clear();
             w.patternValid = false;
         }
     }
@@ -364,16 +391,14 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         }
         pending.clear();
     };
+    // Replaying, the structure is the recorded one (same model structure, structureId_): each term
+    // goes to its recorded entry, the count checked.
     auto put = [&](int row, int col, double value) {
         if (replay) {
-            if (counter < w.putTarget.size()) {
-                detail::JacobianEntry& e = jac[w.putTarget[counter++]];
-                if (e.row == row && e.col == col) {
-                    e.value += value;
-                    return;
-                }
-            }
-            mismatch = true;
+            if (counter < w.putTarget.size())
+                jac[w.putTarget[counter++]].value += value;
+            else
+                mismatch = true;
             return;
         }
         if (!pending.empty() && pending.front().row != row) flush();
@@ -390,8 +415,23 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     auto finish = [&]() {
         flush();
         if (build && !replay) {
-            w.patternModel = this;
+            w.patternId = structureId_;
             w.patternValid = true;
+            // The band offsets of the entries (C_d; the KKT's C_y and C_y^T), once per structure.
+            w.dependentOffset.assign(jac.size(), -1);
+            w.kktOffset.assign(jac.size(), -1);
+            w.kktTransposedOffset.assign(jac.size(), -1);
+            for (std::size_t t = 0; t < jac.size(); ++t) {
+                const detail::JacobianEntry& e = jac[t];
+                if (e.col >= nw)
+                    w.dependentOffset[t] = BandedLU::offset(nd, dependentKl_, dependentKu_, dependentRowPos_[e.row],
+                                                            dependentColPos_[e.col - nw]);
+                if (e.col >= numExternalCoordinates()) {
+                    const int pr = kktRowPos_[e.row], pc = kktPos_[e.col];
+                    w.kktOffset[t] = BandedLU::offset(kktSize_, kktBand_, kktBand_, pr, pc);
+                    w.kktTransposedOffset[t] = BandedLU::offset(kktSize_, kktBand_, kktBand_, pc, pr);
+                }
+            }
         }
         if (replay && (mismatch || counter != w.putTarget.size())) {
             w.patternValid = false;
@@ -401,24 +441,16 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
     };
     auto scatter = [&](int row, int j, const auto& gradient, double coef) {
         const auto& map = spanToRope_[j];
-        if (replay) {  // put's replay, inlined for the span's coordinates
-            detail::JacobianEntry* entries = jac.data();
-            const int* target = w.putTarget.data();
-            const std::size_t size = w.putTarget.size();
-            for (int i = 0; i < static_cast<int>(map.size()); ++i) {
-                const int zi = map[i];
-                if (zi >= nw + nd) continue;
-                if (counter >= size) {
-                    mismatch = true;
-                    return;
-                }
-                detail::JacobianEntry& e = entries[target[counter++]];
-                if (e.col != zi || e.row != row) {
-                    mismatch = true;
-                    return;
-                }
-                e.value += coef * gradient[i];
+        if (replay) {  // put's replay for the span's Jacobian columns
+            const std::vector<int>& live = jacobianSpanCoordinates_[j];
+            if (counter + live.size() > w.putTarget.size()) {
+                mismatch = true;
+                return;
             }
+            detail::JacobianEntry* entries = jac.data();
+            const int* target = w.putTarget.data() + counter;
+            for (std::size_t t = 0; t < live.size(); ++t) entries[target[t]].value += coef * gradient[live[t]];
+            counter += live.size();
             return;
         }
         for (int i = 0; i < static_cast<int>(map.size()); ++i) {
@@ -874,24 +906,20 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     const int nk = kktSize_;
     BandedLU& kkt = ws.kktLu;
     kkt.reset(nk, kktBand_, kktBand_);
-    for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const auto& M = ws.spans[j].massMatrix;
-        const int n = spans_[j].numCoordinates();
-        for (int b = 0; b < n; ++b) {
-            const int pb = kktPos_[map[b]];
-            if (pb < 0) continue;
-            for (int a = 0; a < n; ++a) {
-                const int pa = kktPos_[map[a]];
-                if (pa >= 0) kkt.add(pa, pb, M(a, b));
-            }
-        }
+    for (int j = 0; j < N; ++j) {  // M_yy, at the offsets buildChainOrder found
+        const double* M = ws.spans[j].massMatrix.data();
+        for (const BandTarget& t : kktMassTargets_[j]) kkt.addAt(t.offset, M[t.source]);
     }
-    // C_x by column (counting sort), C_y into the band.
+    // C_x by column (counting sort), C_y into the band (at the offsets recorded with C_z's structure).
     ws.externalColumnStart.assign(nx + 1, 0);
-    for (const detail::JacobianEntry& e : ws.jacobian) {
+    const bool offsets = ws.kktOffset.size() == ws.jacobian.size();
+    for (std::size_t t = 0; t < ws.jacobian.size(); ++t) {
+        const detail::JacobianEntry& e = ws.jacobian[t];
         if (e.col < nx) {
             ++ws.externalColumnStart[e.col + 1];
+        } else if (offsets) {
+            kkt.addAt(ws.kktOffset[t], e.value);
+            kkt.addAt(ws.kktTransposedOffset[t], e.value);
         } else {
             const int pr = kktRowPos_[e.row], pc = kktPos_[e.col];
             kkt.add(pr, pc, e.value);

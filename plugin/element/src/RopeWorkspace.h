@@ -10,6 +10,8 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace SimbodyReeving::detail {
@@ -35,11 +37,15 @@ struct RopeWorkspace {
     std::vector<JacobianEntry> jacobian;  ///< C_z, row by row, each (row, column) once
     std::vector<int> rowSlot;                ///< per column of z: its entry in rowPending, or -1
     std::vector<JacobianEntry> rowPending;   ///< the row being merged (RopeModel::evaluateConstraints)
-    /// The recorded structure of `jacobian`: per term added, the entry it lands in (valid for
-    /// patternModel while patternValid).
+    /// The recorded structure of `jacobian`: per term added, the entry it lands in (valid for the
+    /// model structure patternId while patternValid).
     std::vector<int> putTarget;
-    const void* patternModel = nullptr;
+    std::uint64_t patternId = 0;
     bool patternValid = false;
+    /// Per entry of `jacobian` (recorded with it): its offset in the band of C_d (dependentLu,
+    /// newtonLu; -1 on an independent column), and in the KKT band at (row, column) and at
+    /// (column, row) (-1 on an external column).
+    std::vector<std::ptrdiff_t> dependentOffset, kktOffset, kktTransposedOffset;
     /// Entries of C_z on the external coordinates x, by column (counting sort of `jacobian`).
     std::vector<int> externalColumnStart, externalColumnRow;
     std::vector<double> externalColumnValue;

@@ -25,11 +25,20 @@ public:
     /// A(i, j) += value (before factor()).
     /// @throws std::out_of_range if (i, j) is outside the matrix or its band (-kl <= j - i <= ku).
     void add(int i, int j, double value) {
-        if (i < 0 || j < 0 || i >= n_ || j >= n_ || j - i > ku_ || i - j > kl_) outOfBand(i, j);
+        if (i < 0 || j < 0 || i >= n_ || j >= n_ || j - i > ku_ || i - j > kl_) outOfBand(n_, kl_, ku_, i, j);
         at(i, j) += value;
     }
     /// A(i, j) (before factor(): the assembled entry; 0 outside the band).
     double entry(int i, int j) const;
+
+    /// Where A(i, j) is stored in an n x n band matrix with bandwidths kl, ku (as reset(n, kl, ku)
+    /// lays it out), for assembly by addAt without per-entry index arithmetic: assemblers whose
+    /// structure is fixed compute their entries' offsets once.
+    /// @throws std::out_of_range if (i, j) is outside the matrix or its band.
+    static std::ptrdiff_t offset(int n, int kl, int ku, int i, int j);
+    /// A(i, j) += value at an offset from offset(size(), lowerBandwidth(), upperBandwidth(), i, j)
+    /// (before factor(); not checked).
+    void addAt(std::ptrdiff_t offset, double value) { w_[static_cast<std::size_t>(offset)] += value; }
 
     /// Factors in place. Returns false (and leaves the factorization unusable) if a pivot column is
     /// exactly zero (A singular); true otherwise.
@@ -42,7 +51,7 @@ public:
     void solve(double* B, int numRhs) const;
 
 private:
-    [[noreturn]] void outOfBand(int i, int j) const;
+    [[noreturn]] static void outOfBand(int n, int kl, int ku, int i, int j);
     template <int NR>
     void solveBlock(double* B, int numRhs) const;
     template <int BAND>

@@ -11,6 +11,8 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -374,6 +376,19 @@ private:
     int kktSize_ = 0, kktBand_ = 0, dependentKl_ = 0, dependentKu_ = 0;
     // External coordinate i -> the (span, local coordinate) pairs it is, up to 2 (-1: none).
     std::vector<std::array<int, 4>> externalSpans_;
+    // Per span: its local coordinates that are columns of the constraint Jacobian (z < nw + nd),
+    // in order; and where each entry (a, b) of its mass matrix lands in the KKT band (M's storage
+    // index a + n b, band offset; entries on external or Fixed coordinates left out), in the order
+    // the assembly adds them.
+    std::vector<std::vector<int>> jacobianSpanCoordinates_;
+    struct BandTarget {
+        int source = 0;
+        std::ptrdiff_t offset = 0;
+    };
+    std::vector<std::vector<BandTarget>> kktMassTargets_;
+    // Identifies this model's structure (a copy shares it): a RopeData's recorded Jacobian
+    // structure and band offsets are replayed only for the structure they were recorded for.
+    std::uint64_t structureId_ = 0;
     std::vector<char> stationaryColumn_;  // per external coordinate: its node never moves
     int numModal_ = 0, numCondensed_ = 0, numMultipliers_ = 0, numSliding_ = 0, numDriven_ = 0;
     double length_ = 0;
