@@ -33,6 +33,11 @@ struct RopeWorkspace {
     std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
     Eigen::VectorXd w;                    ///< independent velocities [rdot; sdot_driven; qdot_m]
+    /// The velocity-level results (computeDynamics) belong to the positions of the span coordinates,
+    /// the velocities w and these dependent coordinates [s; q_condensed; nu]; cleared by
+    /// solveDependentCoordinates, which overwrites the workspace's position-level part.
+    bool dynamicsCurrent = false;
+    Eigen::VectorXd dynamicsDependents;
     // ---- the chain solve (every evaluation)
     std::vector<JacobianEntry> jacobian;  ///< C_z, row by row, each (row, column) once
     std::vector<int> rowSlot;                ///< per column of z: its entry in rowPending, or -1

@@ -1,5 +1,7 @@
 #include "SimbodyReeving/simbody/InterpolatingTimeStepper.h"
 
+#include "ReevingSubsystemGuts.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -11,7 +13,11 @@ using SimTK::Integrator;
 using SimTK::Stage;
 
 InterpolatingTimeStepper::InterpolatingTimeStepper(const SimTK::System& system, Integrator& integrator)
-    : system_(system), integrator_(integrator) {}
+    : system_(system), integrator_(integrator) {
+    for (SimTK::SubsystemIndex i(0); i < system.getNumSubsystems(); ++i)
+        if (const auto* guts = dynamic_cast<const ReevingSubsystem::Guts*>(&system.getSubsystem(i).getSubsystemGuts()))
+            reeving_.push_back(guts);
+}
 
 void InterpolatingTimeStepper::initialize(const SimTK::State& initialState) {
     // Control returns after every internal step, so this stepper sees every step's end points and
@@ -81,6 +87,9 @@ void InterpolatingTimeStepper::interpolateReport(double t) {
     const SimTK::ProjectOptions options(integrator_.getConstraintToleranceInUse());
     SimTK::ProjectResults results;
     system_.realize(report_, Stage::Time);
+    // The ropes' dependent-coordinate Newton starts from the advanced state's solution, a step
+    // away, not from the last report's (ReevingSubsystem::Guts::seedDependentCoordinates).
+    for (const ReevingSubsystem::Guts* guts : reeving_) guts->seedDependentCoordinates(a, report_);
     system_.prescribeQ(report_);
     system_.realize(report_, Stage::Position);
     system_.projectQ(report_, noErrorEstimate_, options, results);

@@ -151,16 +151,19 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             ws.lu.compute(ws.lhs);
             ws.f = ws.lu.solve(ws.rhs);
         }
+        // Product route: rdd = a0 - Lambda f = a0 - J_U z with z = Minv_UU J_U^T f (Lambda itself
+        // is not formed), i.e. [J_U | a0] [-z; 1], the columns each rope has just solved for
+        // (multiplyByNodeMass): its modal accelerations are the same combination of those solutions
+        // (no further solve of its chain).
         ws.rdd = ws.a0;
-        ws.rdd.noalias() -= ws.Lambda * ws.f;
-        // Product route: rdd = a0 - J_U z with z = Minv_UU J_U^T f, i.e. [J_U | a0] [-z; 1], the
-        // columns each rope has just solved for (multiplyByNodeMass): its modal accelerations are
-        // the same combination of those solutions (no further solve of its chain).
         if (products) {
             const int k = static_cast<int>(ws.U.size());
             ws.productWeights.resize(k + 1);
             ws.productWeights.head(k).noalias() = -(ws.JUMinv.transpose() * ws.f);
             ws.productWeights[k] = 1.0;
+            ws.rdd.noalias() += ws.JU.lazyProduct(ws.productWeights.head(k));
+        } else {
+            ws.rdd.noalias() -= ws.Lambda * ws.f;
         }
         // MobilizedBody::applyForceToBodyPoint / applyOneMobilityForce, with this evaluation's
         // offsets and u indices.
@@ -236,10 +239,9 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
 //  - k <= n (e.g. the 12-fall crane: 27 rows, k = 5): per mobility i of U, one multiplyBySystemJacobian
 //    of the unit speed e_i gives every body's spatial velocity V_i, hence column i of J_U for all
 //    rows at once (row (node, direction d) = d . (v + w x p), p = R_GB station: one body pass), and
-//    one multiplyByMInv(e_i) gives column i of (M^-1)_UU; then two small dense products. (Keeping
-//    Lambda factored and solving the k x k Woodbury form of (I + S Lambda) f = S a0 - h instead of
-//    the n x n one was tried: about 2 digits less accurate, e.g. the crane's motor torque moved by
-//    6e-13 relative with the height datum, and static equilibria stalled at a 1e-12 residual.)
+//    one multiplyByMInv(e_i) gives column i of (M^-1)_UU; then J_U (M^-1)_UU. Lambda stays in these
+//    factors: the coupled solve takes the k x k Woodbury form of (I + S Lambda) f = S a0 - h, and
+//    Lambda f = J_U ((M^-1)_UU J_U^T f).
 //  - n < k (e.g. the pendulum: 2 rows on a 6-mobility free body): per row r, one
 //    multiplyBySystemJacobianTranspose of the row's unit spatial force (p x d, d) at its body gives
 //    J_r^T, one multiplyByMInv of it gives M^-1 J_r^T, and Lambda's column r is J_U times that.
@@ -279,8 +281,8 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
             for (int r = 0; r < k; ++r) ws.MinvUU(r, c) = ws.udotUnit[ws.U[r]];
             ws.generalizedForce[ws.U[c]] = 0;
         }
+        // Lambda = JUMinv J_U^T is not formed: the product route (k <= n) uses its factors.
         ws.JUMinv.noalias() = ws.JU * ws.MinvUU;
-        ws.Lambda.noalias() = ws.JUMinv * ws.JU.transpose();
         return;
     }
     // n < k: Lambda column by column.

@@ -255,6 +255,28 @@ int ReevingSubsystem::Guts::realizeSubsystemVelocityImpl(const State& s) const {
     return 0;
 }
 
+void ReevingSubsystem::Guts::seedDependentCoordinates(const State& from, const State& to) const {
+    if (from.getSubsystemStage(getMySubsystemIndex()) < Stage::Position) return;
+    const PositionCache& source =
+        static_cast<const SimTK::Value<PositionCache>&>(getCacheEntry(from, positionCache_)).get();
+    PositionCache& target = updPositionCache(to);
+    if (target.ropes.size() != source.ropes.size()) return;  // `to` not realized yet: its own start
+    for (size_t i = 0; i < ropes.size(); ++i) {
+        const RopeCache& a = source.ropes[i];
+        RopeCache& b = target.ropes[i];
+        auto seed = [](const auto& x, auto& y) {  // assignments of equal sizes: no allocation
+            y.materialCoordinates = x.materialCoordinates;
+            y.condensedAmplitudes = x.condensedAmplitudes;
+            y.multipliers = x.multipliers;
+        };
+        if (ropes[i].planar) {
+            if (a.planarModel == b.planarModel) seed(a.planar, b.planar);
+        } else {
+            seed(a.spatial, b.spatial);
+        }
+    }
+}
+
 void ReevingSubsystem::Guts::updateBodyKinematics(const State& s, PositionCache& pc, bool velocities) const {
     const size_t n = bodySlots_.size();
     if (velocities) {

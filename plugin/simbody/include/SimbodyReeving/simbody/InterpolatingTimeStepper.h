@@ -2,7 +2,11 @@
 /// @file
 /// A time stepper whose step sizes do not depend on how often the caller asks for reports.
 
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
+
 #include <Simbody.h>
+
+#include <vector>
 
 namespace SimbodyReeving {
 
@@ -103,6 +107,7 @@ private:
     double lastStepSize_ = 0;           // [s]; 0 after (re)initialization
     double startTime_ = 0;              // the last step's start: time, y and dy/dt
     SimTK::Vector startY_, startYDot_;
+    std::vector<const ReevingSubsystem::Guts*> reeving_;  // the system's ReevingSubsystems (warm starts)
 };
 
 }  // namespace SimbodyReeving
