@@ -153,3 +153,53 @@ TEST(RopeChainSolve, MatchesTheDenseReductionOnPlanarAndSpatialRopes) {
     EXPECT_LE(worst[2], 2e-10);
     EXPECT_LE(worst[3], 5e-13);
 }
+
+// computeDynamics returns at once when called again with the positions, velocities and dependent
+// coordinates of its last evaluation (a repeated Simbody realization); any change recomputes. The
+// results after A, B, A equal those of fresh data at A, bit for bit.
+TEST(RopeChainSolve, RepeatedEvaluationsGiveTheResultsOfFreshData) {
+    using NodeMatrix = RopeModel<2>::NodeMatrix;
+    const RopeProperties props{0.6205, 16.5e6, 30.9};
+    SpanOptions o;
+    o.axialModes = 1;
+    o.transverseModes = 2;
+    o.axialDynamics = AxialDynamics::QuasiStatic;
+    const Eigen::Vector2d g(0.0, -9.81);
+    const int N = 4;
+    NodeMatrix nodes(2, N + 1);
+    nodes << 0.0, 1.5, 3.0, 4.5, 4.8, 0.0, 0.7, 0.0, 0.7, -3.3;
+    double path = 0;
+    for (int k = 0; k < N; ++k) path += (nodes.col(k + 1) - nodes.col(k)).norm();
+    std::vector<SpanModel<2>> spans(N, SpanModel<2>(props, o, g));
+    const RopeModel<2> rope(std::move(spans), 0.999 * path);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const NodeMatrix vA = NodeMatrix::NullaryExpr(2, N + 1, [&] { return u(rng); });
+    NodeMatrix vB = vA;
+    vB(1, 2) += 1e-3;
+    const int nm = rope.numModalCoordinates();
+    const Eigen::VectorXd qm = 1e-3 * Eigen::VectorXd::NullaryExpr(nm, [&] { return u(rng); });
+    const Eigen::VectorXd qmd = 1e-2 * Eigen::VectorXd::NullaryExpr(nm, [&] { return u(rng); });
+    auto evaluate = [&](RopeData<2>& d, const NodeMatrix& v) { rope.computeDynamics(nodes, v, qm, qmd, d); };
+    RopeData<2> reused, freshA, freshB;
+    rope.solveDependentCoordinates(nodes, qm, reused);
+    evaluate(reused, vA);
+    evaluate(reused, vA);  // the same again: returns at once
+    evaluate(freshA, vA);
+    EXPECT_EQ(reused.nodeForce, freshA.nodeForce);
+    EXPECT_EQ(reused.nodeMass, freshA.nodeMass);
+    EXPECT_EQ(reused.kineticEnergy, freshA.kineticEnergy);
+    evaluate(reused, vB);  // another velocity: recomputed
+    evaluate(freshB, vB);
+    EXPECT_EQ(reused.nodeForce, freshB.nodeForce);
+    EXPECT_EQ(reused.materialRates, freshB.materialRates);
+    EXPECT_NE(reused.nodeForce, freshA.nodeForce);
+    evaluate(reused, vA);  // back to A: recomputed, A's results again
+    EXPECT_EQ(reused.nodeForce, freshA.nodeForce);
+    EXPECT_EQ(reused.materialRates, freshA.materialRates);
+    Eigen::VectorXd aReused, aFresh;
+    const Eigen::VectorXd xdd = Eigen::VectorXd::NullaryExpr(rope.numExternalCoordinates(), [&] { return u(rng); });
+    rope.modalAccelerations(reused, xdd, aReused);
+    rope.modalAccelerations(freshA, xdd, aFresh);
+    EXPECT_EQ(aReused, aFresh);
+}

@@ -12,6 +12,68 @@
 #include <stdexcept>
 
 namespace SimbodyReeving {
+namespace {
+// dst row `dest` (+/-)= M[source] * src row `from` for each term, rows of width P (0: p at run
+// time); terms whose source row is not live are skipped (live == nullptr: all are).
+template <int P, bool Subtract, class Term>
+void applyRowTermsOf(const Term* t, const Term* end, const double* M, const double* src, double* dst, int p,
+                     const char* live) {
+    const int w = P > 0 ? P : p;
+    for (; t != end; ++t) {
+        if (live && !live[t->from]) continue;
+        const double m = M[t->source];
+        const double* __restrict x = src + static_cast<std::ptrdiff_t>(t->from) * w;
+        double* __restrict y = dst + static_cast<std::ptrdiff_t>(t->dest) * w;
+        for (int c = 0; c < w; ++c) {
+            if (Subtract)
+                y[c] -= m * x[c];
+            else
+                y[c] += m * x[c];
+        }
+    }
+}
+// y (+/-)= v x over rows of width p, the common widths unrolled.
+template <int P, bool Subtract>
+inline void axpyRowOf(double v, const double* __restrict x, double* __restrict y, int p) {
+    const int w = P > 0 ? P : p;
+    for (int c = 0; c < w; ++c) {
+        if (Subtract)
+            y[c] -= v * x[c];
+        else
+            y[c] += v * x[c];
+    }
+}
+template <bool Subtract>
+inline void axpyRow(double v, const double* x, double* y, int p) {
+    switch (p) {
+        case 1: return axpyRowOf<1, Subtract>(v, x, y, p);
+        case 2: return axpyRowOf<2, Subtract>(v, x, y, p);
+        case 3: return axpyRowOf<3, Subtract>(v, x, y, p);
+        case 4: return axpyRowOf<4, Subtract>(v, x, y, p);
+        case 5: return axpyRowOf<5, Subtract>(v, x, y, p);
+        case 6: return axpyRowOf<6, Subtract>(v, x, y, p);
+        case 7: return axpyRowOf<7, Subtract>(v, x, y, p);
+        case 8: return axpyRowOf<8, Subtract>(v, x, y, p);
+        default: return axpyRowOf<0, Subtract>(v, x, y, p);
+    }
+}
+// The same with the common widths (the coupling's mobilities + 1) unrolled.
+template <bool Subtract, class Term>
+void applyRowTerms(const Term* t, const Term* end, const double* M, const double* src, double* dst, int p,
+                   const char* live) {
+    switch (p) {
+        case 1: return applyRowTermsOf<1, Subtract>(t, end, M, src, dst, p, live);
+        case 2: return applyRowTermsOf<2, Subtract>(t, end, M, src, dst, p, live);
+        case 3: return applyRowTermsOf<3, Subtract>(t, end, M, src, dst, p, live);
+        case 4: return applyRowTermsOf<4, Subtract>(t, end, M, src, dst, p, live);
+        case 5: return applyRowTermsOf<5, Subtract>(t, end, M, src, dst, p, live);
+        case 6: return applyRowTermsOf<6, Subtract>(t, end, M, src, dst, p, live);
+        case 7: return applyRowTermsOf<7, Subtract>(t, end, M, src, dst, p, live);
+        case 8: return applyRowTermsOf<8, Subtract>(t, end, M, src, dst, p, live);
+        default: return applyRowTermsOf<0, Subtract>(t, end, M, src, dst, p, live);
+    }
+}
+}  // namespace
 
 template <int Dim>
 RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength,
@@ -223,6 +285,40 @@ void RopeModel<Dim>::buildChainOrder() {
                         {a + n * b, BandedLU::offset(kktSize_, kktBand_, kktBand_, kktPos_[map[a]], kktPos_[map[b]])});
         }
     }
+    // multiplyByNodeMass's terms, span by span (in the order its loops took them, so every row sums
+    // its terms in the same order). Their mass entries index the span's own massMatrix, so they are
+    // kept per span: the span index is recovered from the offsets below.
+    massTimesExternalIntoKkt_.clear();
+    massTimesExternalIntoExternal_.clear();
+    massTimesKktIntoExternal_.clear();
+    massTermSpanStart_.assign(3 * (N + 1), 0);
+    for (int j = 0; j < N; ++j) {
+        const auto& map = spanToRope_[j];
+        const int n = static_cast<int>(map.size());
+        massTermSpanStart_[3 * j] = static_cast<int>(massTimesExternalIntoKkt_.size());
+        massTermSpanStart_[3 * j + 1] = static_cast<int>(massTimesExternalIntoExternal_.size());
+        massTermSpanStart_[3 * j + 2] = static_cast<int>(massTimesKktIntoExternal_.size());
+        for (int a = 0; a < n; ++a) {
+            if (map[a] >= nx) continue;
+            for (int b = 0; b < n; ++b) {
+                const int pb = kktPos_[map[b]];
+                if (pb >= 0)
+                    massTimesExternalIntoKkt_.push_back({b + n * a, pb, map[a]});
+                else if (map[b] < nx)
+                    massTimesExternalIntoExternal_.push_back({b + n * a, map[b], map[a]});
+            }
+        }
+        for (int a = 0; a < n; ++a) {
+            if (map[a] >= nx) continue;
+            for (int b = 0; b < n; ++b) {
+                const int pb = kktPos_[map[b]];
+                if (pb >= 0) massTimesKktIntoExternal_.push_back({a + n * b, map[a], pb});
+            }
+        }
+    }
+    massTermSpanStart_[3 * N] = static_cast<int>(massTimesExternalIntoKkt_.size());
+    massTermSpanStart_[3 * N + 1] = static_cast<int>(massTimesExternalIntoExternal_.size());
+    massTermSpanStart_[3 * N + 2] = static_cast<int>(massTimesKktIntoExternal_.size());
     externalSpans_.assign(nx, {-1, -1, -1, -1});
     for (int j = 0; j < N; ++j)
         for (int a = 0; a < static_cast<int>(spanToRope_[j].size()); ++a) {
@@ -1004,26 +1100,16 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // F = M_xy Y + C_x^T Mu (nx x ncol, row-major) for the solutions [Y; Mu] in B.
     Eigen::VectorXd& F = ws.supportBlock;
     F.setZero(static_cast<Eigen::Index>(nx) * ncol);
-    for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const auto& M = ws.spans[j].massMatrix;
-        const int n = spans_[j].numCoordinates();
-        for (int a = 0; a < n; ++a) {
-            if (map[a] >= nx) continue;
-            Eigen::Map<Eigen::ArrayXd> f(F.data() + static_cast<std::ptrdiff_t>(map[a]) * ncol, ncol);
-            for (int b = 0; b < n; ++b) {
-                const int pb = kktPos_[map[b]];
-                if (pb < 0) continue;
-                f += M(a, b) * Eigen::Map<const Eigen::ArrayXd>(B.data() + static_cast<std::ptrdiff_t>(pb) * ncol, ncol);
-            }
-        }
+    for (int j = 0; j < N; ++j) {  // M_xy Y (the terms multiplyByNodeMass applies, in the same order)
+        const RowTerm* terms = massTimesKktIntoExternal_.data();
+        applyRowTerms<false>(terms + massTermSpanStart_[3 * j + 2], terms + massTermSpanStart_[3 * j + 5],
+                             ws.spans[j].massMatrix.data(), B.data(), F.data(), ncol, nullptr);
     }
     for (int i = 0; i < nx; ++i) {
-        Eigen::Map<Eigen::ArrayXd> f(F.data() + static_cast<std::ptrdiff_t>(i) * ncol, ncol);
+        double* f = F.data() + static_cast<std::ptrdiff_t>(i) * ncol;
         for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
-            f += ws.externalColumnValue[at] *
-                 Eigen::Map<const Eigen::ArrayXd>(
-                     B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * ncol, ncol);
+            axpyRow<false>(ws.externalColumnValue[at],
+                           B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * ncol, f, ncol);
     }
     // h = Q_x - M_xy y0 - C_x^T mu0;  S e_i = M_xx e_i + M_xy dy_i + C_x^T dmu_i.
     data.nodeForce = ws.Qz.head(nx);
@@ -1095,60 +1181,36 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
     // Right-hand sides -[M_yx X; C_x X] (row-major), and M_xx X into S X.
     Eigen::VectorXd& B = ws.productBlock;
     B.setZero(static_cast<Eigen::Index>(nk) * p);
+    // (The span terms from the lists buildChainOrder made, in its loops' order: each row sums its
+    // terms in the same order as a loop over spans, coordinates a and b would.)
     for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const auto& M = ws.spans[j].massMatrix;
-        const int n = spans_[j].numCoordinates();
-        for (int a = 0; a < n; ++a) {
-            if (map[a] >= nx || !live[map[a]]) continue;
-            const double* x = row(Xr, map[a]);
-            for (int b = 0; b < n; ++b) {
-                const int pb = kktPos_[map[b]];
-                const double m = M(b, a);
-                if (pb >= 0) {
-                    double* bb = B.data() + static_cast<std::ptrdiff_t>(pb) * p;
-                    for (int c = 0; c < p; ++c) bb[c] -= m * x[c];
-                } else if (map[b] < nx) {
-                    double* sx = row(SXr, map[b]);
-                    for (int c = 0; c < p; ++c) sx[c] += m * x[c];
-                }
-            }
-        }
+        const double* M = ws.spans[j].massMatrix.data();
+        const RowTerm* terms = massTimesExternalIntoKkt_.data();
+        applyRowTerms<true>(terms + massTermSpanStart_[3 * j], terms + massTermSpanStart_[3 * j + 3], M, Xr.data(),
+                            B.data(), p, live.data());
+        terms = massTimesExternalIntoExternal_.data();
+        applyRowTerms<false>(terms + massTermSpanStart_[3 * j + 1], terms + massTermSpanStart_[3 * j + 4], M,
+                             Xr.data(), SXr.data(), p, live.data());
     }
     for (int i = 0; i < nx; ++i) {
         if (!live[i]) continue;
         const double* x = row(Xr, i);
-        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at) {
-            double* bb = B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * p;
-            const double v = ws.externalColumnValue[at];
-            for (int c = 0; c < p; ++c) bb[c] -= v * x[c];
-        }
+        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
+            axpyRow<true>(ws.externalColumnValue[at], x,
+                          B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * p, p);
     }
     if (nk > 0) ws.kktLu.solve(B.data(), p);
     // + M_xy Y + C_x^T Mu
     for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const auto& M = ws.spans[j].massMatrix;
-        const int n = spans_[j].numCoordinates();
-        for (int a = 0; a < n; ++a) {
-            if (map[a] >= nx) continue;
-            double* sx = row(SXr, map[a]);
-            for (int b = 0; b < n; ++b) {
-                const int pb = kktPos_[map[b]];
-                if (pb < 0) continue;
-                const double m = M(a, b);
-                const double* y = B.data() + static_cast<std::ptrdiff_t>(pb) * p;
-                for (int c = 0; c < p; ++c) sx[c] += m * y[c];
-            }
-        }
+        const RowTerm* terms = massTimesKktIntoExternal_.data();
+        applyRowTerms<false>(terms + massTermSpanStart_[3 * j + 2], terms + massTermSpanStart_[3 * j + 5],
+                             ws.spans[j].massMatrix.data(), B.data(), SXr.data(), p, nullptr);
     }
     for (int i = 0; i < nx; ++i) {
         double* sx = row(SXr, i);
-        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at) {
-            const double* y = B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * p;
-            const double v = ws.externalColumnValue[at];
-            for (int c = 0; c < p; ++c) sx[c] += v * y[c];
-        }
+        for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
+            axpyRow<false>(ws.externalColumnValue[at],
+                           B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * p, sx, p);
     }
     // Stored rope: mass rhoA l on the drum node's position and material coordinate.
     const double rhoA = properties().massPerLength;

@@ -386,6 +386,15 @@ private:
         std::ptrdiff_t offset = 0;
     };
     std::vector<std::vector<BandTarget>> kktMassTargets_;
+    // The span mass entries multiplyByNodeMass applies, in its order: M(dest, from) times row `from`
+    // (a row of X, or of the KKT solution) into row `dest` (of the KKT right-hand side, or of S X).
+    struct RowTerm {
+        int source = 0, dest = 0, from = 0;  // source: M's storage index
+    };
+    std::vector<RowTerm> massTimesExternalIntoKkt_;       // B[pb] -= M_yx(b, a) X[a]
+    std::vector<RowTerm> massTimesExternalIntoExternal_;  // SX[b] += M_xx(b, a) X[a]
+    std::vector<RowTerm> massTimesKktIntoExternal_;       // SX[a] += M_xy(a, b) Y[pb]
+    std::vector<int> massTermSpanStart_;  // span j's terms of the three lists start at 3 j, 3 j + 1, 3 j + 2
     // Identifies this model's structure (a copy shares it): a RopeData's recorded Jacobian
     // structure and band offsets are replayed only for the structure they were recorded for.
     std::uint64_t structureId_ = 0;
