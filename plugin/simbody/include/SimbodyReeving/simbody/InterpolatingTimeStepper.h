@@ -29,7 +29,12 @@ namespace SimbodyReeving {
 /// every report (about 0.5 M instructions, ~170 us, for the Table 1 pendulum: more than the steps
 /// cost at 100 reports per second), the report State here is copied once and then only gets t
 /// and Y. Events (scheduled, triggered, time-advanced, termination) are handled as TimeStepper
-/// handles them; the report State is refreshed by a full copy after each handled event.
+/// handles them; the report State is refreshed by a full copy after each handled event. The
+/// ReevingSubsystems of the system start the Newton solve of their ropes' dependent coordinates
+/// (sheave material coordinates, quasi-static amplitudes) at a report from the advanced state's
+/// solution, a step away, rather than from the last report's, a report interval away (measured on
+/// the 12-fall crane: 2.7 instead of 6.4 Newton iterations per report); the solution is the same
+/// to the Newton's tolerance.
 ///
 /// Interpolated reports are exact at step ends and third-order accurate between them; a report
 /// that must be exactly on the integrated trajectory can use SimTK::TimeStepper instead.
