@@ -285,9 +285,9 @@ void RopeModel<Dim>::buildChainOrder() {
                         {a + n * b, BandedLU::offset(kktSize_, kktBand_, kktBand_, kktPos_[map[a]], kktPos_[map[b]])});
         }
     }
-    // multiplyByNodeMass's terms, span by span (in the order its loops took them, so every row sums
-    // its terms in the same order). Their mass entries index the span's own massMatrix, so they are
-    // kept per span: the span index is recovered from the offsets below.
+    // multiplyByNodeMass's terms, span by span, in the order its loops took them (so every row sums
+    // its terms in the same order); a term's source indexes its span's massMatrix, and
+    // massTermSpanStart_ marks where each span's terms begin in the three lists.
     massTimesExternalIntoKkt_.clear();
     massTimesExternalIntoExternal_.clear();
     massTimesKktIntoExternal_.clear();
