@@ -2,6 +2,7 @@
 // as the rope's KKT systems, included) against Eigen's dense partial-pivoting LU; singularity;
 // range checks.
 #include "SimbodyReeving/element/BandedLU.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -76,11 +77,13 @@ TEST(BandedLU, ReportsExactlySingularMatricesAndReusesStorage) {
 TEST(BandedLU, RejectsEntriesOutsideTheBandAndBadSizes) {
     BandedLU lu;
     lu.reset(4, 1, 0);
-    EXPECT_THROW(lu.add(0, 1, 1.0), std::out_of_range);
-    EXPECT_THROW(lu.add(3, 1, 1.0), std::out_of_range);
-    EXPECT_THROW(lu.add(4, 4, 1.0), std::out_of_range);
-    EXPECT_THROW(lu.reset(-1, 0, 0), std::invalid_argument);
-    EXPECT_THROW(lu.reset(3, 0, -2), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(lu.add(0, 1, 1.0), std::out_of_range,
+                         "BandedLU: entry (0, 1) is outside the 4 x 4 band matrix (kl = 1, ku = 0)");
+    EXPECT_THROW_MESSAGE(lu.add(3, 1, 1.0), std::out_of_range, "entry (3, 1) is outside the 4 x 4 band matrix");
+    EXPECT_THROW_MESSAGE(lu.add(4, 4, 1.0), std::out_of_range, "entry (4, 4) is outside the 4 x 4 band matrix");
+    EXPECT_THROW_MESSAGE(lu.reset(-1, 0, 0), std::invalid_argument,
+                         "BandedLU::reset: n = -1, kl = 0, ku = 0 must all be >= 0");
+    EXPECT_THROW_MESSAGE(lu.reset(3, 0, -2), std::invalid_argument, "ku = -2 must all be >= 0");
 }
 
 TEST(BandedLU, AssemblyAtPrecomputedOffsetsEqualsAddAndChecksTheBand) {
@@ -98,9 +101,12 @@ TEST(BandedLU, AssemblyAtPrecomputedOffsetsEqualsAddAndChecksTheBand) {
         }
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) EXPECT_EQ(byOffset.entry(i, j), byIndex.entry(i, j));
-    EXPECT_THROW(BandedLU::offset(n, kl, ku, 0, 4), std::out_of_range);  // above the band
-    EXPECT_THROW(BandedLU::offset(n, kl, ku, 5, 2), std::out_of_range);  // below it
-    EXPECT_THROW(BandedLU::offset(n, kl, ku, n, n), std::out_of_range);  // outside the matrix
+    EXPECT_THROW_MESSAGE(BandedLU::offset(n, kl, ku, 0, 4), std::out_of_range,  // above the band
+                         "entry (0, 4) is outside the 9 x 9 band matrix (kl = 2, ku = 3)");
+    EXPECT_THROW_MESSAGE(BandedLU::offset(n, kl, ku, 5, 2), std::out_of_range,  // below it
+                         "entry (5, 2) is outside the 9 x 9 band matrix");
+    EXPECT_THROW_MESSAGE(BandedLU::offset(n, kl, ku, n, n), std::out_of_range,  // outside the matrix
+                         "entry (9, 9) is outside the 9 x 9 band matrix");
 }
 
 TEST(BandedLU, BlockSolveEqualsColumnByColumnSolvesExactly) {

@@ -1,6 +1,7 @@
 // ChordFrame: orthonormality, exact derivatives (against finite differences), conditioning of
 // vertical and horizontal spans, smoothness along a large rotation, and the reversal guard.
 #include "SimbodyReeving/element/ChordFrame.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -121,10 +122,13 @@ TEST(ChordFrame, SmoothAlongLargeRotation) {
 
 TEST(ChordFrame, ReversedChordThrowsDomainError) {
     const Eigen::Matrix3d ref = makeReferenceFrame(Eigen::Vector3d(1, 0, 0));
-    EXPECT_THROW(frameAt<3>(Eigen::Vector3d(-1, 1e-4, 0), ref), std::domain_error);
+    EXPECT_THROW_MESSAGE(frameAt<3>(Eigen::Vector3d(-1, 1e-4, 0), ref), std::domain_error,
+                         "is reversed against the span's reference direction (1, 0, 0); 1 + cos(angle) = ");
     EXPECT_NO_THROW(frameAt<3>(Eigen::Vector3d(-1, 0.1, 0), ref));
-    EXPECT_THROW(frameAt<3>(Eigen::Vector3d::Zero(), ref), std::domain_error);
-    EXPECT_THROW(frameAt<2>(Eigen::Vector2d::Zero(), Eigen::Matrix2d::Identity()), std::domain_error);
+    EXPECT_THROW_MESSAGE(frameAt<3>(Eigen::Vector3d::Zero(), ref), std::domain_error,
+                         "ChordFrame: chord e = r2 - r1 = (0 0 0) is zero or not finite");
+    EXPECT_THROW_MESSAGE(frameAt<2>(Eigen::Vector2d::Zero(), Eigen::Matrix2d::Identity()), std::domain_error,
+                         "ChordFrame: chord e = r2 - r1 = (0 0) is zero or not finite");
 }
 
 TEST(ChordFrame, ReferenceFrameHonoursPlaneNormal) {
@@ -137,6 +141,10 @@ TEST(ChordFrame, ReferenceFrameHonoursPlaneNormal) {
     const Eigen::Matrix3d A3 = frameAt<3>(Eigen::Vector3d(e2.x(), e2.y(), 0), ref);
     const Eigen::Matrix2d A2 = frameAt<2>(e2, Eigen::Matrix2d::Identity());
     EXPECT_LT((A3.topLeftCorner<2, 2>() - A2).norm(), 1e-15);
-    EXPECT_THROW(makeReferenceFrame(Eigen::Vector3d::Zero()), std::invalid_argument);
-    EXPECT_THROW(makeReferenceFrame(Eigen::Vector3d(NAN, 0, 0)), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(makeReferenceFrame(Eigen::Vector3d::Zero()), std::invalid_argument,
+                         "makeReferenceFrame: chordDirection = (0 0 0) must be finite and non-zero");
+    EXPECT_THROW_MESSAGE(makeReferenceFrame(Eigen::Vector3d(NAN, 0, 0)), std::invalid_argument,
+                         "makeReferenceFrame: chordDirection = (nan");
+    EXPECT_THROW_MESSAGE(makeReferenceFrame(Eigen::Vector3d(NAN, 0, 0)), std::invalid_argument,
+                         ") must be finite and non-zero");
 }

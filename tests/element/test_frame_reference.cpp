@@ -3,6 +3,7 @@
 // field and energies unchanged.
 #include "SimbodyReeving/element/ChordFrame.h"
 #include "SimbodyReeving/element/SpanModel.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -28,7 +29,8 @@ TEST(FrameReference, AlignmentIsOnePlusTheCosineToTheReference) {
     EXPECT_DOUBLE_EQ(referenceAlignment(Eigen::Vector3d(3, 0, 0), A0), 2.0);
     EXPECT_NEAR(referenceAlignment(Eigen::Vector3d(0, 2, 0), A0), 1.0, 1e-16);
     EXPECT_NEAR(referenceAlignment(Eigen::Vector3d(-1, 1, 0), A0), 1.0 - std::sqrt(0.5), 1e-15);
-    EXPECT_THROW(referenceAlignment(Eigen::Vector3d::Zero(), A0), std::domain_error);
+    EXPECT_THROW_MESSAGE(referenceAlignment(Eigen::Vector3d::Zero(), A0), std::domain_error,
+                         "referenceAlignment: chord e = (0 0 0) is zero or not finite");
 }
 
 // The transverse displacement of each mode and its velocity are the same in both frames.

@@ -2,6 +2,7 @@
 // behind SpanModel::automaticQuadraturePoints.
 #include "SimbodyReeving/element/GaussLegendre.h"
 #include "SimbodyReeving/element/SpanModel.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,8 @@ TEST(GaussLegendre, AutomaticRuleOfSpanModelFollowsTheMeasuredRule) {
 }
 
 TEST(GaussLegendre, RejectsBadPointCounts) {
-    EXPECT_THROW(makeGaussLegendreRule(0), std::invalid_argument);
-    EXPECT_THROW(makeGaussLegendreRule(201), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(makeGaussLegendreRule(0), std::invalid_argument,
+                         "makeGaussLegendreRule: numPoints = 0 is outside 1..200");
+    EXPECT_THROW_MESSAGE(makeGaussLegendreRule(201), std::invalid_argument,
+                         "makeGaussLegendreRule: numPoints = 201 is outside 1..200");
 }

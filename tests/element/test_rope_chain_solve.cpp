@@ -5,6 +5,7 @@
 // paper's rows (Dynamic axial modes), with Driven nodes (a drum at the start, a turning sheave in
 // the path), and a spatial one.
 #include "SimbodyReeving/element/RopeModel.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -112,10 +113,14 @@ Eigen::Vector4d chainAgainstDense(const Case<Dim>& c, std::mt19937& rng) {
         rope.multiplyByNodeMass(lean, X, SX);
         Eigen::VectorXd qmddCombined, qmddSolved;
         rope.modalAccelerationsFromLastProduct(lean, weights, qmddCombined);
+        // Before modalAccelerations, whose own one-column product on lean data replaces X's.
+        EXPECT_THROW_MESSAGE(
+            rope.modalAccelerationsFromLastProduct(lean, Eigen::VectorXd::Zero(X.cols() + 1), qmddCombined),
+            std::invalid_argument,
+            "RopeModel::modalAccelerationsFromLastProduct: " + std::to_string(X.cols() + 1) + " weights for " +
+                std::to_string(X.cols()) + " columns of the last multiplyByNodeMass");
         rope.modalAccelerations(lean, X * weights, qmddSolved);
         product = std::max(product, rel(qmddCombined, qmddSolved));
-        EXPECT_THROW(rope.modalAccelerationsFromLastProduct(lean, Eigen::VectorXd::Zero(X.cols() + 1), qmddCombined),
-                     std::invalid_argument);
     }
     // The stored rope of drums is added after the reduction in both; none here.
     return {rel(data.nodeMass, S), rel(data.nodeForce, h), nm > 0 ? rel(qmdd, qmddDense) : 0.0, product};

@@ -3,6 +3,7 @@
 // minus the derivative of its reduced potential; material running out and bad node kinds are clear
 // errors.
 #include "SimbodyReeving/element/RopeModel.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -118,28 +119,27 @@ TEST(RopeDrivenNodes, NoMaterialLeftIsARuntimeErrorNamingTheNodes) {
                             {MaterialNode::Fixed, MaterialNode::Sliding, MaterialNode::Driven});
     RopeData<2> d;
     const Eigen::VectorXd qm = Eigen::VectorXd::Zero(rope.numModalCoordinates());
-    try {
-        rope.solveDependentCoordinates(pendulumNodes(), Eigen::VectorXd::Constant(1, -0.5), qm, d);
-        FAIL() << "expected std::runtime_error";
-    } catch (const std::runtime_error& e) {
-        const std::string msg = e.what();
-        EXPECT_NE(msg.find("no rope material between node 0"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("node 2"), std::string::npos) << msg;
-    }
+    EXPECT_THROW_MESSAGE(rope.solveDependentCoordinates(pendulumNodes(), Eigen::VectorXd::Constant(1, -0.5), qm, d),
+                         std::runtime_error, "RopeModel: no rope material between node 0 (s = 0 m) and node 2");
+    EXPECT_THROW_MESSAGE(rope.solveDependentCoordinates(pendulumNodes(), Eigen::VectorXd::Constant(1, -0.5), qm, d),
+                         std::runtime_error, "the spans between them would have a non-positive unstretched length");
     // The old interface on a rope with Driven nodes: the missing coordinates are named.
-    EXPECT_THROW(rope.solveDependentCoordinates(pendulumNodes(), qm, d), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(rope.solveDependentCoordinates(pendulumNodes(), qm, d), std::invalid_argument,
+                         "RopeModel: 0 driven material coordinates given for 1 Driven nodes");
 }
 
 TEST(RopeDrivenNodes, BadNodeKindsAreInvalidArguments) {
-    EXPECT_THROW(RopeModel<2>(makeSpans(2, 0, 1, AxialDynamics::Dynamic), 23.0,
-                              {MaterialNode::Fixed, MaterialNode::Fixed, MaterialNode::Fixed}),
-                 std::invalid_argument);  // a fastened interior node
-    EXPECT_THROW(RopeModel<2>(makeSpans(2, 0, 1, AxialDynamics::Dynamic), 23.0,
-                              {MaterialNode::Sliding, MaterialNode::Sliding, MaterialNode::Fixed}),
-                 std::invalid_argument);  // a sheave kind on an end node
-    EXPECT_THROW(RopeModel<2>(makeSpans(2, 0, 1, AxialDynamics::Dynamic), 23.0,
-                              {MaterialNode::Fixed, MaterialNode::Fixed}),
-                 std::invalid_argument);  // wrong count
+    EXPECT_THROW_MESSAGE(RopeModel<2>(makeSpans(2, 0, 1, AxialDynamics::Dynamic), 23.0,
+                                      {MaterialNode::Fixed, MaterialNode::Fixed, MaterialNode::Fixed}),
+                         std::invalid_argument,
+                         "RopeModel: interior node 1 cannot be Fixed");  // a fastened interior node
+    EXPECT_THROW_MESSAGE(RopeModel<2>(makeSpans(2, 0, 1, AxialDynamics::Dynamic), 23.0,
+                                      {MaterialNode::Sliding, MaterialNode::Sliding, MaterialNode::Fixed}),
+                         std::invalid_argument,
+                         "RopeModel: end node 0 cannot be Sliding");  // a sheave kind on an end node
+    EXPECT_THROW_MESSAGE(RopeModel<2>(makeSpans(2, 0, 1, AxialDynamics::Dynamic), 23.0,
+                                      {MaterialNode::Fixed, MaterialNode::Fixed}),
+                         std::invalid_argument, "RopeModel: 2 node kinds given for 3 nodes");  // wrong count
 }
 
 // A drum that turned a long way since the last evaluation (an interpolated report metres of rope
@@ -199,6 +199,7 @@ TEST(RopeDrivenNodes, StoredRopeMakesTheDrumForceDatumFree) {
         // Central differences of a potential 25 m above the datum (round-off eps V / h): measured
         // 1.9e-4 N of 4.3e5 N (2026-12-01, 2e3eafb); margin 27x.
         EXPECT_NEAR(b.reducedForce()[6] + stored, -dV, 5e-3);
-        EXPECT_THROW(RopeModel<2>(make()).setStoredRope(1, 1.0), std::invalid_argument);
+        EXPECT_THROW_MESSAGE(RopeModel<2>(make()).setStoredRope(1, 1.0), std::invalid_argument,
+                             "RopeModel::setStoredRope: node 1 is not a Driven end node");
     }
 }

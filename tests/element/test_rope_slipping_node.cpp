@@ -3,6 +3,7 @@
 // the capstan ratio P_{k-1} = kappa P_k, and the friction's reaction P_{k-1} - P_k is the rope's force
 // on the sheave coordinate. Both axial models.
 #include "SimbodyReeving/element/RopeModel.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -109,11 +110,14 @@ TEST(RopeSlippingNode, ForcesKeepTheCapstanRatioAndTheSheaveCarriesTheirDifferen
 TEST(RopeSlippingNode, BadUseIsAnInvalidArgument) {
     RopeModel<2> rope(makeSpans(1, 0, AxialDynamics::Dynamic), 19.99,
                       {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed});
-    EXPECT_THROW(rope.setSlipRatio(0, 2.0), std::invalid_argument);
-    EXPECT_THROW(rope.setSlipRatio(1, 0.0), std::invalid_argument);
-    EXPECT_THROW(rope.setSlipRatio(1, std::nan("")), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(rope.setSlipRatio(0, 2.0), std::invalid_argument,
+                         "RopeModel::setSlipRatio: node 0 is not a Slipping node");
+    EXPECT_THROW_MESSAGE(rope.setSlipRatio(1, 0.0), std::invalid_argument,
+                         "RopeModel::setSlipRatio: kappa = 0 must be finite and > 0");
+    EXPECT_THROW_MESSAGE(rope.setSlipRatio(1, std::nan("")), std::invalid_argument,
+                         "RopeModel::setSlipRatio: kappa = nan must be finite and > 0");
     EXPECT_NO_THROW(rope.setSlipRatio(1, 2.0));
-    EXPECT_THROW(RopeModel<2>(makeSpans(1, 0, AxialDynamics::Dynamic), 19.99,
-                              {MaterialNode::Slipping, MaterialNode::Sliding, MaterialNode::Fixed}),
-                 std::invalid_argument);
+    EXPECT_THROW_MESSAGE(RopeModel<2>(makeSpans(1, 0, AxialDynamics::Dynamic), 19.99,
+                                      {MaterialNode::Slipping, MaterialNode::Sliding, MaterialNode::Fixed}),
+                         std::invalid_argument, "RopeModel: end node 0 cannot be Slipping (a sheave needs a span on both sides)");
 }

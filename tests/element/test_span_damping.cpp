@@ -3,6 +3,7 @@
 // of xi included), the power is 2 D >= 0, and a uniformly strained rope that flows through the span
 // dissipates nothing.
 #include "SimbodyReeving/element/SpanModel.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -105,9 +106,12 @@ TEST(SpanDamping, RopeFlowingThroughAtUniformStrainDissipatesNothing) {
 
 TEST(SpanDamping, RetardationTimeForDampingRatio) {
     EXPECT_DOUBLE_EQ(retardationTimeForDampingRatio(0.02, 40.0), 1e-3);
-    EXPECT_THROW(retardationTimeForDampingRatio(-0.1, 1.0), std::invalid_argument);
-    EXPECT_THROW(retardationTimeForDampingRatio(0.1, 0.0), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(retardationTimeForDampingRatio(-0.1, 1.0), std::invalid_argument,
+                         "retardationTimeForDampingRatio: zeta [-] = -0.1 must be finite and >= 0");
+    EXPECT_THROW_MESSAGE(retardationTimeForDampingRatio(0.1, 0.0), std::invalid_argument,
+                         "retardationTimeForDampingRatio: omega [rad/s] = 0 must be finite and > 0");
     RopeProperties p{1.0, 1e6, 0.0};
     p.axialRetardationTime = -1;
-    EXPECT_THROW(validate(p), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(validate(p), std::invalid_argument,
+                         "RopeProperties: axialRetardationTime (c) [s] = -1 must be finite and >= 0");
 }

@@ -7,6 +7,7 @@
 #include "SimbodyReeving/element/AxialCondensation.h"
 #include "SimbodyReeving/element/GaussLegendre.h"
 #include "SimbodyReeving/element/SpanModel.h"
+#include "support/ExpectThrowMessage.h"
 #include "support/SpanTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -47,8 +48,9 @@ TEST(StrainQuadrature, MidpointRuleIntegratesCosinesBelow2NHalfWavesExactly) {
         }
     }
     RecordProperty("worst_abs_error", std::to_string(worst));
-    EXPECT_THROW(makeMidpointRule(0), std::invalid_argument);
-    EXPECT_THROW(makeMidpointRule(201), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(makeMidpointRule(0), std::invalid_argument, "makeMidpointRule: numPoints = 0 is outside 1..200");
+    EXPECT_THROW_MESSAGE(makeMidpointRule(201), std::invalid_argument,
+                         "makeMidpointRule: numPoints = 201 is outside 1..200");
 }
 
 TEST(StrainQuadrature, AutomaticPointCounts) {

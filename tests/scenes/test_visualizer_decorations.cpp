@@ -3,6 +3,7 @@
 // and the force scale's validation.
 #include <SimbodyReeving/scenes/CraneScene.h>
 #include <SimbodyReeving/scenes/PendulumScene.h>
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -134,9 +135,12 @@ TEST(VisualizerDecorations, ForceScaleIsValidated) {
     SimTK::SimbodyMatterSubsystem matter(system);
     SimTK::GeneralForceSubsystem forces(system);
     ReevingSubsystem rv(system, Vec3(0, -9.81, 0));
-    EXPECT_THROW(rv.setDecorationForceScale(-1.0), std::invalid_argument);
-    EXPECT_THROW(rv.setDecorationForceScale(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
-    EXPECT_THROW(rv.setDecorationForceScale(std::numeric_limits<double>::infinity()), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(rv.setDecorationForceScale(-1.0), std::invalid_argument,
+                         "ReevingSubsystem::setDecorationForceScale: reference force = -1 N must be finite and >= 0");
+    EXPECT_THROW_MESSAGE(rv.setDecorationForceScale(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument,
+                         "ReevingSubsystem::setDecorationForceScale: reference force = nan N must be finite and >= 0");
+    EXPECT_THROW_MESSAGE(rv.setDecorationForceScale(std::numeric_limits<double>::infinity()), std::invalid_argument,
+                         "ReevingSubsystem::setDecorationForceScale: reference force = inf N must be finite and >= 0");
     EXPECT_NO_THROW(rv.setDecorationForceScale(0.0));
     EXPECT_NO_THROW(rv.setDecorationForceScale(1e5));
 }

@@ -3,6 +3,7 @@
 #include "SimbodyReeving/simbody/Integrators.h"
 #include "SimbodyReeving/simbody/InterpolatingTimeStepper.h"
 #include "SimbodyReeving/scenes/PendulumScene.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -161,7 +162,8 @@ TEST(InterpolatingTimeStepper, StepLimitReturnsEarlyAndRejectsNegative) {
     auto integ = makeIntegrator("rk-merson", scene.system());
     integ->setAccuracy(1e-8);
     InterpolatingTimeStepper ts(scene.system(), *integ);
-    EXPECT_THROW(ts.setStepLimit(-1), std::invalid_argument);
+    EXPECT_THROW_MESSAGE(ts.setStepLimit(-1), std::invalid_argument,
+                         "InterpolatingTimeStepper::setStepLimit: n = -1 must be >= 0");
     ts.setStepLimit(3);
     ts.initialize(scene.makeInitialState(1.0, 0.0));
     EXPECT_EQ(ts.stepTo(1.0), SimTK::Integrator::ReachedStepLimit);
@@ -188,8 +190,12 @@ TEST(InterpolatingTimeStepper, ReportStageRealizesWhatTheReportersRead) {
         integ->setAccuracy(1e-6);
         InterpolatingTimeStepper ts(scene.system(), *integ);
         EXPECT_EQ(ts.getReportStage(), SimTK::Stage::Velocity);  // the default
-        EXPECT_THROW(ts.setReportStage(SimTK::Stage::Time), std::invalid_argument);
-        EXPECT_THROW(ts.setReportStage(SimTK::Stage::Report), std::invalid_argument);
+        EXPECT_THROW_MESSAGE(ts.setReportStage(SimTK::Stage::Time), std::invalid_argument,
+                             "InterpolatingTimeStepper::setReportStage: stage Time must be Position, Velocity, "
+                             "Dynamics or Acceleration");
+        EXPECT_THROW_MESSAGE(ts.setReportStage(SimTK::Stage::Report), std::invalid_argument,
+                             "InterpolatingTimeStepper::setReportStage: stage Report must be Position, Velocity, "
+                             "Dynamics or Acceleration");
         ts.setReportStage(stages[which]);
         ts.initialize(scene.makeInitialState(1.0, 0.0));
         for (int k = 1; k <= 20; ++k) {

@@ -3,6 +3,7 @@
 // compound pendulum, queries and decorations.
 #include "SimbodyReeving/scenes/PendulumScene.h"
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
+#include "support/ExpectThrowMessage.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 using SimTK::MobilizedBody;
@@ -33,14 +35,10 @@ SpanOptions spans(int na, int nt = 1) {
     return o;
 }
 
+// f() must throw std::invalid_argument whose message contains the needle.
 template <class F>
 void expectInvalid(F&& f, const std::string& needle) {
-    try {
-        f();
-        ADD_FAILURE() << "no std::invalid_argument for " << needle;
-    } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
+    EXPECT_THROW_MESSAGE(f(), std::invalid_argument, needle);
 }
 
 // Integrates with RK-Merson and returns the times at which y(t) - mean crosses zero upwards.
@@ -58,7 +56,7 @@ std::vector<double> upwardCrossings(const std::vector<double>& t, const std::vec
 
 }  // namespace
 
-// Acceptance 7: bad input -> std::invalid_argument naming it.
+// Bad input -> std::invalid_argument naming the rope, the node or parameter, and the value.
 TEST(ReevingSubsystem, BadRopeInputThrowsNamingIt) {
     SimTK::MultibodySystem system;
     SimTK::SimbodyMatterSubsystem matter(system);
@@ -81,49 +79,59 @@ TEST(ReevingSubsystem, BadRopeInputThrowsNamingIt) {
     {
         RopeSpec r = good();
         r.end.body = MobilizedBody();  // a path needs two points on bodies
-        expectInvalid([&] { reeving.addRope(r); }, "end node (Anchor, node 2) has no body");
+        expectInvalid([&] { reeving.addRope(r); }, "ReevingSubsystem: rope 'rope': end node (Anchor, node 2) has no body");
     }
     {
         RopeSpec r = good();
         r.sheaves[0].point = Vec3(0);  // coincides with the start anchor
-        expectInvalid([&] { reeving.addRope(r); }, "coincide");
+        expectInvalid([&] { reeving.addRope(r); },
+                      "ReevingSubsystem: rope 'rope': path points 0 and 1 coincide (same body, station (0, 0, 0))");
     }
-    for (double bad : {0.0, -1.0, nan}) {
+    for (const auto& [bad, text] : {std::pair{0.0, "0"}, std::pair{-1.0, "-1"}, std::pair{nan, "nan"}}) {
         RopeSpec r = good();
         r.unstretchedLength = bad;
-        expectInvalid([&] { reeving.addRope(r); }, "unstretchedLength");
+        expectInvalid([&] { reeving.addRope(r); },
+                      std::string("ReevingSubsystem: rope 'rope': unstretchedLength [m] = ") + text + " must be finite and > 0");
         r = good();
         r.sheaves[0].radius = bad;
-        expectInvalid([&] { reeving.addRope(r); }, "radius");
+        expectInvalid([&] { reeving.addRope(r); }, std::string("ReevingSubsystem: rope 'rope': sheave 0 (DeviationSheave, node 1) radius [m] = ") +
+                                                       text + " must be finite and > 0");
         r = good();
         r.properties.axialStiffness = bad;
-        expectInvalid([&] { reeving.addRope(r); }, "EA");
+        expectInvalid([&] { reeving.addRope(r); },
+                      std::string("ReevingSubsystem: rope 'rope': RopeProperties: axialStiffness (EA) [N] = ") + text + " must be finite and > 0");
     }
     {
         RopeSpec r = good();
         r.start.point = Vec3(nan, 0, 0);
-        expectInvalid([&] { reeving.addRope(r); }, "start node (Anchor, node 0) point");
+        expectInvalid([&] { reeving.addRope(r); },
+                      "ReevingSubsystem: rope 'rope': start node (Anchor, node 0) point [m] = (nan, 0, 0) must be finite");
         r = good();
         r.sheaves[0].point = Vec3(0, SimTK::Infinity, 0);
-        expectInvalid([&] { reeving.addRope(r); }, "sheave 0 (DeviationSheave, node 1) point");
+        expectInvalid([&] { reeving.addRope(r); },
+                      "ReevingSubsystem: rope 'rope': sheave 0 (DeviationSheave, node 1) point [m] = (0, inf, 0) must be finite");
     }
     for (int bad : {-1, 17}) {
         RopeSpec r = good();
         r.spanDefaults.axialModes = bad;
-        expectInvalid([&] { reeving.addRope(r); }, "n_a");
+        expectInvalid([&] { reeving.addRope(r); }, "ReevingSubsystem: rope 'rope': SpanModel: SpanOptions::axialModes (n_a) = " +
+                                                       std::to_string(bad) + " is outside 0..16");
         r = good();
         r.spanOverrides = {{1, spans(0, bad)}};
-        expectInvalid([&] { reeving.addRope(r); }, "n_t");
+        expectInvalid([&] { reeving.addRope(r); }, "ReevingSubsystem: rope 'rope': SpanModel: SpanOptions::transverseModes (n_t) = " +
+                                                       std::to_string(bad) + " is outside 0..16");
     }
     {
         RopeSpec r = good();
         r.spanOverrides = {{2, spans(1)}};
-        expectInvalid([&] { reeving.addRope(r); }, "span override index = 2");
+        expectInvalid([&] { reeving.addRope(r); }, "ReevingSubsystem: rope 'rope': span override index = 2 is outside 0..1");
         r = good();
         r.planeNormal = Vec3(0, 1, 0);  // gravity out of plane
-        expectInvalid([&] { reeving.addRope(r); }, "not in the rope plane");
+        expectInvalid([&] { reeving.addRope(r); },
+                      "ReevingSubsystem: rope 'rope': gravity (0, -9.81, 0) is not in the rope plane (normal (0, 1, 0))");
     }
-    expectInvalid([&] { ReevingSubsystem(system, Vec3(nan, 0, 0)); }, "gravity");
+    expectInvalid([&] { ReevingSubsystem(system, Vec3(nan, 0, 0)); },
+                  "ReevingSubsystem: gravity [m/s^2] = (nan, 0, 0) must be finite");
 }
 
 TEST(ReevingSubsystem, WrongOrderIsAnErrorAtRealizeTopology) {
@@ -131,12 +139,9 @@ TEST(ReevingSubsystem, WrongOrderIsAnErrorAtRealizeTopology) {
     SimTK::SimbodyMatterSubsystem matter(system);
     ReevingSubsystem reeving(system, Vec3(0, -9.81, 0));
     SimTK::GeneralForceSubsystem forces(system);  // added after: its forces would be missed
-    try {
-        system.realizeTopology();
-        ADD_FAILURE() << "no error";
-    } catch (const std::exception& e) {
-        EXPECT_NE(std::string(e.what()).find("after the ReevingSubsystem"), std::string::npos) << e.what();
-    }
+    EXPECT_THROW_MESSAGE(system.realizeTopology(), std::logic_error,
+                         "ReevingSubsystem: force subsystem 'GeneralForceSubsystem' was added after the "
+                         "ReevingSubsystem; construct the ReevingSubsystem after every other force subsystem");
 }
 
 TEST(ReevingSubsystem, BodyOfAnotherSystemIsAnInvalidArgument) {
@@ -154,7 +159,8 @@ TEST(ReevingSubsystem, BodyOfAnotherSystemIsAnInvalidArgument) {
     r.end = RopeAnchor{alien, Vec3(0)};
     r.properties = {0.6, 1e6, 1};
     r.unstretchedLength = 10;
-    expectInvalid([&] { reeving.addRope(r); }, "end node (Anchor, node 1) is on a body of another system");
+    expectInvalid([&] { reeving.addRope(r); },
+                  "ReevingSubsystem: rope 'rope': end node (Anchor, node 1) is on a body of another system's matter subsystem");
 }
 
 // Acceptance 4: static tension along the hanging span approaches M g + rhoA g (distance to the
@@ -305,9 +311,10 @@ TEST(ReevingSubsystem, QueriesAndDecorations) {
     SimTK::Array_<SimTK::DecorativeGeometry> geometry;
     scene.system().calcDecorativeGeometryAndAppend(s, Stage::Position, geometry);
     EXPECT_GE(geometry.size(), 2u * 19u);  // two spans drawn as 19-segment polylines
-    expectInvalid([&] { rv.getAxialForce(s, 0, 2, 5.0); }, "span index = 2");
-    expectInvalid([&] { rv.getAxialForce(s, 0, 1, 1.0); }, "material coordinate s");
-    expectInvalid([&] { rv.getConstraintError(s, 0, 0); }, "sheave node index = 0");
+    expectInvalid([&] { rv.getAxialForce(s, 0, 2, 5.0); }, "ReevingSubsystem: span index = 2 is outside 0..1");
+    expectInvalid([&] { rv.getAxialForce(s, 0, 1, 1.0); },
+                  "SpanModel: material coordinate s [m] = 1 is outside the span [s1, s2] = [");
+    expectInvalid([&] { rv.getConstraintError(s, 0, 0); }, "ReevingSubsystem: sheave node index = 0 is outside 1..1");
     EXPECT_GT(rv.calcRopeKineticEnergy(s), 0.0);
 }
 
@@ -426,9 +433,10 @@ TEST(ReevingSubsystem, NodeForceBalancesTheBodiesExactly) {
     }
     PendulumScene scene(p, spans(1));
     const State s = scene.makeInitialState(0.0, 0.0);  // realized to Stage::Velocity
-    expectInvalid([&] { scene.reeving().getNodeForce(s, 0, 3); }, "node index = 3");
-    expectInvalid([&] { scene.reeving().getNodeForce(s, 1, 0); }, "rope index = 1");
-    EXPECT_THROW(scene.reeving().getNodeForce(s, 0, 2), std::logic_error);
+    expectInvalid([&] { scene.reeving().getNodeForce(s, 0, 3); }, "ReevingSubsystem: node index = 3 is outside 0..2");
+    expectInvalid([&] { scene.reeving().getNodeForce(s, 1, 0); }, "ReevingSubsystem: rope index = 1 is outside 0..0");
+    EXPECT_THROW_MESSAGE(scene.reeving().getNodeForce(s, 0, 2), std::logic_error,
+                         "ReevingSubsystem::getNodeForce: realize the state to Stage::Dynamics first");
 }
 
 // Simbody invalidates only Stage::Dynamics when Z alone changes (Verlet refines z at fixed q). The

@@ -20,8 +20,9 @@ namespace SimbodyReeving {
 ///   - Trip: a floor-to-floor trip upwards of the fully loaded car, the machine sheave on a smooth
 ///     speed profile (MotionProfile: acceleration continuous, jerk bounded).
 ///   - Loading: the car stands at the bottom landing loaded to 125 % of the rated load, the brake
-///     holding the sheave (EN 81-50's loading case: a static check, run for a few seconds from the
-///     equilibrium with the rated load, so the extra 25 % arrives as a step).
+///     holding the sheave (EN 81-50's loading case, a static check): the run starts from the static
+///     equilibrium with that load and lasts a few seconds, so the traction table reports whether
+///     the groove holds the 125 % load at rest (the load is not applied as a step).
 ///   - EmergencyStop: the fully loaded car runs down at rated speed; from t = 0 the machine brake
 ///     stops the sheave with a smooth deceleration profile peaking at brakeDeceleration (its
 ///     surface): the sheave is prescribed, so the brake's work is the machine's (MotionWorkMeter).
@@ -109,8 +110,8 @@ public:
     int tractionNode() const { return parameters_.roping; }
 
     /// The state at t = 0: static equilibrium (in stick) of car, counterweight and rope (in Loading
-    /// with the rated load, then the car's mass raised to 125 %; in Stall with the counterweight
-    /// settled on its buffer); in EmergencyStop every body then moving at rated speed (car down);
+    /// with the car's mass at 125 % of the rated load; in Stall with the counterweight settled on
+    /// its buffer); in EmergencyStop every body then moving at rated speed (car down);
     /// the traction modes updated (ReevingSubsystem::updateTractionModes); realized to Stage::Velocity.
     SimTK::State makeInitialState() const;
 
