@@ -121,7 +121,9 @@ void reReferenceTransverseModes(const Eigen::Vector3d& e, const Eigen::Vector3d&
                                 Eigen::Ref<Eigen::VectorXd> bdot, Eigen::Ref<Eigen::VectorXd> cdot) {
     const Eigen::Index n = b.size();
     if (c.size() != n || bdot.size() != n || cdot.size() != n)
-        throw std::invalid_argument("reReferenceTransverseModes: b, c, bdot, cdot must have the same size");
+        throw std::invalid_argument("reReferenceTransverseModes: b, c, bdot, cdot must have the same size (sizes " +
+                                    std::to_string(n) + ", " + std::to_string(c.size()) + ", " +
+                                    std::to_string(bdot.size()) + ", " + std::to_string(cdot.size()) + ")");
     ChordFrame<3> from, to;
     computeChordFrame<3>(e, edot, oldReference, from);
     computeChordFrame<3>(e, edot, newReference, to);

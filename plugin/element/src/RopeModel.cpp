@@ -669,7 +669,7 @@ void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const 
     if (drivenS.size() != numDriven_) {
         std::ostringstream msg;
         msg << "RopeModel: " << drivenS.size() << " driven material coordinates given for " << numDriven_
-            << " Driven nodes";
+            << " Driven nodes" << (drivenS.size() == 0 ? " (use the overload taking drivenS)" : "");
         throw std::invalid_argument(msg.str());
     }
     Eigen::VectorXd& s = data.materialCoordinates;
@@ -900,8 +900,12 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // solveDependentCoordinates left the span coordinates and the constraint Jacobians (velocity
     // independent) of this configuration in data; they are reused when they belong to these
     // positions, and solved afresh otherwise.
-    if (drivenSdot.size() != numDriven_)
-        throw std::invalid_argument("RopeModel::computeDynamics: drivenSdot has the wrong size");
+    if (drivenSdot.size() != numDriven_) {
+        std::ostringstream msg;
+        msg << "RopeModel::computeDynamics: drivenSdot has the wrong size: " << drivenSdot.size()
+            << " rates given for " << numDriven_ << " Driven nodes";
+        throw std::invalid_argument(msg.str());
+    }
     detail::RopeWorkspace<Dim>& ws = data.ws();
     auto dependentsSnapshot = [&](Eigen::VectorXd& y) {  // [s; q_condensed; nu] (sizes fixed by the model)
         y.resize(N + 1 + nqc + numMultipliers_);

@@ -3,6 +3,7 @@
 #include "ReevingSubsystemGuts.h"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -105,9 +106,13 @@ void InterpolatingTimeStepper::interpolateReport(double t) {
 Integrator::SuccessfulStepStatus InterpolatingTimeStepper::stepTo(double reportTime) {
     Integrator& integ = integrator_;
     int steps = 0;
-    if (reportTime < cursor_)
-        throw std::invalid_argument("InterpolatingTimeStepper::stepTo: report time " + std::to_string(reportTime) +
-                                    " s is before the time already reached, " + std::to_string(cursor_) + " s");
+    if (reportTime < cursor_) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "InterpolatingTimeStepper::stepTo: report time " << reportTime
+            << " s is before the time already reached, " << cursor_ << " s";
+        throw std::invalid_argument(msg.str());
+    }
     while (pending_ || !integ.isSimulationOver()) {
         const SimTK::State& advanced = integ.getAdvancedState();
         const double now = advanced.getTime();
@@ -201,9 +206,13 @@ void InterpolatingTimeStepper::handlePendingEvent() {
     SimTK::HandleEventsResults results;
     system_.handleEvents(integ.updAdvancedState(), pendingCause_, pendingIds_,
                          SimTK::HandleEventsOptions(integ.getAccuracyInUse()), results);
-    if (results.getExitStatus() == SimTK::HandleEventsResults::Failed)
-        throw std::runtime_error("InterpolatingTimeStepper: an event handler failed at t = " +
-                                 std::to_string(integ.getAdvancedTime()) + " s: " + results.getMessage());
+    if (results.getExitStatus() == SimTK::HandleEventsResults::Failed) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "InterpolatingTimeStepper: an event handler failed at t = " << integ.getAdvancedTime()
+            << " s: " << results.getMessage();
+        throw std::runtime_error(msg.str());
+    }
     const bool terminate = results.getExitStatus() == SimTK::HandleEventsResults::ShouldTerminate;
     integ.reinitialize(results.getLowestModifiedStage(), terminate);
     lastStepSize_ = 0;

@@ -1,6 +1,7 @@
 #include "SimbodyReeving/simbody/SlackMonitor.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -35,9 +36,11 @@ private:
 
 SlackMonitor::SlackMonitor(SimTK::MultibodySystem& system, const ReevingSubsystem& reeving, double eventWindow)
     : log_(std::make_shared<std::vector<SlackTransition>>()) {
-    if (!std::isfinite(eventWindow) || !(eventWindow > 0))
-        throw std::invalid_argument("SlackMonitor: eventWindow [s] = " + std::to_string(eventWindow) +
-                                    " must be finite and > 0");
+    if (!std::isfinite(eventWindow) || !(eventWindow > 0)) {
+        std::ostringstream msg;
+        msg << "SlackMonitor: eventWindow [s] = " << eventWindow << " must be finite and > 0";
+        throw std::invalid_argument(msg.str());
+    }
     for (int rope = 0; rope < reeving.getNumRopes(); ++rope) {
         if (!reeving.getRopeSpec(rope).properties.tensionOnly) continue;
         for (int span = 0; span < reeving.getNumSpans(rope); ++span) {
