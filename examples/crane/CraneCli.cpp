@@ -2,6 +2,7 @@
 
 #include <SimbodyReeving/simbody/Integrators.h>
 
+#include <algorithm>
 #include <map>
 
 namespace crane_demo {
@@ -13,16 +14,23 @@ const char* kDescription =
     "An overhead (gantry) crane: a trolley on a rail 15 m up with a prescribed traverse, a winch drum\n"
     "(radius 0.3 m) with a prescribed hoist profile, a 20 mm wire rope (rhoA 1.6 kg/m, EA 2.5e7 N)\n"
     "reeved in n falls between trolley sheaves and a 200 kg hook block, a 5 t payload on a 2 m sling.\n"
-    "From static equilibrium, the cycle: rest 1 s, lift 5 m (1-10 s), traverse 10 m (10.5-22.5 s),\n"
-    "lower 5 m (23.5-32.5 s), settle until 36 s.\n";
+    "Scenario cycle (default), from static equilibrium: rest 1 s, lift 5 m (1-10 s), traverse 10 m\n"
+    "(10.5-22.5 s), lower 5 m (23.5-32.5 s), settle until 36 s.\n"
+    "Scenario lift-off: the payload rests on a compliant floor, the sling slack; the hoist reaches\n"
+    "--hoist-speed v_h in 0.5 s, takes up the slack at v_h for 0.5 s, the sling tightens and the rope\n"
+    "stretches at v_h until the load lifts off; the run ends half a bounce period later. summary.json:\n"
+    "static_rope_force (M g + the falls' weight, all falls at their tops), peak_rope_force,\n"
+    "dynamic_factor (their ratio), lift_off_time; the spring-mass reference 1 + v_h sqrt(k / M) / g.\n";
 
 const char* kFooter =
     "Outputs in DIR: timeseries.csv, snapshots.dat (rope geometry), summary.json and, with gnuplot,\n"
-    "fig_hook_height_sway.png, fig_fall_axial_forces.png, fig_energy.png, fig_snapshots.png.\n"
-    "Exit status: 0 cycle completed; 2 bad command line or unusable --out (nothing written);\n"
-    "3 a rope limit ended the run early (a span at minimumSpanLength: two-blocking; or the drum ran\n"
-    "out of rope): the outputs up to that instant are written, summary.json says \"limit_reached\";\n"
-    "1 the simulation failed; 130 interrupted (SIGINT/SIGTERM, nothing written).";
+    "fig_hook_height_sway.png, fig_fall_axial_forces.png, fig_energy.png, fig_snapshots.png (lift-off:\n"
+    "fig_lift_off.png too).\n"
+    "Exit status: 0 run completed (with --check: the options are valid); 2 bad command line or\n"
+    "unusable --out (nothing written); 3 a rope limit ended the run early (a span at\n"
+    "minimumSpanLength: two-blocking; or the drum ran out of rope): the outputs up to that instant\n"
+    "are written, summary.json says \"limit_reached\"; 1 the simulation failed or reached --max-steps\n"
+    "(nothing written); 130 interrupted (SIGINT/SIGTERM, nothing written).";
 
 // The --set keys: every numeric CraneParameters field but `falls` (--falls).
 std::map<std::string, double*> parameterKeys(SimbodyReeving::CraneParameters& p) {
@@ -50,7 +58,14 @@ std::map<std::string, double*> parameterKeys(SimbodyReeving::CraneParameters& p)
             {"rhoA", &p.rhoA},
             {"EA", &p.EA},
             {"EI", &p.EI},
-            {"minimumSpanLength", &p.minimumSpanLength}};
+            {"minimumSpanLength", &p.minimumSpanLength},
+            {"hoistRamp", &p.hoistRamp},
+            {"slackTime", &p.slackTime},
+            {"afterLiftOff", &p.afterLiftOff},
+            {"floorStiffness", &p.floorStiffness},
+            {"floorDampingRatio", &p.floorDampingRatio},
+            {"slingStiffness", &p.slingStiffness},
+            {"slingDampingRatio", &p.slingDampingRatio}};
 }
 
 // A --set item: KEY=VALUE with a known key and a finite number.
@@ -74,6 +89,20 @@ void defineOptions(CLI::App& app, Options& o) {
     applyConventions(app);
     app.description(kDescription);
     app.footer(kFooter);
+    app.add_option_function<std::string>(
+           "--scenario",
+           [&o](const std::string& v) {
+               o.scenario = SimbodyReeving::craneScenarioFromString(v);
+               o.parameters.scenario = o.scenario;
+           },
+           "cycle (default: lift, traverse, lower the hanging load) or lift-off\n"
+           "(hoist a load resting on the floor at --hoist-speed)")
+        ->type_name("NAME")
+        ->check(oneOf({"cycle", "lift-off"}));
+    app.add_option("--hoist-speed", o.parameters.hoistSpeed,
+                   "lift-off: steady hoisting speed v_h of the hook [m/s] (default 0.3)")
+        ->type_name("V")
+        ->check(positiveNumber());
     app.add_option("--falls", o.parameters.falls, "rope parts between trolley and hook block, 1..12 (default 4)")
         ->type_name("N")
         ->transform(integerIn(1, 12));
@@ -107,7 +136,7 @@ void defineOptions(CLI::App& app, Options& o) {
     app.add_option("--traverse", o.traverse, "trolley travel of the cycle [m] (default 10; 0 or negative allowed)")
         ->type_name("M")
         ->check(finiteNumber());
-    app.add_option("--t-end", o.tEnd, "end time [s] (default 36, the whole cycle)")
+    app.add_option("--t-end", o.tEnd, "end time [s] (default: the whole cycle, 36 s; lift-off: its duration)")
         ->type_name("T")
         ->check(positiveNumber());
     app.add_option("--integrator", o.integrator,
@@ -139,14 +168,24 @@ void defineOptions(CLI::App& app, Options& o) {
            "trolleyMass sheavePitch sheaveRadius drumRadius drumHeight drumMass\n"
            "drumInertia ropeOnDrum hookMass hookInertia hookComBelow hookPinBelow\n"
            "initialHookDepth payloadMass payloadInertia slingLength payloadWidth\n"
-           "payloadHeight rhoA EA EI minimumSpanLength")
+           "payloadHeight rhoA EA EI minimumSpanLength; lift-off: hoistRamp\n"
+           "slackTime afterLiftOff floorStiffness floorDampingRatio\n"
+           "slingStiffness slingDampingRatio (see CraneScene.h)")
         ->type_name("KEY=VALUE")
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->check(setItem());
-    app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.02)")
+    app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.02; lift-off 0.001)")
         ->type_name("DT")
         ->check(positiveNumber());
+    app.add_option("--max-steps", o.maxSteps,
+                   "stop with exit status 1 (nothing written) once the integrator\n"
+                   "has taken N steps (default: no limit)")
+        ->type_name("N")
+        ->transform(integerIn(1, 1000000000L));
+    app.add_flag("--check", o.check,
+                 "check the options and build the scene, all validation\n"
+                 "included, then exit: 0 valid, 2 not (nothing run or written)");
     app.add_option("--snapshots", o.snapshots, "rope-geometry snapshots over [0, t_end], 1..12 (default 6)")
         ->type_name("N")
         ->transform(integerIn(1, 12));
@@ -169,12 +208,26 @@ std::string usage() {
     return app.help();
 }
 
+SimbodyReeving::CraneCycle Options::cycle() const {
+    return liftOff() ? SimbodyReeving::CraneCycle::liftOff(parameters)
+                     : SimbodyReeving::CraneCycle::liftTraverseLower(lift, traverse);
+}
+
 Options parseCommandLine(int argc, char** argv) {
     Options o;
     CLI::App app("", "reeving-crane");
     defineOptions(app, o);
     o.help = parse(app, argc, argv);
-    if (!o.help && o.reportInterval > o.tEnd)
+    if (o.help) return o;
+    // Options of the other scenario.
+    for (const char* name : {"--lift", "--traverse"})
+        if (o.liftOff() && app.count(name)) throw UsageError(std::string(name) + ": only with --scenario cycle");
+    if (!o.liftOff() && app.count("--hoist-speed")) throw UsageError("--hoist-speed: only with --scenario lift-off");
+    if (o.liftOff()) {
+        if (!app.count("--t-end")) o.tEnd = o.cycle().duration;
+        if (!app.count("--report-interval")) o.reportInterval = std::min(0.001, o.tEnd);
+    }
+    if (o.reportInterval > o.tEnd)
         throw UsageError("--report-interval: " + numberText(o.reportInterval) + " s must not exceed --t-end (" +
                          numberText(o.tEnd) + " s)");
     return o;

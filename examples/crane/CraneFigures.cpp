@@ -79,6 +79,10 @@ std::vector<Polyline> drawCrane(const CraneScene& scene, const SimTK::State& s) 
     right += 0.4;
     const double railY = p.railHeight + 0.3;
     lines.push_back({Ink::Structure, {Vec2(lo + left - 1.5, 0), Vec2(hi + right + 1.5, 0)}});
+    if (std::isfinite(scene.floorHeight())) {  // lift-off: the floor the payload stands on
+        const double x = p.trolleyX0 + scene.hookRestOffset(), w = 0.5 * p.payloadWidth + 1.5;
+        lines.push_back({Ink::Structure, {Vec2(x - w, scene.floorHeight()), Vec2(x + w, scene.floorHeight())}});
+    }
     lines.push_back({Ink::Structure, {Vec2(lo + left - 1.5, railY), Vec2(hi + right + 1.5, railY)}});
     // Trolley box, the drum's bracket.
     const SimTK::MobilizedBody& trolley = scene.trolley();
@@ -182,13 +186,32 @@ bool makePlots(const fs::path& dir, const CraneScene& scene, const std::vector<S
        << ")/1000) with lines lw 1 dt 2 title 'E - E_0'\n"
        << "set ylabel 'residual [J]'\nplot 'timeseries.csv' every ::1 using 1:" << residual
        << " with lines lw 2 title 'E - E_0 - W'\nunset multiplot\n";
+    // Lift-off: the rope's force against its static value and the spring-mass peak, the floor and
+    // the sling.
+    if (p.scenario == SimbodyReeving::CraneScenario::LiftOff) {
+        const int rope = 15 + n, floor = 16 + n, sling = 17 + n;
+        const double fs = scene.staticRopeForce() / 1000, peak = fs + (scene.springMassDynamicFactor() - 1) * scene.liftedMass() * p.g / 1000;
+        // From just before the sling is taut (hoistRamp + slackTime); the sling's jerk as it
+        // stops the hook block may reach far above the rope's peak.
+        const double taut = p.hoistRamp + p.slackTime;
+        gp << "set output 'fig_lift_off.png'\nset title 'Lift-off at v_h = " << p.hoistSpeed
+           << " m/s: forces'\nset ylabel 'force [kN]'\nset xrange [" << std::max(0.0, taut - 0.05)
+           << ":*]\nset yrange [0:" << 1.3 * peak << "]\nplot 'timeseries.csv' every ::1 using 1:($" << rope
+           << "/1000) with lines lw 2 title 'rope (all falls, at the top)', '' every ::1 using 1:($" << floor
+           << "/1000) with lines lw 1.5 title 'floor on the payload', '' every ::1 using 1:($" << sling
+           << "/1000) with lines lw 1 dt 3 title 'sling', " << fs
+           << " with lines dt 2 lw 2 lc 'black' title 'static (M + m_{hook}) g + rope', " << peak
+           << " with lines dt 4 lw 2 lc 'red' title 'spring-mass peak: + v_h sqrt(k M)'\nunset title\n"
+           << "set xrange [*:*]\nset yrange [*:*]\n";
+    }
     // Rope geometry snapshots.
-    double xmin = 1e300, xmax = -1e300, ymax = p.railHeight + 1;
+    double xmin = 1e300, xmax = -1e300, ymin = -0.5, ymax = p.railHeight + 1;
     for (const Snapshot& sn : snapshots)
         for (const Polyline& l : sn.lines)
             for (const Vec2& q : l.points) {
                 xmin = std::min(xmin, q[0]);
                 xmax = std::max(xmax, q[0]);
+                ymin = std::min(ymin, q[1] - 0.5);
                 ymax = std::max(ymax, q[1] + 0.5);
             }
     const int cols = snapshots.size() <= 3 ? static_cast<int>(snapshots.size()) : snapshots.size() <= 8 ? 3 : 4;
@@ -196,7 +219,7 @@ bool makePlots(const fs::path& dir, const CraneScene& scene, const std::vector<S
     gp << "set terminal pngcairo size " << 500 * cols << "," << 520 * rows + 40 << " font 'DejaVu Sans,10'\n"
        << "set output 'fig_snapshots.png'\nset datafile separator whitespace\nunset grid\nunset key\n"
        << "set size ratio -1\nset xlabel 'x [m]'\nset ylabel 'y [m]'\n"
-       << "set xrange [" << xmin - 0.5 << ":" << xmax + 0.5 << "]\nset yrange [-0.5:" << ymax << "]\n"
+       << "set xrange [" << xmin - 0.5 << ":" << xmax + 0.5 << "]\nset yrange [" << ymin << ":" << ymax << "]\n"
        << "set linetype 1 lc rgb '#909090' lw 1.5\nset linetype 2 lc rgb '#1f5fa8' lw 2\n"
        << "set linetype 3 lc rgb '#d07000' lw 2\nset linetype 4 lc rgb '#7030a0' lw 1\n"
        << "set linetype 5 lc rgb '#101010' lw 1\nset linetype 6 lc rgb '#1f5fa8' lw 2\n"

@@ -1,6 +1,7 @@
 // reeving-crane: an overhead (gantry) crane's lift-traverse-lower cycle (issue 13) from one
 // command: a trolley with a prescribed traverse, a winch drum with a prescribed hoist profile, n
-// falls of wire rope between trolley and hook block, a payload on a sling. See --help and README.md.
+// falls of wire rope between trolley and hook block, a payload on a sling. Or (--scenario lift-off)
+// the lift-off of a payload resting on the floor and its dynamic factor. See --help and README.md.
 #include "CraneCli.h"
 #include "CraneFigures.h"
 #include "common/DemoOutput.h"
@@ -35,11 +36,18 @@ struct Interrupted : std::runtime_error {
     double time;
 };
 
+/// --max-steps reached: what() says when.
+struct StepLimitReached : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 /// One report: the columns of timeseries.csv.
 struct Row {
     double t, trolleyX, hookX, hookY, sway, payloadAngle;
     std::vector<double> falls;
     double drumSpeed, motorTorque, motorPower, ropeOnDrum, trolleyForce, trolleyPower, work, residual;
+    double ropeForce;  // sum of the falls' top forces [N]
+    double floorForce = 0, slingForce = 0, contactDissipation = 0;  // lift-off
 };
 
 struct RunResult {
@@ -71,7 +79,21 @@ Row observe(const CraneScene& scene, const State& s, double energy0) {
     r.trolleyPower = r.trolleyForce * scene.trolley().getOneU(s, 0);
     r.work = scene.workMeter().getWork(s);
     r.residual = scene.reeving().calcMechanicalEnergy(s) - energy0 - r.work;
+    r.ropeForce = 0;
+    for (double f : r.falls) r.ropeForce += f;
+    if (scene.parameters().scenario == CraneScenario::LiftOff) {
+        r.floorForce = scene.floorForce(s);
+        r.slingForce = scene.slingForce(s);
+        r.contactDissipation = scene.contactDissipation(s);
+        r.residual += r.contactDissipation;  // E - E0 + W_contact - W_motion
+    }
     return r;
+}
+
+// What the lift-off is doing: the sling slack, the load on the floor or lifted.
+std::string liftOffPhase(const CraneScene& scene, const State& s) {
+    if (scene.slingForce(s) <= 0) return "sling slack";
+    return scene.floorForce(s) > 0 ? "load on the floor" : "load lifted";
 }
 
 RunResult run(const Options& o, CraneScene& scene) {
@@ -81,7 +103,8 @@ RunResult run(const Options& o, CraneScene& scene) {
     for (int k = 0; k < scene.falls(); ++k) r.staticFallForce.push_back(scene.fallTopForce(s0, k));
     r.energy0 = scene.reeving().calcMechanicalEnergy(s0);
     demo_common::DemoVisualizer viz(scene.system(), scene.reeving(), "reeving-crane", o.visualize);
-    const SimTK::Vec3 centre(scene.parameters().trolleyX0 + 0.5 * o.traverse, 0.55 * scene.parameters().railHeight, 0);
+    const SimTK::Vec3 centre(scene.parameters().trolleyX0 + (o.liftOff() ? 0.0 : 0.5 * o.traverse),
+                             0.55 * scene.parameters().railHeight, 0);
     viz.lookAt(centre + SimTK::Vec3(-11, 2, 21), centre);  // oblique: the drum's stored rope shows
     viz.report(s0);
 
@@ -98,16 +121,31 @@ RunResult run(const Options& o, CraneScene& scene) {
     auto snap = [&](const State& s, const std::string& phase) {
         r.snapshots.push_back({s.getTime(), phase, drawCrane(scene, s)});
     };
+    const bool liftOff = scene.parameters().scenario == CraneScenario::LiftOff;
+    auto phase = [&](const State& s) { return liftOff ? liftOffPhase(scene, s) : phaseAt(scene.cycle(), s.getTime()); };
     const auto start = std::chrono::steady_clock::now();
     auto lastPrint = start;
     bool printed = false;
     r.rows.push_back(observe(scene, ts.getState(), r.energy0));
-    if (std::count(snapshotReports.begin(), snapshotReports.end(), 0)) snap(ts.getState(), phaseAt(scene.cycle(), 0));
+    if (std::count(snapshotReports.begin(), snapshotReports.end(), 0)) snap(ts.getState(), phase(ts.getState()));
     for (int n = 1; n <= reports; ++n) {
         if (demo_common::interrupted()) throw Interrupted(ts.getState().getTime());
         const double target = n * o.reportInterval;
         try {
-            ts.stepTo(target);
+            // --max-steps: the stepper returns once the integrator has taken the steps left.
+            for (;;) {
+                if (o.maxSteps > 0) {
+                    const long left = o.maxSteps - integ->getNumStepsTaken();
+                    if (left <= 0)
+                        throw StepLimitReached("the integrator took --max-steps " + std::to_string(o.maxSteps) +
+                                               " steps at t = " + demo_common::numberText(ts.getState().getTime()) +
+                                               " s, before the end (" + demo_common::numberText(o.tEnd) + " s)");
+                    ts.setStepLimit(static_cast<int>(std::min<long>(left, 1000000000L)));
+                }
+                if (ts.stepTo(target) != SimTK::Integrator::ReachedStepLimit) break;
+            }
+        } catch (const StepLimitReached&) {
+            throw;
         } catch (const std::exception& e) {
             // Simbody's integrators drop the cause of a failed step; the rope keeps the last one.
             const std::string& cause = scene.reeving().getLastEvaluationFailure();
@@ -126,7 +164,7 @@ RunResult run(const Options& o, CraneScene& scene) {
             snap(st, "limit reached");
             break;
         }
-        if (std::count(snapshotReports.begin(), snapshotReports.end(), n)) snap(st, phaseAt(scene.cycle(), st.getTime()));
+        if (std::count(snapshotReports.begin(), snapshotReports.end(), n)) snap(st, phase(st));
         const auto now = std::chrono::steady_clock::now();
         if (!o.quiet && std::chrono::duration<double>(now - start).count() > 2.0 &&
             std::chrono::duration<double>(now - lastPrint).count() > 1.0) {
@@ -148,6 +186,8 @@ struct Figures {
     std::vector<double> maxFall;
     double maxSway = 0, maxPayloadAngle = 0, maxTorque = 0, maxPower = 0, maxTrolleyForce = 0;
     double maxResidual = 0, maxWork = 0;
+    double peakRopeForce = 0, peakRopeForceTime = 0;
+    double liftOffTime = SimTK::NaN;  // lift-off: see summarize
 };
 
 Figures summarize(const RunResult& r, int falls) {
@@ -162,6 +202,22 @@ Figures summarize(const RunResult& r, int falls) {
         f.maxTrolleyForce = std::max(f.maxTrolleyForce, std::abs(w.trolleyForce));
         f.maxResidual = std::max(f.maxResidual, std::abs(w.residual));
         f.maxWork = std::max(f.maxWork, std::abs(w.work));
+        if (w.ropeForce > f.peakRopeForce) {
+            f.peakRopeForce = w.ropeForce;
+            f.peakRopeForceTime = w.t;
+        }
+    }
+    // Lift-off: the last time before the peak rope force that the floor's force fell to zero (the
+    // payload may bounce on the floor as the sling jerks taut): where the floor force's trend over
+    // the two reports before reaches zero, within the report interval (the force is clamped at 0).
+    for (size_t i = 1; i < r.rows.size() && r.rows[i].t <= f.peakRopeForceTime; ++i) {
+        const Row &a = r.rows[i - 1], &b = r.rows[i];
+        if (!(a.floorForce > 0 && b.floorForce <= 0)) continue;
+        f.liftOffTime = b.t;
+        if (i >= 2 && r.rows[i - 2].floorForce > a.floorForce) {
+            const Row& before = r.rows[i - 2];
+            f.liftOffTime = std::min(b.t, a.t + a.floorForce * (a.t - before.t) / (before.floorForce - a.floorForce));
+        }
     }
     return f;
 }
@@ -172,13 +228,17 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     std::ofstream& ts = tsFile.stream();
     ts << "t,trolley_x,hook_x,hook_height,sway,payload_angle";
     for (int k = 1; k <= n; ++k) ts << ",fall_" << k;
-    ts << ",drum_speed,motor_torque,motor_power,rope_on_drum,trolley_force,trolley_power,motion_work,energy_residual\n"
+    const bool liftOff = scene.parameters().scenario == CraneScenario::LiftOff;
+    ts << ",drum_speed,motor_torque,motor_power,rope_on_drum,trolley_force,trolley_power,motion_work,energy_residual"
+       << (liftOff ? ",rope_force,floor_force,sling_force,contact_dissipation" : "") << "\n"
        << std::setprecision(12);
     for (const Row& w : r.rows) {
         ts << w.t << ',' << w.trolleyX << ',' << w.hookX << ',' << w.hookY << ',' << w.sway << ',' << w.payloadAngle;
         for (double x : w.falls) ts << ',' << x;
         ts << ',' << w.drumSpeed << ',' << w.motorTorque << ',' << w.motorPower << ',' << w.ropeOnDrum << ','
-           << w.trolleyForce << ',' << w.trolleyPower << ',' << w.work << ',' << w.residual << '\n';
+           << w.trolleyForce << ',' << w.trolleyPower << ',' << w.work << ',' << w.residual;
+        if (liftOff) ts << ',' << w.ropeForce << ',' << w.floorForce << ',' << w.slingForce << ',' << w.contactDissipation;
+        ts << '\n';
     }
     writeSnapshots(snFile.stream(), r.snapshots);
 
@@ -196,6 +256,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     // not tensions T = P |dr/ds|; the reference is the static share of the hook load, (M + m_hook) g / n.
     demo_common::Json js;
     js["program"] = "reeving-crane";
+    js["scenario"] = toString(p.scenario);
     js["falls"] = n;
     js["axial_modes"] = o.axialModes;
     js["transverse_modes"] = o.transverseModes;
@@ -205,7 +266,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     js["accuracy"] = jsonNumber(o.accuracy);
     js["fixed_step"] = jsonNumber(o.step);
     js["report_interval"] = jsonNumber(o.reportInterval);
-    js["lift_m"] = jsonNumber(o.lift);
+    js["lift_m"] = jsonNumber(o.lift);  // the cycle's (unused in lift-off)
     js["traverse_m"] = jsonNumber(o.traverse);
     js["t_end"] = jsonNumber(o.tEnd);
     js["t_reached"] = jsonNumber(last.t);
@@ -214,6 +275,22 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     js["static_fall_axial_force_N"] = jsonArray(r.staticFallForce);
     js["static_reference_axial_force_N"] = jsonNumber((p.payloadMass + p.hookMass) * p.g / n);
     js["max_fall_axial_force_N"] = jsonArray(f.maxFall);
+    // The hoist rope's force on the trolley, all falls at their tops [N] (CraneScene::ropeForce):
+    // its static value with the load hanging at rest, (M + m_hook) g + rhoA g (the falls' length),
+    // its largest value at the reports and their ratio, the dynamic factor.
+    js["static_rope_force"] = jsonNumber(scene.staticRopeForce());
+    js["peak_rope_force"] = jsonNumber(f.peakRopeForce);
+    js["peak_rope_force_time"] = jsonNumber(f.peakRopeForceTime);
+    js["dynamic_factor"] = jsonNumber(f.peakRopeForce / scene.staticRopeForce());
+    if (liftOff) {
+        js["hoist_speed"] = jsonNumber(p.hoistSpeed);
+        js["lift_off_time"] = jsonNumber(f.liftOffTime);
+        js["hook_stiffness_N_per_m"] = jsonNumber(scene.hookStiffness());
+        js["spring_mass_dynamic_factor"] = jsonNumber(scene.springMassDynamicFactor());
+        js["rope_slack_m"] = jsonNumber(scene.ropeSlack());
+        js["floor_height_m"] = jsonNumber(scene.floorHeight());
+        js["final_contact_dissipation_J"] = jsonNumber(last.contactDissipation);
+    }
     js["max_abs_sway_rad"] = jsonNumber(f.maxSway);
     js["max_abs_payload_angle_rad"] = jsonNumber(f.maxPayloadAngle);
     js["initial_hook_height_m"] = jsonNumber(r.rows.front().hookY);
@@ -257,6 +334,16 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     params["EA"] = jsonNumber(p.EA);
     params["EI"] = jsonNumber(p.EI);
     params["minimumSpanLength"] = jsonNumber(p.minimumSpanLength);
+    if (liftOff) {
+        params["hoistSpeed"] = jsonNumber(p.hoistSpeed);
+        params["hoistRamp"] = jsonNumber(p.hoistRamp);
+        params["slackTime"] = jsonNumber(p.slackTime);
+        params["afterLiftOff"] = jsonNumber(p.afterLiftOff);
+        params["floorStiffness"] = jsonNumber(p.floorStiffness);
+        params["floorDampingRatio"] = jsonNumber(p.floorDampingRatio);
+        params["slingStiffness"] = jsonNumber(p.slingStiffness);
+        params["slingDampingRatio"] = jsonNumber(p.slingDampingRatio);
+    }
     demo_common::writeJson(jsFile.stream(), js);
     tsFile.commit();
     snFile.commit();
@@ -277,23 +364,35 @@ int main(int argc, char** argv) {
         std::cout << usage();
         return 0;
     }
-    // The output folder must exist or be creatable, and be writable, before anything is simulated.
-    if (!demo_common::prepareOutputFolder("reeving-crane", o.outDir)) return demo_common::kUsageExitStatus;
-    demo_common::installInterruptHandlers();
-    const auto start = std::chrono::steady_clock::now();
-
+    // The scene (every parameter's validation; --check: and the integrator), before anything is
+    // written: a value only the scene can judge is a bad command line too.
     SpanOptions spans;
     spans.axialModes = o.axialModes;
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
     std::unique_ptr<CraneScene> scene;
+    try {
+        scene = std::make_unique<CraneScene>(o.parameters, o.cycle(), spans);
+        if (o.check) makeIntegrator(o.integrator, scene->system());
+    } catch (const std::exception& e) {
+        std::cerr << demo_common::usageErrorText("reeving-crane", e.what());
+        return demo_common::kUsageExitStatus;
+    }
+    if (o.check) return 0;
+    // The output folder must exist or be creatable, and be writable, before anything is simulated.
+    if (!demo_common::prepareOutputFolder("reeving-crane", o.outDir)) return demo_common::kUsageExitStatus;
+    demo_common::installInterruptHandlers();
+    const auto start = std::chrono::steady_clock::now();
+
     RunResult result;
     try {
-        scene = std::make_unique<CraneScene>(o.parameters, CraneCycle::liftTraverseLower(o.lift, o.traverse), spans);
         result = run(o, *scene);
     } catch (const Interrupted& e) {
         std::cerr << "\nreeving-crane: interrupted at t = " << e.time << " s; no outputs written\n";
         return demo_common::kInterruptedExitStatus;
+    } catch (const StepLimitReached& e) {
+        std::cerr << "reeving-crane: stopped: " << e.what() << "; nothing written\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "reeving-crane: simulation failed: " << e.what() << "\n";
         return 1;
@@ -313,6 +412,11 @@ int main(int argc, char** argv) {
     }
     const auto& p = scene->parameters();
     if (o.plots) makePlots(out, *scene, result.snapshots, (p.payloadMass + p.hookMass) * p.g / scene->falls());
+    if (o.liftOff())
+        std::printf("reeving-crane: lift-off at t = %.4f s, dynamic factor %.4f (peak rope force %.1f kN over the "
+                    "static %.1f kN; spring-mass reference 1 + v_h sqrt(k / M) / g = %.4f)\n",
+                    figures.liftOffTime, figures.peakRopeForce / scene->staticRopeForce(), figures.peakRopeForce / 1000,
+                    scene->staticRopeForce() / 1000, scene->springMassDynamicFactor());
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Row& last = result.rows.back();

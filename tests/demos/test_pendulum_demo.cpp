@@ -105,11 +105,11 @@ TEST(PendulumDemo, WritesAllOutputsForSeveralModeCounts) {
     }
     const std::string comparison = checkCsv(out / "comparison.csv", 7);
     EXPECT_EQ(comparison, "t,x_0,axial_force_payload_0,x_1,axial_force_payload_1");
-    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
-        for (const char* fig : {"fig2_payload_displacement.png", "fig3_static_axial_force.png",
-                                "fig4_payload_end_axial_force.png", "fig5_axial_force_difference.png"})
-            EXPECT_GT(fs::exists(out / fig) ? fs::file_size(out / fig) : 0u, 1000u) << fig;
-    }
+    if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "gnuplot not found: the four figures were not checked (the other checks above ran)";
+    for (const char* fig : {"fig2_payload_displacement.png", "fig3_static_axial_force.png",
+                            "fig4_payload_end_axial_force.png", "fig5_axial_force_difference.png"})
+        EXPECT_GT(fs::exists(out / fig) ? fs::file_size(out / fig) : 0u, 1000u) << fig;
 }
 
 TEST(PendulumDemo, SingleModeCountWritesDirectlyIntoOutDir) {

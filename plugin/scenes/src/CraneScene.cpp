@@ -44,6 +44,231 @@ void CraneParameters::validate() const {
     check("minimumSpanLength", minimumSpanLength, minimumSpanLength > 0, "> 0");
     if (!(initialHookDepth > minimumSpanLength))
         throw std::invalid_argument("CraneParameters: initialHookDepth must exceed minimumSpanLength");
+    if (scenario != CraneScenario::Cycle && scenario != CraneScenario::LiftOff)
+        throw std::invalid_argument("CraneParameters: scenario is not a CraneScenario");
+    check("hoistSpeed", hoistSpeed, hoistSpeed > 0, "> 0");
+    check("hoistRamp", hoistRamp, hoistRamp > 0, "> 0");
+    check("slackTime", slackTime, slackTime >= 0, ">= 0");
+    check("afterLiftOff", afterLiftOff, afterLiftOff > 0, "> 0");
+    check("floorStiffness", floorStiffness, floorStiffness > 0, "> 0");
+    check("floorDampingRatio", floorDampingRatio, floorDampingRatio >= 0, ">= 0");
+    check("slingStiffness", slingStiffness, slingStiffness > 0, "> 0");
+    check("slingDampingRatio", slingDampingRatio, slingDampingRatio >= 0, ">= 0");
+}
+
+namespace {
+
+bool isHookNode(int k) { return k % 2 == 1; }  // CraneScene::nodeOnHook
+
+// The reeving's layout in the trolley and hook frames, shared by the scene and CraneCycle::liftOff.
+struct CraneLayout {
+    std::vector<double> x;               // rope node offsets (k - n/2) pitch
+    std::vector<SimTK::Vec3> stations;   // node k in its body's frame
+    double hookRestOffset = 0;           // hook block below the trolley at rest, along x [m]
+};
+
+CraneLayout craneLayout(const CraneParameters& p) {
+    using SimTK::Vec3;
+    const int n = p.falls;
+    CraneLayout c;
+    // Rope node offsets (k - n/2) pitch; the hook block's shifted to their load centroid.
+    std::vector<double>& x = c.x;
+    x.resize(n + 1);
+    for (int k = 0; k <= n; ++k) x[k] = (k - 0.5 * n) * p.sheavePitch;
+    double sumW = 0, sumWx = 0;
+    for (int k = 1; k <= n; k += 2) {
+        const double w = k < n ? 2.0 : 1.0;
+        sumW += w;
+        sumWx += w * x[k];
+    }
+    const double hookCentroid = sumWx / sumW;
+    std::vector<Vec3>& stations = c.stations;
+    stations.resize(n + 1);
+    stations[0] = Vec3(0);  // drum axis, drum frame
+    for (int k = 1; k <= n; ++k) stations[k] = Vec3(isHookNode(k) ? x[k] - hookCentroid : x[k], 0, 0);
+
+    // Hook block's rest offset below the trolley: horizontal balance of n equal tensions,
+    // sum_k (top_x - bottom_x - X) / length_k = 0 with nearly vertical falls.
+    const double h = p.initialHookDepth;
+    double num = 0, den = 0;
+    for (int k = 0; k < n; ++k) {
+        const int top = isHookNode(k) ? k + 1 : k, bottom = isHookNode(k) ? k : k + 1;
+        const double topX = top == 0 ? x[0] : stations[top][0];
+        const double length = h + (top == 0 ? p.drumHeight : 0.0);
+        num += (topX - stations[bottom][0]) / length;
+        den += 1.0 / length;
+    }
+    c.hookRestOffset = num / den;
+    return c;
+}
+
+// The falls' summed length with the hook sheave centres `depth` below the trolley's, at the rest
+// offset [m].
+double fallsLengthAt(const CraneParameters& p, const CraneLayout& c, double depth) {
+    using SimTK::Vec3;
+    double geometric = 0;
+    for (int k = 0; k < p.falls; ++k) {
+        auto position = [&](int node) {
+            if (node == 0) return Vec3(c.x[0], p.drumHeight, 0);
+            return isHookNode(node) ? c.stations[node] + Vec3(c.hookRestOffset, -depth, 0) : c.stations[node];
+        };
+        geometric += (position(k + 1) - position(k)).norm();
+    }
+    return geometric;
+}
+
+double liftOffSlack(const CraneParameters& p) { return p.hoistSpeed * (0.5 * p.hoistRamp + p.slackTime); }
+
+// Where the rope takes the load: the hook at initialHookDepth (Cycle) or the slack higher (LiftOff).
+double loadDepth(const CraneParameters& p) {
+    return p.initialHookDepth - (p.scenario == CraneScenario::LiftOff ? liftOffSlack(p) : 0.0);
+}
+
+double hookStiffnessOf(const CraneParameters& p, double fallsLength) {
+    return p.falls * p.falls * p.EA / fallsLength;
+}
+
+// LiftOff's contacts (see the CraneScene class comment): the floor under the payload's two bottom
+// corners and the sling from the hook block's pin to the payload's lifting point. A ForceSubsystem
+// constructed before the ReevingSubsystem (whose coupled solve must see every applied force): it
+// applies their forces, holds their elastic energy as its potential energy and integrates the
+// power their dashpots dissipate in one Z entry (weight 1 / (1 J), as the MotionWorkMeter's).
+class LiftOffContactsGuts : public SimTK::ForceSubsystem::Guts {
+public:
+    struct Spec {
+        SimTK::MobilizedBodyIndex hook, payload;
+        SimTK::Vec3 corners[2];   // payload frame
+        SimTK::Vec3 pin, eye;     // sling ends: hook frame, payload frame
+        double floorY = 0, cornerStiffness = 0, cornerDamping = 0;
+        double slingLength = 0, slingStiffness = 0, slingDamping = 0;
+    };
+    explicit LiftOffContactsGuts(const Spec& spec) : SimTK::ForceSubsystem::Guts("CraneLiftOffContacts", "0.1"), c_(spec) {}
+    LiftOffContactsGuts* cloneImpl() const override { return new LiftOffContactsGuts(*this); }
+
+    // Floor: penetration d_i [m] (Stage::Position), its rate [m/s] and the force on corner i [N]
+    // (Stage::Velocity).
+    double penetration(const SimTK::State& s, int i) const {
+        return c_.floorY - payload().findStationLocationInGround(s, c_.corners[i])[1];
+    }
+    double penetrationRate(const SimTK::State& s, int i) const {
+        return -payload().findStationVelocityInGround(s, c_.corners[i])[1];
+    }
+    double cornerForce(const SimTK::State& s, int i) const {
+        const double d = penetration(s, i);
+        return d > 0 ? std::max(0.0, c_.cornerStiffness * d + c_.cornerDamping * penetrationRate(s, i)) : 0.0;
+    }
+    double floorForce(const SimTK::State& s) const { return cornerForce(s, 0) + cornerForce(s, 1); }
+    double lowestCornerHeight(const SimTK::State& s) const {
+        return -std::max(penetration(s, 0), penetration(s, 1));
+    }
+    // Sling: the pin-to-eye vector (Ground), its extension e [m] (Stage::Position), rate e' [m/s]
+    // and force f [N] (Stage::Velocity).
+    SimTK::Vec3 slingVector(const SimTK::State& s) const {
+        return hook().findStationLocationInGround(s, c_.pin) - payload().findStationLocationInGround(s, c_.eye);
+    }
+    double slingExtension(const SimTK::State& s) const { return slingVector(s).norm() - c_.slingLength; }
+    double slingRate(const SimTK::State& s) const {
+        const SimTK::Vec3 r = slingVector(s);
+        const SimTK::Vec3 v = hook().findStationVelocityInGround(s, c_.pin) - payload().findStationVelocityInGround(s, c_.eye);
+        return SimTK::dot(r, v) / r.norm();
+    }
+    double slingForce(const SimTK::State& s) const {
+        const double e = slingExtension(s);
+        return e > 0 ? std::max(0.0, c_.slingStiffness * e + c_.slingDamping * slingRate(s)) : 0.0;
+    }
+    // The dashpots' power [W], >= 0 (Stage::Velocity).
+    double dissipatedPower(const SimTK::State& s) const {
+        double p = 0;
+        for (int i = 0; i < 2; ++i) {
+            const double d = penetration(s, i);
+            if (d > 0) p += (cornerForce(s, i) - c_.cornerStiffness * d) * penetrationRate(s, i);
+        }
+        const double e = slingExtension(s);
+        if (e > 0) p += (slingForce(s) - c_.slingStiffness * e) * slingRate(s);
+        return p;
+    }
+    double getDissipation(const SimTK::State& s) const { return getZ(s)[0]; }
+    void setDissipation(SimTK::State& s, double w) const { updZ(s)[0] = w; }
+
+    SimTK::Real calcPotentialEnergy(const SimTK::State& s) const override {
+        double u = 0;
+        for (int i = 0; i < 2; ++i) {
+            const double d = penetration(s, i);
+            if (d > 0) u += 0.5 * c_.cornerStiffness * d * d;
+        }
+        const double e = slingExtension(s);
+        if (e > 0) u += 0.5 * c_.slingStiffness * e * e;
+        return u;
+    }
+    int realizeSubsystemTopologyImpl(SimTK::State& s) const override {
+        allocateZ(s, SimTK::Vector(1, 0.0));
+        return 0;
+    }
+    int realizeSubsystemDynamicsImpl(const SimTK::State& s) const override {
+        SimTK::Vector_<SimTK::SpatialVec>& forces = mbs().updRigidBodyForces(s, SimTK::Stage::Dynamics);
+        for (int i = 0; i < 2; ++i) {
+            const double f = cornerForce(s, i);
+            if (f > 0) payload().applyForceToBodyPoint(s, c_.corners[i], SimTK::Vec3(0, f, 0), forces);
+        }
+        const double f = slingForce(s);
+        if (f > 0) {
+            const SimTK::Vec3 r = slingVector(s), pull = f * r / r.norm();  // on the payload, towards the pin
+            payload().applyForceToBodyPoint(s, c_.eye, pull, forces);
+            hook().applyForceToBodyPoint(s, c_.pin, -pull, forces);
+        }
+        return 0;
+    }
+    int realizeSubsystemAccelerationImpl(const SimTK::State& s) const override {
+        updZDot(s)[0] = dissipatedPower(s);
+        return 0;
+    }
+    // The sling's legs, from the pin to the payload's top corners (drawing only).
+    int calcDecorativeGeometryAndAppendImpl(const SimTK::State& s, SimTK::Stage stage,
+                                            SimTK::Array_<SimTK::DecorativeGeometry>& geometry) const override {
+        if (stage != SimTK::Stage::Position) return 0;
+        const SimTK::Vec3 pin = hook().findStationLocationInGround(s, c_.pin);
+        for (double side : {-0.4, 0.4}) {
+            const SimTK::Vec3 corner(side * 2.0 * std::abs(c_.corners[0][0]), c_.eye[1], 0);
+            geometry.push_back(SimTK::DecorativeLine(pin, payload().findStationLocationInGround(s, corner))
+                                   .setColor(SimTK::Vec3(0.2, 0.2, 0.2))
+                                   .setLineThickness(3));
+        }
+        return 0;
+    }
+
+private:
+    const SimTK::MultibodySystem& mbs() const { return SimTK::MultibodySystem::downcast(getSystem()); }
+    const SimTK::MobilizedBody& hook() const { return mbs().getMatterSubsystem().getMobilizedBody(c_.hook); }
+    const SimTK::MobilizedBody& payload() const { return mbs().getMatterSubsystem().getMobilizedBody(c_.payload); }
+    Spec c_;
+};
+
+class LiftOffContacts : public SimTK::ForceSubsystem {
+public:
+    LiftOffContacts(SimTK::MultibodySystem& system, const LiftOffContactsGuts::Spec& spec) {
+        adoptSubsystemGuts(new LiftOffContactsGuts(spec));
+        system.addForceSubsystem(*this);
+    }
+};
+
+const LiftOffContactsGuts& contactsGuts(const SimTK::ForceSubsystem& sub) {
+    return static_cast<const LiftOffContactsGuts&>(sub.getSubsystemGuts());
+}
+
+}  // namespace
+
+const char* toString(CraneScenario scenario) {
+    switch (scenario) {
+        case CraneScenario::Cycle: return "cycle";
+        case CraneScenario::LiftOff: return "lift-off";
+    }
+    return "?";
+}
+
+CraneScenario craneScenarioFromString(const std::string& name) {
+    for (CraneScenario s : {CraneScenario::Cycle, CraneScenario::LiftOff})
+        if (name == toString(s)) return s;
+    throw std::invalid_argument("crane scenario '" + name + "' is not one of cycle, lift-off");
 }
 
 CraneCycle CraneCycle::liftTraverseLower(double lift, double traverse) {
@@ -51,6 +276,25 @@ CraneCycle CraneCycle::liftTraverseLower(double lift, double traverse) {
     c.hoist.moves = {{1.0, 9.0, 2.0, lift}, {23.5, 9.0, 2.0, -lift}};
     c.traverse.moves = {{10.5, 12.0, 3.0, traverse}};
     c.duration = 36.0;
+    return c;
+}
+
+CraneCycle CraneCycle::liftOff(const CraneParameters& p) {
+    p.validate();
+    CraneParameters q = p;
+    q.scenario = CraneScenario::LiftOff;
+    const double k = hookStiffnessOf(q, fallsLengthAt(q, craneLayout(q), loadDepth(q)));
+    // The sling is taut at t_taut; the rope's force then grows from the hook block's weight by
+    // k v_h per second until it carries the payload too.
+    const double taut = p.hoistRamp + p.slackTime;
+    const double liftOffTime = taut + p.payloadMass * p.g / (k * p.hoistSpeed);
+    const double bouncePeriod = 2.0 * SimTK::Pi * std::sqrt((p.payloadMass + p.hookMass) / k);
+    CraneCycle c;
+    c.duration = liftOffTime + p.afterLiftOff * bouncePeriod;
+    // One move from t = 0 whose hold phase lasts to the cycle's end: duration - ramp of the move
+    // = c.duration, peak speed v_h.
+    const double moveDuration = c.duration + p.hoistRamp;
+    c.hoist.moves = {{0.0, moveDuration, p.hoistRamp, p.hoistSpeed * c.duration}};
     return c;
 }
 
@@ -67,40 +311,27 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     cycle.validate();
     using namespace SimTK;
     const int n = p.falls;
+    const bool liftOff = p.scenario == CraneScenario::LiftOff;
 
-    // Rope node offsets (k - n/2) pitch; the hook block's shifted to their load centroid.
-    std::vector<double> x(n + 1);
-    for (int k = 0; k <= n; ++k) x[k] = (k - 0.5 * n) * p.sheavePitch;
-    double sumW = 0, sumWx = 0;
-    for (int k = 1; k <= n; k += 2) {
-        const double w = k < n ? 2.0 : 1.0;
-        sumW += w;
-        sumWx += w * x[k];
+    if (liftOff) {
+        // The slack v_h (hoistRamp / 2 + slackTime) must leave the falls and the sling some length.
+        std::ostringstream o;
+        o << "CraneParameters: lift-off: the slack hoistSpeed (hoistRamp / 2 + slackTime) = " << liftOffSlack(p) << " m";
+        if (!(loadDepth(p) > p.minimumSpanLength))
+            throw std::invalid_argument(o.str() + " must be less than initialHookDepth - minimumSpanLength");
+        if (!(p.slingLength - 0.5 * p.payloadHeight - liftOffSlack(p) > 0))
+            throw std::invalid_argument(o.str() + " must be less than the sling's length, slingLength - payloadHeight / 2");
     }
-    const double hookCentroid = sumWx / sumW;
-    stations_.resize(n + 1);
-    stations_[0] = Vec3(0);  // drum axis, drum frame
-    for (int k = 1; k <= n; ++k) stations_[k] = Vec3(nodeOnHook(k) ? x[k] - hookCentroid : x[k], 0, 0);
-
-    // Hook block's rest offset below the trolley: horizontal balance of n equal tensions,
-    // sum_k (top_x - bottom_x - X) / length_k = 0 with nearly vertical falls.
-    const double h = p.initialHookDepth;
-    double num = 0, den = 0;
-    for (int k = 0; k < n; ++k) {
-        const int top = nodeOnHook(k) ? k + 1 : k, bottom = nodeOnHook(k) ? k : k + 1;
-        const double topX = top == 0 ? x[0] : stations_[top][0];
-        const double length = h + (top == 0 ? p.drumHeight : 0.0);
-        num += (topX - stations_[bottom][0]) / length;
-        den += 1.0 / length;
-    }
-    hookRestOffset_ = num / den;
+    const CraneLayout layout = craneLayout(p);
+    const std::vector<double>& x = layout.x;
+    stations_ = layout.stations;
+    hookRestOffset_ = layout.hookRestOffset;
+    fallsLength_ = fallsLengthAt(p, layout, loadDepth(p));
 
     system_ = std::make_unique<MultibodySystem>();
     matter_ = std::make_unique<SimbodyMatterSubsystem>(*system_);
     forces_ = std::make_unique<GeneralForceSubsystem>(*system_);
     gravity_ = std::make_unique<Force::Gravity>(*forces_, *matter_, Vec3(0, -p.g, 0));
-    reeving_ = std::make_unique<ReevingSubsystem>(*system_, Vec3(0, -p.g, 0));
-    workMeter_ = std::make_unique<MotionWorkMeter>(*system_);
 
     // Trolley: slides along Ground's x at rail height. Its inertia only matters to the drive.
     const Body::Rigid trolleyBody(MassProperties(p.trolleyMass, Vec3(0), Inertia(p.trolleyMass)));
@@ -115,10 +346,37 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     const Body::Rigid hookBody(MassProperties(p.hookMass, Vec3(0, -p.hookComBelow, 0),
                                               Inertia(p.hookInertia).shiftFromMassCenter(Vec3(0, -p.hookComBelow, 0), p.hookMass)));
     hook_ = std::make_unique<MobilizedBody::Planar>(matter_->updGround(), Transform(), hookBody, Transform());
-    // Payload: a Pin under the sling pin, frame origin at its centre of mass.
+    // Payload, frame origin at its centre of mass: a Pin under the sling pin; lift-off: planar
+    // from Ground, on the floor, hung from the hook block by the sling.
     const Body::Rigid payloadBody(MassProperties(p.payloadMass, Vec3(0), Inertia(p.payloadInertia)));
-    payload_ = std::make_unique<MobilizedBody::Pin>(*hook_, Transform(Vec3(0, -p.hookPinBelow, 0)), payloadBody,
-                                                    Transform(Vec3(0, p.slingLength, 0)));
+    if (!liftOff)
+        payload_ = std::make_unique<MobilizedBody>(MobilizedBody::Pin(*hook_, Transform(Vec3(0, -p.hookPinBelow, 0)),
+                                                                      payloadBody, Transform(Vec3(0, p.slingLength, 0))));
+    else
+        payload_ = std::make_unique<MobilizedBody>(MobilizedBody::Planar(matter_->updGround(), Transform(), payloadBody, Transform()));
+
+    // Lift-off: the floor under the payload's bottom (the hook at its initial depth, the sling
+    // slack by ropeSlack) and the sling. A force subsystem of its own, constructed before the
+    // ReevingSubsystem (which must come after every force subsystem that applies forces).
+    if (liftOff) {
+        floorHeight_ = p.railHeight - p.initialHookDepth - p.hookPinBelow - p.slingLength + ropeSlack() - 0.5 * p.payloadHeight;
+        LiftOffContactsGuts::Spec c;
+        c.hook = hook_->getMobilizedBodyIndex();
+        c.payload = payload_->getMobilizedBodyIndex();
+        c.corners[0] = Vec3(-0.5 * p.payloadWidth, -0.5 * p.payloadHeight, 0);
+        c.corners[1] = Vec3(0.5 * p.payloadWidth, -0.5 * p.payloadHeight, 0);
+        c.pin = Vec3(0, -p.hookPinBelow, 0);
+        c.eye = Vec3(0, 0.5 * p.payloadHeight, 0);
+        c.floorY = floorHeight_;
+        c.cornerStiffness = 0.5 * p.floorStiffness;
+        c.cornerDamping = p.floorDampingRatio * std::sqrt(p.floorStiffness * p.payloadMass);  // half of 2 zeta sqrt(k M)
+        c.slingLength = p.slingLength - 0.5 * p.payloadHeight;
+        c.slingStiffness = p.slingStiffness;
+        c.slingDamping = 2.0 * p.slingDampingRatio * std::sqrt(p.slingStiffness * p.hookMass);
+        contacts_ = std::make_unique<LiftOffContacts>(*system_, c);
+    }
+    reeving_ = std::make_unique<ReevingSubsystem>(*system_, Vec3(0, -p.g, 0));
+    workMeter_ = std::make_unique<MotionWorkMeter>(*system_);
 
     addDecorations();
 
@@ -143,17 +401,11 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     rope.end = deadEnd;
     rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     // Unstretched length: the falls' lengths with the hook at its initial depth, shortened by the
-    // stretch of the static tension (M g / n per fall).
-    double geometric = 0;
-    for (int k = 0; k < n; ++k) {
-        auto position = [&](int node) {
-            if (node == 0) return Vec3(x[0], p.drumHeight, 0);
-            return nodeOnHook(node) ? stations_[node] + Vec3(hookRestOffset_, -h, 0) : stations_[node];
-        };
-        geometric += (position(k + 1) - position(k)).norm();
-    }
+    // stretch of the static tension (M g / n per fall; lift-off: the hook block's weight alone).
+    const double geometric = fallsLengthAt(p, layout, p.initialHookDepth);
     const double tension = (p.payloadMass + p.hookMass) * p.g / n;
-    rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * tension / p.EA);
+    const double hanging = liftOff ? p.hookMass * p.g / n : tension;
+    rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * hanging / p.EA);
     rope.spanDefaults = spans;
     rope.planeNormal = Vec3(0, 0, 1);
     rope.minimumSpanLength = p.minimumSpanLength;
@@ -208,6 +460,11 @@ void CraneScene::addDecorations() {
         matter_->updGround().addBodyDecoration(
             Transform(Vec3(0.5 * (railA + railB) + midX, p.railHeight + top + 0.45, sz)),
             DecorativeBrick(Vec3(0.5 * (railB - railA), 0.07, 0.07)).setColor(steel));
+    // Lift-off: the floor slab the payload stands on (its top at floorHeight).
+    if (std::isfinite(floorHeight_))
+        matter_->updGround().addBodyDecoration(
+            Transform(Vec3(p.trolleyX0 + hookRestOffset_, floorHeight_ - 0.1, 0)),
+            DecorativeBrick(Vec3(0.5 * p.payloadWidth + 1.5, 0.1, 1.2)).setColor(Vec3(0.45, 0.42, 0.38)));
     // Hook block: side plate behind its sheaves, shank down to the sling pin, the pin.
     const Vec3 yellow(0.95, 0.75, 0.1);
     const double plateHalf = 0.5 * (hookMax - hookMin) + p.sheaveRadius + 0.12;
@@ -221,8 +478,9 @@ void CraneScene::addDecorations() {
     // Payload: its block, slung by two legs from the pin to its top corners.
     payload_->addBodyDecoration(Transform(), DecorativeBrick(Vec3(0.5 * p.payloadWidth, 0.5 * p.payloadHeight, 0.6))
                                                  .setColor(Vec3(0.2, 0.6, 0.3)));
+    // (Lift-off: the sling's legs are drawn by its subsystem, between the bodies.)
     for (double sx : {-0.4, 0.4})
-        payload_->addBodyDecoration(Transform(), DecorativeLine(Vec3(0, p.slingLength, 0),
+        if (!contacts_) payload_->addBodyDecoration(Transform(), DecorativeLine(Vec3(0, p.slingLength, 0),
                                                                 Vec3(sx * p.payloadWidth, 0.5 * p.payloadHeight, 0))
                                                      .setColor(Vec3(0.2, 0.2, 0.2))
                                                      .setLineThickness(3));
@@ -234,12 +492,20 @@ SimTK::State CraneScene::makeInitialState() const {
     State s = system_->getDefaultState();
     s.setTime(0);
     hook_->setQToFitTransform(s, Transform(Vec3(p.trolleyX0 + hookRestOffset_, p.railHeight - p.initialHookDepth, 0)));
-    payload_->setQ(s, 0);
+    if (contacts_) {
+        // On the floor, pressed in by its weight (the equilibrium's first guess), under the pin.
+        const double sink = p.payloadMass * p.g / p.floorStiffness;
+        payload_->setQToFitTransform(
+            s, Transform(Vec3(p.trolleyX0 + hookRestOffset_, floorHeight_ + 0.5 * p.payloadHeight - sink, 0)));
+    } else {
+        payload_->setOneQ(s, 0, 0.0);
+    }
     system_->realize(s, Stage::Time);
     system_->prescribe(s);
     reeving_->findStaticEquilibrium(s, 1e-9);
     system_->prescribe(s);
     workMeter_->setWork(s, 0);
+    if (contacts_) contactsGuts(*contacts_).setDissipation(s, 0);
     system_->realize(s, Stage::Velocity);
     return s;
 }
@@ -276,6 +542,44 @@ double CraneScene::motorTorque(const SimTK::State& s) const {
 
 double CraneScene::trolleyForce(const SimTK::State& s) const {
     return -trolley_->getOneTau(s, SimTK::MobilizerUIndex(0));
+}
+
+double CraneScene::ropeForce(const SimTK::State& s) const {
+    double f = 0;
+    for (int k = 0; k < parameters_.falls; ++k) f += fallTopForce(s, k);
+    return f;
+}
+
+double CraneScene::hookStiffness() const { return hookStiffnessOf(parameters_, fallsLength_); }
+
+double CraneScene::staticRopeForce() const {
+    const CraneParameters& p = parameters_;
+    return liftedMass() * p.g + p.rhoA * p.g * fallsLength_;
+}
+
+double CraneScene::springMassDynamicFactor() const {
+    const CraneParameters& p = parameters_;
+    return 1.0 + p.hoistSpeed * std::sqrt(hookStiffness() / liftedMass()) / p.g;
+}
+
+double CraneScene::ropeSlack() const {
+    return parameters_.scenario == CraneScenario::LiftOff ? liftOffSlack(parameters_) : 0.0;
+}
+
+double CraneScene::floorForce(const SimTK::State& s) const { return contacts_ ? contactsGuts(*contacts_).floorForce(s) : 0.0; }
+
+double CraneScene::slingForce(const SimTK::State& s) const { return contacts_ ? contactsGuts(*contacts_).slingForce(s) : 0.0; }
+
+double CraneScene::payloadClearance(const SimTK::State& s) const {
+    return contacts_ ? contactsGuts(*contacts_).lowestCornerHeight(s) : SimTK::NaN;
+}
+
+double CraneScene::contactDissipation(const SimTK::State& s) const {
+    return contacts_ ? contactsGuts(*contacts_).getDissipation(s) : 0.0;
+}
+
+double CraneScene::energyResidual(const SimTK::State& s, double e0) const {
+    return reeving_->calcMechanicalEnergy(s) - e0 + contactDissipation(s) - workMeter_->getWork(s);
 }
 
 std::vector<SimTK::Vec3> CraneScene::nodePositions(const SimTK::State& s) const {
