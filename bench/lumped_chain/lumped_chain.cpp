@@ -17,6 +17,7 @@
 //   run     one simulation; writes the sampled observables (t, x, y, P) and a header line with
 //           wall time, steps, energy drift to --out.
 //   analyze reads run files, a reference, writes errors, Pareto fronts, speed ratios.
+//   ratios  the fronts and speed ratios again from analyze's lumped_chain_runs.csv (no run files).
 //   static  prints the static end force of both models against the continuum (no integration).
 
 #include "SimbodyReeving/simbody/Integrators.h"
@@ -502,6 +503,157 @@ Errors errorsAgainst(const RunFile& r, const RunFile& ref) {
     return e;
 }
 
+// One timed run of the sweep with its errors against the reference (a row of lumped_chain_runs.csv).
+struct Row {
+    std::string model, label, integ, status;
+    double acc = 0, wall = 0, drift = 0;
+    long steps = 0;
+    Errors e;
+};
+
+// The chain's segment count N of a label "N=50" (0 for an ALE label).
+int chainSegments(const std::string& label) { return label.rfind("N=", 0) == 0 ? std::stoi(label.substr(2)) : 0; }
+
+// Pareto fronts, the speed ratios at equal error, printed and written to outDir: lumped_chain_pareto.csv,
+// front_<model>_<observable>.dat (the plot's), lumped_chain_ratios.csv.
+void writeFrontsAndRatios(const std::vector<Row>& rows, const std::string& outDir) {
+    // Pareto fronts (complete runs only): for each model and observable, the points not dominated in
+    // (wall, error).
+    struct Point {
+        double wall, err;
+        std::string label;
+    };
+    std::ofstream pf(outDir + "/lumped_chain_pareto.csv");
+    pf << "model,observable,discretization,integrator,accuracy,wall_s,error\n";
+    std::map<std::string, std::vector<Point>> fronts;  // key model|obs
+    // Observables: 0 position, 1 end force P = EA eps (the models' strain at the end), 2 end force from
+    // the force on the payload (ALE: getNodeForce; for the chain the same as 1).
+    const char* obsKey[] = {"pos", "force", "nodeforce"};
+    const char* obsName[] = {"position", "force", "node-force"};
+    for (const std::string model : {"chain", "ale"}) {
+        for (int obs = 0; obs < 3; ++obs) {
+            if (model == "chain" && obs == 2) continue;
+            std::vector<const Row*> cand;
+            for (const auto& r : rows)
+                if (r.model == model && r.status == "ok") cand.push_back(&r);
+            std::sort(cand.begin(), cand.end(), [](const Row* x, const Row* y) { return x->wall < y->wall; });
+            double best = INFINITY;
+            std::vector<Point> front;
+            for (const Row* r : cand) {
+                const double err = obs == 0 ? r->e.pos : obs == 1 ? r->e.force : r->e.forceNode;
+                if (err < 0.999 * best) {  // a real improvement, not round-off
+                    best = err;
+                    front.push_back({r->wall, err, r->label});
+                    pf << model << "," << obsName[obs] << "," << r->label << "," << r->integ << "," << r->acc << ","
+                       << r->wall << "," << err << "\n";
+                }
+            }
+            fronts[model + "|" + obsKey[obs]] = front;
+            std::ofstream dat(outDir + "/front_" + model + "_" + obsKey[obs] + ".dat");
+            for (auto& pt : front) dat << pt.wall << "," << pt.err << "\n";
+        }
+    }
+    // Wall time to reach an error level along a front: log-log interpolation between the two front
+    // points bracketing it; the first point if already below (then an upper bound of the wall needed);
+    // NaN if never reached.
+    auto wallAt = [](const std::vector<Point>& f, double level) -> double {
+        if (f.empty()) return std::nan("");
+        if (f.front().err <= level) return f.front().wall;
+        for (size_t i = 1; i < f.size(); ++i) {
+            if (f[i].err <= level) {
+                const double lw0 = std::log(f[i - 1].wall), lw1 = std::log(f[i].wall);
+                const double le0 = std::log(f[i - 1].err), le1 = std::log(f[i].err);
+                const double t = (std::log(level) - le0) / (le1 - le0);
+                return std::exp(lw0 + t * (lw1 - lw0));
+            }
+        }
+        return std::nan("");
+    };
+    // A level the chain's front does not reach: the segments it needs, from the order of convergence of
+    // the front's last two points (error ~ N^-p), and
+    // - a lower bound of its wall: the front's most accurate run (a finer chain costs more), or a run that
+    //   hit the time cap with no more segments than needed (its cap), whichever is larger;
+    // - an estimate: the most accurate run's wall times (N_needed / N)^2 (the chain's explicit steps are
+    //   stability-limited, so steps and the work per step both grow like N).
+    struct ChainBound {
+        double needed = std::nan(""), lower = std::nan(""), estimate = std::nan("");
+        std::string why;
+    };
+    auto chainBound = [&](const std::vector<Point>& f, double level) {
+        ChainBound b;
+        if (f.size() < 2) return b;
+        const Point& p1 = f[f.size() - 2];
+        const Point& p2 = f.back();
+        const int n1 = chainSegments(p1.label), n2 = chainSegments(p2.label);
+        if (n1 <= 0 || n2 <= n1) return b;
+        const double order = std::log(p1.err / p2.err) / std::log(double(n2) / n1);
+        b.needed = n2 * std::pow(p2.err / level, 1.0 / order);
+        b.lower = p2.wall;
+        b.why = "the most accurate chain run, " + p2.label;
+        for (const auto& r : rows)
+            if (r.model == "chain" && r.status != "ok" && chainSegments(r.label) <= b.needed && r.wall > b.lower) {
+                b.lower = r.wall;
+                b.why = "the chain " + r.label + " hit the " + std::to_string(int(std::lround(r.wall))) + " s cap";
+            }
+        b.estimate = p2.wall * std::pow(b.needed / n2, 2.0);
+        return b;
+    };
+    std::ofstream ratios(outDir + "/lumped_chain_ratios.csv");
+    ratios << "observable,level,chain_wall_s,chain_wall_kind,chain_segments_needed,chain_wall_estimate_s,ale_wall_s,"
+              "ratio_chain_over_ale,ale_nodeforce_wall_s,ratio_chain_over_ale_nodeforce,ratio_estimate\n";
+    // The four levels first, then intermediate ones both models reach.
+    const std::vector<std::pair<std::string, double>> levels{{"pos", 1e-4}, {"pos", 1e-6},  {"force", 1.0},
+                                                             {"force", 0.01}, {"pos", 1e-5}, {"force", 10.0},
+                                                             {"force", 5.0}, {"force", 3.0}, {"force", 0.1}};
+    for (const auto& kv : fronts)
+        if (!kv.second.empty())
+            std::cout << kv.first << ": best error " << kv.second.back().err << " at " << kv.second.back().wall
+                      << " s\n";
+    auto fmt = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.4g", v);
+        return std::string(buf);
+    };
+    for (const auto& lv : levels) {
+        const auto& chainFront = fronts["chain|" + lv.first];
+        double wc = wallAt(chainFront, lv.second);
+        const bool reached = !std::isnan(wc);
+        const ChainBound b = reached ? ChainBound{} : chainBound(chainFront, lv.second);
+        if (!reached) wc = b.lower;
+        const double wa = wallAt(fronts["ale|" + lv.first], lv.second);
+        const double wn = lv.first == "force" ? wallAt(fronts["ale|nodeforce"], lv.second) : std::nan("");
+        const double bestAle = std::isnan(wn) ? wa : std::isnan(wa) ? wn : std::min(wa, wn);
+        ratios << lv.first << "," << lv.second << "," << wc << "," << (reached ? "interpolated" : "lower_bound") << ","
+               << b.needed << "," << b.estimate << "," << wa << "," << wc / wa << "," << wn << "," << wc / wn << ","
+               << b.estimate / bestAle << "\n";
+        // A lower bound where the chain did not reach the level, or where the ALE's cheapest run is
+        // already below it (its wall then bounds the ALE's cost from above).
+        auto atFloor = [&](const std::string& key) {
+            const auto& f = fronts[key];
+            return !f.empty() && f.front().err <= lv.second;
+        };
+        const std::string rel = !reached ? "> " : atFloor("ale|" + lv.first) ? ">= " : "";
+        const std::string relNode = !reached ? "> " : atFloor("ale|nodeforce") ? ">= " : "";
+        std::cout << lv.first << " error " << lv.second << ": chain ";
+        if (reached)
+            std::cout << fmt(wc) << " s";
+        else if (!std::isnan(wc))
+            std::cout << "not reached in the sweep, > " << fmt(wc) << " s (" << b.why << "; about N = "
+                      << fmt(b.needed) << " needed, ~" << fmt(b.estimate) << " s estimated)";
+        else
+            std::cout << "not reached";
+        if (!std::isnan(wa) || lv.first == "pos")
+            std::cout << ", ale " << (std::isnan(wa) ? "not reached" : fmt(wa) + " s") << ", ratio "
+                      << (std::isnan(wc / wa) ? "-" : rel + fmt(wc / wa));
+        else
+            std::cout << ", ale from the strain not reached";
+        if (lv.first == "force")
+            std::cout << "; ale from the node force " << fmt(wn) << " s, ratio " << relNode << fmt(wc / wn);
+        if (!reached && !std::isnan(b.estimate)) std::cout << " (estimate ~" << fmt(b.estimate / bestAle) << ")";
+        std::cout << "\n";
+    }
+}
+
 // analyze --ref FILE --out-dir DIR file...   (files given after "--files")
 int cmdAnalyze(int argc, char** argv) {
     std::string refPath, outDir = ".";
@@ -522,12 +674,6 @@ int cmdAnalyze(int argc, char** argv) {
         }
     }
     const RunFile ref = readRun(refPath);
-    struct Row {
-        std::string model, label, integ, status;
-        double acc, wall, drift;
-        long steps;
-        Errors e;
-    };
     std::vector<Row> rows;
     for (const auto& path : files) {
         RunFile r = readRun(path);
@@ -551,76 +697,49 @@ int cmdAnalyze(int argc, char** argv) {
     for (const auto& r : rows)
         all << r.model << "," << r.label << "," << r.integ << "," << r.acc << "," << r.status << "," << r.wall
             << "," << r.steps << "," << r.e.pos << "," << r.e.force << "," << r.drift << "," << r.e.forceNode << "\n";
+    writeFrontsAndRatios(rows, outDir);
+    return 0;
+}
 
-    // Pareto fronts (complete runs only): for each model and observable, the points not dominated in
-    // (wall, error).
-    std::ofstream pf(outDir + "/lumped_chain_pareto.csv");
-    pf << "model,observable,discretization,integrator,accuracy,wall_s,error\n";
-    std::map<std::string, std::vector<std::pair<double, double>>> fronts;  // key model|obs -> (wall, err)
-    // Observables: 0 position, 1 end force P = EA eps (the models' strain at the end), 2 end force from
-    // the force on the payload (ALE: getNodeForce; for the chain the same as 1).
-    const char* obsKey[] = {"pos", "force", "nodeforce"};
-    const char* obsName[] = {"position", "force", "node-force"};
-    for (const std::string model : {"chain", "ale"}) {
-        for (int obs = 0; obs < 3; ++obs) {
-            if (model == "chain" && obs == 2) continue;
-            std::vector<const Row*> cand;
-            for (const auto& r : rows)
-                if (r.model == model && r.status == "ok") cand.push_back(&r);
-            std::sort(cand.begin(), cand.end(), [](const Row* x, const Row* y) { return x->wall < y->wall; });
-            double best = INFINITY;
-            std::vector<std::pair<double, double>> front;
-            for (const Row* r : cand) {
-                const double err = obs == 0 ? r->e.pos : obs == 1 ? r->e.force : r->e.forceNode;
-                if (err < 0.999 * best) {  // a real improvement, not round-off
-                    best = err;
-                    front.push_back({r->wall, err});
-                    pf << model << "," << obsName[obs] << "," << r->label << "," << r->integ << "," << r->acc << ","
-                       << r->wall << "," << err << "\n";
-                }
-            }
-            fronts[model + "|" + obsKey[obs]] = front;
-            std::ofstream dat(outDir + "/front_" + model + "_" + obsKey[obs] + ".dat");
-            for (auto& pt : front) dat << pt.first << "," << pt.second << "\n";
-        }
+// ratios RUNS_CSV [--out-dir DIR]: the fronts and speed ratios again from a lumped_chain_runs.csv that
+// `analyze` wrote (no run files needed; default DIR: the CSV's folder).
+int cmdRatios(int argc, char** argv) {
+    if (argc < 3) throw std::invalid_argument("ratios RUNS_CSV [--out-dir DIR]");
+    const std::string path = argv[2];
+    std::string outDir = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
+    for (int i = 3; i < argc; ++i) {
+        const std::string k = argv[i];
+        if (k == "--out-dir" && i + 1 < argc)
+            outDir = argv[++i];
+        else
+            throw std::invalid_argument("ratios: unexpected " + k);
     }
-    // Wall time to reach an error level along a front: log-log interpolation between the two front
-    // points bracketing it; the first point if already below; NaN if never reached.
-    auto wallAt = [](const std::vector<std::pair<double, double>>& f, double level) -> double {
-        if (f.empty()) return std::nan("");
-        if (f.front().second <= level) return f.front().first;
-        for (size_t i = 1; i < f.size(); ++i) {
-            if (f[i].second <= level) {
-                const double lw0 = std::log(f[i - 1].first), lw1 = std::log(f[i].first);
-                const double le0 = std::log(f[i - 1].second), le1 = std::log(f[i].second);
-                const double t = (std::log(level) - le0) / (le1 - le0);
-                return std::exp(lw0 + t * (lw1 - lw0));
-            }
-        }
-        return NAN;
-    };
-    std::ofstream ratios(outDir + "/lumped_chain_ratios.csv");
-    ratios << "observable,level,chain_wall_s,ale_wall_s,ratio_chain_over_ale,ale_nodeforce_wall_s,"
-              "ratio_chain_over_ale_nodeforce\n";
-    // The four levels first, then intermediate ones both models reach.
-    const std::vector<std::pair<std::string, double>> levels{{"pos", 1e-4}, {"pos", 1e-6}, {"force", 1.0},
-                                                             {"force", 0.01}, {"pos", 1e-5}, {"force", 10.0},
-                                                             {"force", 5.0}, {"force", 3.0}};
-    for (const auto& kv : fronts)
-        if (!kv.second.empty())
-            std::cout << kv.first << ": best error " << kv.second.back().second << " at " << kv.second.back().first
-                      << " s\n";
-    for (const auto& lv : levels) {
-        const double wc = wallAt(fronts["chain|" + lv.first], lv.second);
-        const double wa = wallAt(fronts["ale|" + lv.first], lv.second);
-        const double wn = lv.first == "force" ? wallAt(fronts["ale|nodeforce"], lv.second) : std::nan("");
-        ratios << lv.first << "," << lv.second << "," << wc << "," << wa << "," << wc / wa << "," << wn << ","
-               << wc / wn << "\n";
-        std::cout << lv.first << " error " << lv.second << ": chain " << wc << " s, ale " << wa << " s, ratio "
-                  << wc / wa;
-        if (lv.first == "force") std::cout << "; ale from the node force " << wn << " s, ratio " << wc / wn;
-        std::cout << "\n";
+    std::ifstream f(path);
+    if (!f) throw std::runtime_error("cannot read " + path);
+    std::string line;
+    std::getline(f, line);  // header
+    std::vector<Row> rows;
+    while (std::getline(f, line)) {
+        if (line.empty()) continue;
+        std::vector<std::string> c;
+        std::stringstream ss(line);
+        for (std::string cell; std::getline(ss, cell, ',');) c.push_back(cell);
+        if (c.size() < 11) throw std::runtime_error(path + ": a row with fewer than 11 columns: " + line);
+        Row r;
+        r.model = c[0];
+        r.label = c[1];
+        r.integ = c[2];
+        r.acc = std::stod(c[3]);
+        r.status = c[4];
+        r.wall = std::stod(c[5]);
+        r.steps = std::stol(c[6]);
+        r.e.pos = std::stod(c[7]);
+        r.e.force = std::stod(c[8]);
+        r.drift = std::stod(c[9]);
+        r.e.forceNode = std::stod(c[10]);
+        rows.push_back(r);
     }
+    writeFrontsAndRatios(rows, outDir);
     return 0;
 }
 
@@ -710,12 +829,14 @@ int main(int argc, char** argv) {
                          "  run --model chain|chain-linear|ale [--N n] [--na n --nt n] --integrator name\n"
                          "      --accuracy a [--tend 20] [--cap 120] [--repeats 3] [--repeat-below 20] --out file\n"
                          "  analyze --ref file --out-dir dir --files f...\n"
+                         "  ratios lumped_chain_runs.csv [--out-dir dir]   (fronts and speed ratios from analyze's table)\n"
                          "  compare A B | richardson FINE COARSE ratio order OUT | static\n";
             return 2;
         }
         const std::string cmd = argv[1];
         if (cmd == "run") return cmdRun(parseArgs(argc, argv, 2));
         if (cmd == "analyze") return cmdAnalyze(argc, argv);
+        if (cmd == "ratios") return cmdRatios(argc, argv);
         if (cmd == "compare") return cmdCompare(argc, argv);
         if (cmd == "richardson") return cmdRichardson(argc, argv);
         if (cmd == "compose-ref") return cmdComposeRef(argc, argv);

@@ -7,10 +7,14 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build=${1:-$root/build-chain}
 runs=${2:-$build/lumped_chain_runs}
-stage=${STAGE:-all}   # all | ref | sweep | analyze
+stage=${STAGE:-all}   # all | ref | sweep | analyze | ratios (the speed ratios from results/lumped_chain_runs.csv)
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j1 --target bench-lumped-chain >/dev/null
 B=$build/bench/bench-lumped-chain
+if [[ $stage == ratios ]]; then
+  "$B" ratios "$here/results/lumped_chain_runs.csv" | tee "$here/results/ratios.txt"
+  exit 0
+fi
 mkdir -p "$runs"
 
 run() {  # run <file> <args...>

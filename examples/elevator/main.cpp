@@ -38,7 +38,8 @@ struct Options {
     std::string integrator = "rk-merson";
     double accuracy = 1e-6, reportInterval = 0.01, tEnd = 0;  // tEnd 0: each scenario's own duration
     std::string outDir = "out/elevator";
-    bool plots = true, quiet = false, visualize = false;
+    bool plots = true, quiet = false, visualize = false, check = false;
+    long maxSteps = 0;  // 0: no limit
 };
 
 struct Row {
@@ -51,13 +52,31 @@ struct Result {
     std::string scenario;
     std::vector<Row> rows;
     long steps = 0, rhs = 0;
-    double wall = 0, duration = 0;
+    double wall = 0, duration = 0, carLoad = 0, carPosition = 0;
     int transitions = 0;
 };
 
 struct Interrupted : std::runtime_error {
     Interrupted() : std::runtime_error("interrupted") {}
 };
+
+/// --max-steps reached: what() says when.
+struct StepLimitReached : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// The scene's options for one scenario.
+ElevatorParameters scenarioParameters(const Options& o, ElevatorScenario scenario) {
+    ElevatorParameters p = o.parameters;
+    p.scenario = scenario;
+    return p;
+}
+SpanOptions spanOptions(const Options& o) {
+    SpanOptions spans;
+    spans.axialModes = o.axialModes;
+    spans.transverseModes = o.transverseModes;
+    return spans;
+}
 
 Row observe(const ElevatorScene& scene, const State& s, double e0) {
     scene.system().realize(s, Stage::Acceleration);
@@ -86,15 +105,12 @@ Row observe(const ElevatorScene& scene, const State& s, double e0) {
 }
 
 Result run(const Options& o, ElevatorScenario scenario) {
-    ElevatorParameters p = o.parameters;
-    p.scenario = scenario;
-    SpanOptions spans;
-    spans.axialModes = o.axialModes;
-    spans.transverseModes = o.transverseModes;
-    ElevatorScene scene(p, spans);
+    const ElevatorParameters p = scenarioParameters(o, scenario);
+    ElevatorScene scene(p, spanOptions(o));
     Result r;
     r.scenario = toString(scenario);
     r.duration = o.tEnd > 0 ? o.tEnd : scene.duration();
+    r.carLoad = p.ratedLoad > 0 ? (scene.carTotalMass() - p.carMass) / p.ratedLoad : 0.0;
     State s0 = scene.makeInitialState();
     const double e0 = scene.reeving().calcMechanicalEnergy(s0);
     demo_common::DemoVisualizer viz(scene.system(), scene.reeving(), kProgram, o.visualize);
@@ -106,10 +122,27 @@ Result run(const Options& o, ElevatorScenario scenario) {
     ts.initialize(s0);
     const auto start = std::chrono::steady_clock::now();
     r.rows.push_back(observe(scene, ts.getState(), e0));
+    // The car's start above the bottom landing as set (ElevatorParameters::carPosition, else the
+    // scenario's own), before the static equilibrium stretches the rope.
+    r.carPosition = p.carPosition                                ? *p.carPosition
+                    : scenario == ElevatorScenario::EmergencyStop ? 0.5 * p.hoistway
+                                                                  : 0.0;
     const int reports = static_cast<int>(std::floor(r.duration / o.reportInterval + 1e-9));
     for (int n = 1; n <= reports; ++n) {
         if (demo_common::interrupted()) throw Interrupted();
-        ts.stepTo(n * o.reportInterval);
+        // --max-steps: the stepper returns once the integrator has taken the steps left.
+        for (;;) {
+            if (o.maxSteps > 0) {
+                const long left = o.maxSteps - integ->getNumStepsTaken();
+                if (left <= 0)
+                    throw StepLimitReached(r.scenario + ": the integrator took --max-steps " +
+                                           std::to_string(o.maxSteps) + " steps at t = " +
+                                           demo_common::numberText(ts.getState().getTime()) + " s, before the end (" +
+                                           demo_common::numberText(r.duration) + " s)");
+                ts.setStepLimit(static_cast<int>(std::min<long>(left, 1000000000L)));
+            }
+            if (ts.stepTo(n * o.reportInterval) != SimTK::Integrator::ReachedStepLimit) break;
+        }
         r.rows.push_back(observe(scene, ts.getState(), e0));
         viz.report(ts.getState());
     }
@@ -156,6 +189,8 @@ Json summarize(const Result& r) {
     j["traction_limit"] = jsonNumber(end.limit);
     j["largest_force_ratio"] = jsonNumber(maxRatio);
     j["traction_margin"] = jsonNumber(end.limit / maxRatio);  // > 1: held with this factor to spare
+    j["car_load"] = jsonNumber(r.carLoad);
+    j["car_position_m"] = jsonNumber(r.carPosition);
     j["slip_distance_m"] = jsonNumber(end.slipDistance);
     j["stick_slip_transitions"] = r.transitions;
     j["car_rise_m"] = jsonNumber(end.carY - r.rows.front().carY);
@@ -277,9 +312,9 @@ int main(int argc, char** argv) {
         kProgram);
     applyConventions(app);
     app.footer(
-        "Exit status: 0 every scenario run (held or slipped: both are results); 2 bad command line or\n"
-        "unusable --out (nothing written); 1 the simulation failed; 130 interrupted (SIGINT/SIGTERM,\n"
-        "nothing written).");
+        "Exit status: 0 every scenario run (held or slipped: both are results; with --check: the options\n"
+        "are valid); 2 bad command line or unusable --out (nothing written); 1 the simulation failed or\n"
+        "reached --max-steps (nothing written); 130 interrupted (SIGINT/SIGTERM, nothing written).");
     app.add_option("--scenario", o.scenario, "trip, loading, emergency-stop, stall or all (default all)")
         ->check(oneOf({"all", "trip", "loading", "emergency-stop", "stall"}));
     app.add_option("--roping", o.roping,
@@ -291,18 +326,43 @@ int main(int argc, char** argv) {
     app.add_option("--friction", o.parameters.friction, "effective groove friction coefficient mu (default 0.2)")
         ->check(positiveNumber());
     app.add_option("--rated-load", o.parameters.ratedLoad, "[kg] (default 630)")->check(positiveNumber());
+    app.add_option_function<double>(
+           "--car-load", [&o](double v) { o.parameters.carLoad = v; },
+           "the car's load as a fraction of the rated load, 0..1.25 (default: the\n"
+           "scenario's own: trip and emergency-stop 1, loading 1.25, stall 0)")
+        ->type_name("F")
+        ->check(finiteNumber());
+    app.add_option_function<double>(
+           "--car-position", [&o](double v) { o.parameters.carPosition = v; },
+           "the car's height above the bottom landing at t = 0 [m], the\n"
+           "counterweight where the rope puts it (default: the scenario's own:\n"
+           "0; mid-shaft, 20, in emergency-stop); 0..38 in the 40 m shaft\n"
+           "(emergency-stop: 2..38; trip: below 24, so that its 12 m end 4 m\n"
+           "below the sheave)")
+        ->type_name("Z")
+        ->check(finiteNumber());
     app.add_option("--retardation-time", o.parameters.retardationTime,
                    "Kelvin-Voigt rope damping c [s] (default 0: no damping)")
         ->check(finiteNumber());
     app.add_option("--axial-modes", o.axialModes, "n_a of both spans, 0..16 (default 1)")->transform(integerIn(0, 16));
     app.add_option("--transverse-modes", o.transverseModes, "n_t, 0..16 (default 1)")->transform(integerIn(0, 16));
-    app.add_option("--integrator", o.integrator, "rk-merson (default), rk3, rk2, cpodes, verlet...")->check(nonEmpty());
+    app.add_option("--integrator", o.integrator,
+                   "rk-merson (default), rk3, rk-feldberg, cpodes, verlet,\nsemi-explicit-euler2, explicit-euler")
+        ->check(oneOf(integratorNames()));
     app.add_option("--accuracy", o.accuracy, "integrator accuracy, 0 < TOL < 1 (default 1e-6)")
         ->check(numberInOpenInterval(0, 1));
     app.add_option("--t-end", o.tEnd, "end time of each scenario [s] (default: the scenario's own, 4.5-15 s)")
         ->type_name("T")
         ->check(positiveNumber());
     app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.01)")->check(positiveNumber());
+    app.add_option("--max-steps", o.maxSteps,
+                   "stop a scenario with exit status 1 (nothing written) once the integrator\n"
+                   "has taken N steps (default: no limit)")
+        ->type_name("N")
+        ->transform(integerIn(1, 1000000000L));
+    app.add_flag("--check", o.check,
+                 "check the options and build every scenario's scene, all validation\n"
+                 "included, then exit: 0 valid, 2 not (nothing run or written)");
     app.add_option("--out", o.outDir, "output folder (default out/elevator)")->type_name("DIR")->check(nonEmpty());
     app.add_flag_callback("--no-plots", [&o] { o.plots = false; }, "do not make PNG figures");
     app.add_flag("--quiet", o.quiet, "no progress output");
@@ -315,20 +375,31 @@ int main(int argc, char** argv) {
                                                   "' must be >= 0");
         return kUsageExitStatus;
     }
-    try {
-        o.parameters.validate();
-    } catch (const std::exception& e) {
-        std::cerr << usageErrorText(kProgram, e.what());
-        return kUsageExitStatus;
-    }
-    if (!prepareOutputFolder(kProgram, o.outDir)) return kUsageExitStatus;
-    installInterruptHandlers();
     std::vector<ElevatorScenario> scenarios;
     if (o.scenario == "all")
         scenarios = {ElevatorScenario::Trip, ElevatorScenario::Loading, ElevatorScenario::EmergencyStop,
                      ElevatorScenario::Stall};
     else
         scenarios = {elevatorScenarioFromString(o.scenario)};
+    // Every scenario's parameters (carPosition's range depends on the scenario); --check also builds
+    // the scenes and their integrators.
+    for (ElevatorScenario sc : scenarios) {
+        try {
+            const ElevatorParameters p = scenarioParameters(o, sc);
+            p.validate();
+            if (o.check) {
+                ElevatorScene scene(p, spanOptions(o));
+                makeIntegrator(o.integrator, scene.system());
+            }
+        } catch (const std::exception& e) {
+            const std::string which = scenarios.size() > 1 ? std::string(" (scenario ") + toString(sc) + ")" : "";
+            std::cerr << usageErrorText(kProgram, e.what() + which);
+            return kUsageExitStatus;
+        }
+    }
+    if (o.check) return 0;
+    if (!prepareOutputFolder(kProgram, o.outDir)) return kUsageExitStatus;
+    installInterruptHandlers();
     std::vector<Result> results;
     Json summary;
     summary["program"] = kProgram;
@@ -354,6 +425,9 @@ int main(int argc, char** argv) {
     } catch (const Interrupted&) {
         std::cerr << kProgram << ": interrupted; nothing written\n";
         return 130;
+    } catch (const StepLimitReached& e) {
+        std::cerr << kProgram << ": stopped: " << e.what() << "; nothing written\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << kProgram << ": the simulation failed: " << e.what() << "\n";
         return 1;

@@ -17,8 +17,9 @@ const char* kDescription =
 const char* kFooter =
     "Outputs: timeseries.csv, static_axial_force.csv, summary.json (in DIR, or DIR/modes-N/ for several\n"
     "n_a) and fig2..fig5 PNG figures in DIR (gnuplot).\n"
-    "Exit status: 0 done; 2 bad command line or unusable --out (nothing written); 1 the simulation\n"
-    "failed; 130 interrupted (SIGINT/SIGTERM, nothing written).";
+    "Exit status: 0 done (with --check: the options are valid); 2 bad command line or unusable --out\n"
+    "(nothing written); 1 the simulation failed or reached --max-steps (nothing written); 130\n"
+    "interrupted (SIGINT/SIGTERM, nothing written).";
 
 // The --set keys: the Table 1 parameters.
 std::map<std::string, double*> parameterKeys(SimbodyReeving::PendulumParameters& p) {
@@ -125,6 +126,14 @@ void defineOptions(CLI::App& app, Options& o) {
     app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.01)")
         ->type_name("DT")
         ->check(positiveNumber());
+    app.add_option("--max-steps", o.maxSteps,
+                   "stop with exit status 1 (nothing written) once a case's integrator\n"
+                   "has taken N steps (default: no limit)")
+        ->type_name("N")
+        ->transform(integerIn(1, 1000000000L));
+    app.add_flag("--check", o.check,
+                 "check the options and build every case's scene, all validation\n"
+                 "included, then exit: 0 valid, 2 not (nothing run or written)");
     app.add_option("--out", o.outDir, "output folder (default out/pendulum)")->type_name("DIR")->check(nonEmpty());
     app.add_flag_callback("--no-plots", [&o] { o.plots = false; }, "do not make PNG figures");
     app.add_flag("--quiet", o.quiet, "no progress output");

@@ -29,6 +29,11 @@ struct Options {
     double reportInterval = 0.01;  // [s]
     std::string outDir = "out/pendulum";
     bool plots = true, quiet = false, visualize = false, help = false;
+    /// --check: validate the options and build every case's scene, then exit (nothing run or written).
+    bool check = false;
+    /// --max-steps: a case stops (exit status 1, nothing written) once its integrator has taken
+    /// this many steps; 0: no limit.
+    long maxSteps = 0;
     SimbodyReeving::PendulumParameters parameters;
 };
 

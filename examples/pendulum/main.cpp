@@ -20,6 +20,7 @@
 #include <future>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -36,6 +37,11 @@ namespace {
 struct Interrupted : std::runtime_error {
     explicit Interrupted(double t) : std::runtime_error("interrupted"), time(t) {}
     double time;
+};
+
+/// Thrown by a case whose integrator took --max-steps steps: what() says when.
+struct StepLimitReached : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 struct Row {
@@ -71,7 +77,8 @@ Row observe(const PendulumScene& scene, const State& s) {
             rv.getConstraintError(s, 0, 1)};
 }
 
-CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool visualize) {
+// The scene of the case with n_a = na.
+std::unique_ptr<PendulumScene> makeScene(const Options& o, int na) {
     SpanOptions spans;
     spans.axialModes = na;
     spans.transverseModes = o.transverseModes;
@@ -80,9 +87,14 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     condensed.transverseDynamics = TransverseDynamics::QuasiStatic;
     using QST = Options::QuasiStaticTransverse;
     if (o.quasiStaticTransverse == QST::All) spans = condensed;
-    PendulumScene scene(o.parameters, spans, true,
-                        o.quasiStaticTransverse == QST::Horizontal ? std::optional<SpanOptions>(condensed)
-                                                                   : std::nullopt);
+    return std::make_unique<PendulumScene>(
+        o.parameters, spans, true,
+        o.quasiStaticTransverse == QST::Horizontal ? std::optional<SpanOptions>(condensed) : std::nullopt);
+}
+
+CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool visualize) {
+    const std::unique_ptr<PendulumScene> scenePointer = makeScene(o, na);
+    PendulumScene& scene = *scenePointer;
     CaseResult r;
     r.axialModes = na;
     State s = scene.makeInitialState(o.vx0, o.vy0);
@@ -112,7 +124,21 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
     for (int n = 1; n <= reports; ++n) {
         if (demo_common::interrupted()) throw Interrupted(ts.getState().getTime());
         try {
-            ts.stepTo(n * o.reportInterval);
+            // --max-steps: the stepper returns once the integrator has taken the steps left.
+            for (;;) {
+                if (o.maxSteps > 0) {
+                    const long left = o.maxSteps - integ->getNumStepsTaken();
+                    if (left <= 0)
+                        throw StepLimitReached("n_a = " + std::to_string(na) + ": the integrator took --max-steps " +
+                                               std::to_string(o.maxSteps) + " steps at t = " +
+                                               demo_common::numberText(ts.getState().getTime()) +
+                                               " s, before --t-end (" + demo_common::numberText(o.tEnd) + " s)");
+                    ts.setStepLimit(static_cast<int>(std::min<long>(left, 1000000000L)));
+                }
+                if (ts.stepTo(n * o.reportInterval) != SimTK::Integrator::ReachedStepLimit) break;
+            }
+        } catch (const StepLimitReached&) {
+            throw;
         } catch (const std::exception& e) {
             // Simbody's integrators drop the cause of a failed step; the rope keeps the last one.
             const std::string& cause = scene.reeving().getLastEvaluationFailure();
@@ -271,6 +297,20 @@ int main(int argc, char** argv) {
         std::cout << usage();
         return 0;
     }
+    // --check: every case's scene and integrator built (the scenes' own validation), nothing run.
+    if (o.check) {
+        for (int na : o.axialModes) {
+            try {
+                const std::unique_ptr<PendulumScene> scene = makeScene(o, na);
+                makeIntegrator(o.integrator, scene->system());
+            } catch (const std::exception& e) {
+                std::cerr << demo_common::usageErrorText("reeving-pendulum",
+                                                         "n_a = " + std::to_string(na) + ": " + e.what());
+                return demo_common::kUsageExitStatus;
+            }
+        }
+        return 0;
+    }
     // The output folder must exist or be creatable, and be writable, before anything is simulated.
     if (!demo_common::prepareOutputFolder("reeving-pendulum", o.outDir)) return demo_common::kUsageExitStatus;
     // SIGINT / SIGTERM stop the cases at their next report; nothing is written then.
@@ -328,6 +368,9 @@ int main(int argc, char** argv) {
     } catch (const Interrupted& e) {
         std::cerr << "\nreeving-pendulum: interrupted at t = " << e.time << " s; no outputs written\n";
         return demo_common::kInterruptedExitStatus;
+    } catch (const StepLimitReached& e) {
+        std::cerr << "reeving-pendulum: stopped: " << e.what() << "; no outputs written\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "reeving-pendulum: simulation failed: " << e.what() << "\n";
         return 1;

@@ -53,6 +53,20 @@ void ElevatorParameters::validate() const {
     check("carSheaveRadius [m]", carSheaveRadius, carSheaveRadius > 0, "finite and > 0");
     check("compensationRhoA [kg/m]", compensationRhoA, compensationRhoA >= 0, "finite and >= 0 (0: rhoA)");
     check("pitSheaveMass [kg]", pitSheaveMass, pitSheaveMass > 0, "finite and > 0");
+    if (carLoad) check("carLoad [-]", *carLoad, *carLoad >= 0 && *carLoad <= 1.25, "in [0, 1.25] (of the rated load)");
+    if (carPosition) {
+        const double z = *carPosition;
+        if (scenario == ElevatorScenario::EmergencyStop)
+            check("carPosition [m]", z, z >= 2 && z <= hoistway - 2,
+                  "in [2, hoistway - 2] in the emergency-stop scenario (car and counterweight 2 m or more below "
+                  "the sheave)");
+        else
+            check("carPosition [m]", z, z >= 0 && z <= hoistway - 2,
+                  "in [0, hoistway - 2] (car and counterweight 2 m or more below the sheave)");
+        if (scenario == ElevatorScenario::Trip)
+            check("carPosition + tripDistance [m]", z + tripDistance, z + tripDistance < hoistway - 4,
+                  "< hoistway - 4 in the trip scenario");
+    }
 }
 
 namespace {
@@ -85,6 +99,7 @@ private:
 
 double ElevatorScene::carTotalMass() const {
     const ElevatorParameters& p = parameters_;
+    if (p.carLoad) return p.carMass + *p.carLoad * p.ratedLoad;
     switch (p.scenario) {
         case ElevatorScenario::Stall: return p.carMass;
         case ElevatorScenario::Loading: return p.carMass + 1.25 * p.ratedLoad;
@@ -131,10 +146,15 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     counterweight_ = std::make_unique<MobilizedBody::Slider>(
         matter_->Ground(), Transform(slideUp, Vec3(xRail, 0, 0)),
         Body::Rigid(MassProperties(p.counterweight(), Vec3(0), Inertia(100))), Transform(slideUp));
-    // Heights at t = 0: the car at the bottom landing (Trip, Loading, Stall) or mid-shaft
-    // (EmergencyStop); the counterweight where the rope puts it, 2 m below the sheave in the first.
-    carStart_ = p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -p.hoistway;
-    const double cwtStart = p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -2.0;
+    // Heights at t = 0: the car carPosition above the bottom landing (default: at it in Trip, Loading
+    // and Stall, mid-shaft in EmergencyStop); the counterweight where the rope puts it (2 m below the
+    // sheave with the car at the bottom landing; at depth carPosition in EmergencyStop), so the
+    // ropes' lengths are the same in every position.
+    const bool emergency = p.scenario == ElevatorScenario::EmergencyStop;
+    const double z = p.carPosition ? *p.carPosition : (emergency ? 0.5 * p.hoistway : 0.0);
+    carStart_ = -p.hoistway + z;
+    cwtStart_ = emergency ? -z : -2.0 - z;
+    const double cwtStart = cwtStart_;
     switch (p.scenario) {
         case ElevatorScenario::Trip: {
             MotionProfile lift;  // car height gained; the sheave turns -roping / R rad per metre
@@ -217,7 +237,7 @@ SimTK::State ElevatorScene::makeInitialState() const {
     State s = system_->getDefaultState();
     s.setTime(0);
     car_->setOneQ(s, 0, carStart_);
-    counterweight_->setOneQ(s, 0, p.scenario == ElevatorScenario::EmergencyStop ? -0.5 * p.hoistway : -2.0);
+    counterweight_->setOneQ(s, 0, cwtStart_);
     if (pitSheave_) pitSheave_->setOneQ(s, 0, pitStart_);
     system_->realize(s, Stage::Time);
     system_->prescribe(s);

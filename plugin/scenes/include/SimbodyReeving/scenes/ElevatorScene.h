@@ -12,6 +12,7 @@
 #include <Simbody.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace SimbodyReeving {
@@ -68,7 +69,20 @@ struct ElevatorParameters {
     bool compensation = false;
     double compensationRhoA = 0;          ///< its mass per length [kg/m], >= 0 (0: rhoA, full compensation)
     double pitSheaveMass = 500.0;         ///< pit sheave with its tensioning weight, on a vertical guide [kg], > 0
-    /// @throws std::invalid_argument naming the first parameter out of range.
+    /// The car's load as a fraction of the rated load [-], in [0, 1.25] (empty to EN 81-50's 125 %);
+    /// unset: the scenario's own (Trip and EmergencyStop 1, Loading 1.25, Stall 0). The
+    /// counterweight keeps its mass (counterweight()).
+    std::optional<double> carLoad;
+    /// The car's height above the bottom landing at t = 0 [m] (of its rope hitch; 2:1: of its
+    /// sheave's centre); unset: the scenario's own (the bottom landing, 0; mid-shaft, hoistway / 2,
+    /// in EmergencyStop). The counterweight starts where the rope's length puts it (as much higher
+    /// than its own start as the car is, the same rope in every position). Range: car and
+    /// counterweight at least 2 m below the traction sheave's axis and not below their bottom
+    /// positions: [0, hoistway - 2] ([2, hoistway - 2] in EmergencyStop, where the counterweight
+    /// starts at depth carPosition); Trip also needs carPosition + tripDistance < hoistway - 4.
+    std::optional<double> carPosition;
+    /// @throws std::invalid_argument naming the first parameter out of range (carPosition's range
+    /// depends on `scenario`).
     void validate() const;
     double counterweight() const { return counterweightMass > 0 ? counterweightMass : carMass + 0.5 * ratedLoad; }
 };
@@ -101,7 +115,7 @@ public:
     const ElevatorParameters& parameters() const { return parameters_; }
     const SimTK::MobilizedBody::Pin& sheave() const { return *sheave_; }
     /// The car's mass in this scenario (empty in Stall, rated load in Trip and EmergencyStop, 125 % of
-    /// it in Loading) [kg].
+    /// it in Loading; carMass + carLoad ratedLoad when carLoad is set) [kg].
     double carTotalMass() const;
     /// The end of the scenario's run [s].
     double duration() const;
@@ -142,7 +156,7 @@ private:
     std::unique_ptr<MotionWorkMeter> workMeter_;
     std::unique_ptr<SimTK::MobilizedBody::Pin> sheave_;
     std::unique_ptr<SimTK::MobilizedBody::Slider> car_, counterweight_, pitSheave_;
-    double carStart_ = 0, pitStart_ = 0;
+    double carStart_ = 0, cwtStart_ = 0, pitStart_ = 0;
 };
 
 }  // namespace SimbodyReeving

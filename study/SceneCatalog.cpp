@@ -1,0 +1,128 @@
+#include "SceneCatalog.h"
+
+#include <cctype>
+#include <sstream>
+
+namespace study {
+namespace {
+
+std::vector<std::string> split(const std::string& path) {
+    std::vector<std::string> parts;
+    std::stringstream ss(path);
+    std::string part;
+    while (std::getline(ss, part, '.')) parts.push_back(part);
+    if (!path.empty() && path.back() == '.') parts.emplace_back();
+    return parts;
+}
+
+bool isIndex(const std::string& s) {
+    if (s.empty() || s.size() > 9) return false;
+    for (char c : s)
+        if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+    return true;
+}
+
+bool matches(const std::string& pattern, const std::string& path) {
+    const std::vector<std::string> p = split(pattern), q = split(path);
+    if (p.size() != q.size()) return false;
+    for (size_t i = 0; i < p.size(); ++i) {
+        if (q[i].empty()) return false;
+        if (p[i] == "#" ? !isIndex(q[i]) : p[i] == "*" ? isIndex(q[i]) : p[i] != q[i]) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+// Kept in step with the demos' summary.json by tests/study/test_study_demos.cpp
+// (StudyDemos.SceneCatalogueMatchesTheDemosSummaries), which runs each demo (each crane scenario)
+// and compares: a demo that writes a new key to its summary.json adds it here.
+const std::vector<SceneInfo>& scenes() {
+    static const std::vector<SceneInfo> list = {
+        {"pendulum",
+         "reeving-pendulum",
+         false,
+         {"axial-modes"},
+         {"integrator", "accuracy", "fixed_step", "axial_modes", "transverse_modes", "axial_dynamics",
+          "quasi_static_transverse", "axial_law", "t_end", "vx0", "vy0", "steps", "rhs_evaluations", "wall_seconds",
+          "initial_kinetic_energy_J", "max_energy_drift_J", "max_constraint_error_N", "parameters.*"}},
+        {"crane",
+         "reeving-crane",
+         true,
+         {},
+         {"program", "scenario", "falls", "axial_modes", "transverse_modes", "axial_dynamics", "axial_law", "integrator",
+          "accuracy", "fixed_step", "report_interval", "lift_m", "traverse_m", "t_end", "t_reached", "termination",
+          "limit", "static_fall_axial_force_N.#", "static_reference_axial_force_N", "max_fall_axial_force_N.#",
+          "static_rope_force", "peak_rope_force", "peak_rope_force_time", "dynamic_factor",
+          // lift-off only
+          "hoist_speed", "lift_off_time", "hook_stiffness_N_per_m", "spring_mass_dynamic_factor", "rope_slack_m",
+          "floor_height_m", "final_contact_dissipation_J",
+          // both scenarios
+          "max_abs_sway_rad", "max_abs_payload_angle_rad", "initial_hook_height_m", "final_hook_height_m",
+          "final_rope_on_drum_m", "max_abs_motor_torque_Nm", "max_abs_motor_power_W", "max_abs_trolley_force_N",
+          "final_motion_work_J", "max_abs_motion_work_J", "max_abs_energy_residual_J", "energy_residual_relative",
+          "steps", "rhs_evaluations", "wall_seconds", "real_time_factor", "snapshot_times.#", "parameters.*"}},
+        {"elevator",
+         "reeving-elevator",
+         true,
+         {},
+         {"program",
+          "roping",
+          "compensation",
+          "friction",
+          "wrap_angle_rad",
+          "rated_load_kg",
+          "car_mass_kg",
+          "counterweight_kg",
+          "retardation_time_s",
+          "traction_table.#.scenario",
+          "traction_table.#.traction",
+          "traction_table.#.traction_limit",
+          "traction_table.#.largest_force_ratio",
+          "traction_table.#.traction_margin",
+          "traction_table.#.car_load",
+          "traction_table.#.car_position_m",
+          "traction_table.#.slip_distance_m",
+          "traction_table.#.stick_slip_transitions",
+          "traction_table.#.car_rise_m",
+          "traction_table.#.rope_travel_m",
+          "traction_table.#.max_car_acceleration_mps2",
+          "traction_table.#.friction_work_J",
+          "traction_table.#.damping_work_J",
+          "traction_table.#.machine_work_J",
+          "traction_table.#.max_energy_residual_J",
+          "traction_table.#.energy_residual_relative",
+          "traction_table.#.simulated_s",
+          "traction_table.#.steps",
+          "traction_table.#.rhs_evaluations",
+          "traction_table.#.wall_s",
+          "traction_table.#.real_time_factor"}},
+    };
+    return list;
+}
+
+const SceneInfo* findScene(const std::string& name) {
+    for (const SceneInfo& s : scenes())
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+std::string sceneNames() {
+    std::string names;
+    for (const SceneInfo& s : scenes()) names += (names.empty() ? "" : ", ") + s.name;
+    return names;
+}
+
+bool isKnownMetric(const SceneInfo& scene, const std::string& path) {
+    for (const std::string& pattern : scene.metricPatterns)
+        if (matches(pattern, path)) return true;
+    return false;
+}
+
+std::string metricPattern(const std::string& path) {
+    std::string out;
+    for (const std::string& part : split(path)) out += (out.empty() ? "" : ".") + (isIndex(part) ? "#" : part);
+    return out;
+}
+
+}  // namespace study
