@@ -23,10 +23,12 @@
 #   6 arc-mass        slot: zero the arc mass of wrapped sheaves; not applicable until wrapped sheaves
 #                     exist (listed, never counted as caught)
 #
-# How long it takes. On 2 cores (Debian bookworm, g++ 12) under `nice`: about 15 min for the first
-# build of a new copy and 3-6 min per run of the suite, about 55 min in all for the baseline and the
-# five mutants (see docs/testing.md for the last run). A second run reuses the copy and its build
-# folder: only the files that changed since are recopied (and recompiled).
+# How long it takes. On 2 cores shared with other work (Debian bookworm, g++ 12), under `nice`:
+# about 18 min for the first build of a copy, 3-7 min per run of the suite, 1-2 min to rebuild a
+# mutant of a .cpp file and 12 min for the header mutant (linear-strain, run last: nearly everything
+# includes it); 65 min in all for the baseline and the five mutants (docs/testing.md). A second run
+# reuses the copy and its build folder: only files that changed since are recopied and recompiled
+# (after the header mutant's restore, that is nearly everything again).
 #
 # Usage: scripts/mutation-test.sh [options]
 #   --working-tree       copy the working tree (tracked files as they are on disk, plus untracked
