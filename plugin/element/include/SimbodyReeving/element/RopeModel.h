@@ -253,7 +253,10 @@ public:
     /// @throws std::runtime_error if Newton does not converge in 100 iterations (each damped
     ///         halving counts as one), from the warm and the cold start, or a span length
     ///         would become non-positive (the rope cannot carry the configuration).
+    /// @param nodes positions of the rope's nodes [m], one column per node.
     /// @param drivenS material coordinates of the Driven nodes [m], in node order.
+    /// @param qm the modal state coordinates, numModalCoordinates() of them (span j from modalOffset(j)).
+    /// @param data receives the dependent coordinates; its previous ones are the warm start.
     /// @throws std::runtime_error also if the given material coordinates leave a span without
     ///         material (s_{k+1} <= s_k between Fixed/Driven nodes: a drum hauled the rope in).
     void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,

@@ -430,7 +430,9 @@ public:
     /// cosine series with at most 4 n_max half-waves, which both the Gauss-Legendre rule and the
     /// midpoint rule of automaticStrainPoints integrate to round-off, and SpanModel::evaluate and
     /// AxialCondensation use the cheaper one. False also without tautStrainRule().
-    /// @param chordLength |e| = |r2 - r1| [m]; spanLength l = s2 - s1 [m]; axialAmplitudes a_i [m], n_a of them.
+    /// @param chordLength |e| = |r2 - r1| [m].
+    /// @param spanLength l = s2 - s1 [m].
+    /// @param axialAmplitudes a_i [m], n_a of them.
     bool strainTautEverywhere(double chordLength, double spanLength, const double* axialAmplitudes) const {
         return tautStrainRule() &&
                strainAboveTransitionEverywhere(law_, options_.axialModes, chordLength, spanLength, axialAmplitudes);

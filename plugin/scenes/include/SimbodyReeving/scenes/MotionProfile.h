@@ -59,6 +59,8 @@ struct MotionProfile {
 /// the profile's exact first and second derivatives (Motion::Position). The body adopts the
 /// Motion (it must have none yet); Simbody then computes the generalized force that enforces it
 /// (MobilizedBody::getOneTau, SimbodyMatterSubsystem::calcMotionPower).
+/// @param body the Slider or Pin to drive; it must have no Motion yet.
+/// @param profile the moves, in the profile's units (e.g. [m] of hook lift); valid (MotionProfile::validate).
 /// @param scale units of q per unit of the profile (e.g. -n / R [rad/m] turns a hook lift into a
 ///        drum angle); finite.
 /// @param offset q at zero profile; finite.

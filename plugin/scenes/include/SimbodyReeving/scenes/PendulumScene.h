@@ -36,6 +36,7 @@ struct PendulumParameters {
 /// (2 M g, ReevingSubsystem::setDecorationForceScale).
 class PendulumScene {
 public:
+    /// @param parameters the machine (Table 1 defaults), checked by PendulumParameters::validate.
     /// @param spans      options of both spans (mode counts, quasi-static modes, ...).
     /// @param planarRope true (default): planar spans in the x-y plane; false: spatial spans (same
     ///        physics for this in-plane motion, with out-of-plane modes and work).

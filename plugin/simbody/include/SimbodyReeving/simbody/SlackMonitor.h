@@ -31,6 +31,8 @@ struct SlackTransition {
 /// InterpolatingTimeStepper).
 class SlackMonitor {
 public:
+    /// @param system the system the ReevingSubsystem belongs to; it owns the events.
+    /// @param reeving the ropes to watch, all added already.
     /// @param eventWindow required localization window of each transition [s], > 0.
     /// @throws std::invalid_argument if eventWindow is not finite and > 0.
     SlackMonitor(SimTK::MultibodySystem& system, const ReevingSubsystem& reeving, double eventWindow = 1e-6);

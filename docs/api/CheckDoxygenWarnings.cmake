@@ -1,0 +1,21 @@
+# ctest script: runs Doxygen with DOXYFILE and fails if it wrote any warning to LOG (the public
+# headers must document themselves without a Doxygen warning).
+foreach(var DOXYGEN DOXYFILE LOG)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "${var} not set")
+  endif()
+endforeach()
+get_filename_component(dir "${LOG}" DIRECTORY)
+file(MAKE_DIRECTORY "${dir}")
+file(REMOVE "${LOG}")
+execute_process(COMMAND "${DOXYGEN}" "${DOXYFILE}" WORKING_DIRECTORY "${dir}" RESULT_VARIABLE rc
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "doxygen failed (${rc}):\n${out}${err}")
+endif()
+file(READ "${LOG}" warnings)
+string(STRIP "${warnings}" warnings)
+if(NOT warnings STREQUAL "")
+  message(FATAL_ERROR "Doxygen warnings on the public headers:\n${warnings}")
+endif()
+message(STATUS "Doxygen: no warnings")
