@@ -16,7 +16,7 @@ void evaluateSpan(benchmark::State& state) {
     o.transverseModes = static_cast<int>(state.range(0));
     o.axialModes = static_cast<int>(state.range(1));
     o.velocityModel = state.range(2) ? VelocityModel::Complete : VelocityModel::Simplified;
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting of the recorded results
     Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
     Eigen::Matrix<double, Dim, 1> g = Eigen::Matrix<double, Dim, 1>::Zero();
     g[1] = -9.81;
@@ -46,6 +46,6 @@ BENCHMARK_TEMPLATE(evaluateSpan, 2)->ArgNames({"nt", "na", "complete"})->Args({1
 BENCHMARK_TEMPLATE(evaluateSpan, 3)->ArgNames({"nt", "na", "complete"})->Args({1, 3, 0})->Args({1, 3, 1})->Args({1, 0, 0});
 
 BENCHMARK_MAIN();
-// Issue 19, item 7: Complete against Simplified over n_t = 1..3, n_a = 0..3 (planar span), in one run
+// Velocity models: Complete against Simplified over n_t = 1..3, n_a = 0..3 (planar span), in one run
 // (instruction counts of the same grid: bench/moving_string/cost.sh).
 BENCHMARK_TEMPLATE(evaluateSpan, 2)->ArgNames({"nt", "na", "complete"})->ArgsProduct({{1, 2, 3}, {0, 1, 2, 3}, {0, 1}});

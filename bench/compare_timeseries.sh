@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# "Nothing changes but speed" (issue 20, acceptance 5): runs the pendulum and crane demos of two
+# Checks that a speed-up changes no result: runs the pendulum and crane demos of two
 # builds at accuracy 1e-10 (environment ACCURACY overrides it) and compares their timeseries.csv
 # column by column:
 #   reeving-pendulum --axial-modes 3 --accuracy 1e-10             (20 s, reports every 0.01 s)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Cost per right-hand side of the two demos against Simbody's own floor (issue 20, item 5), in one
+# Cost per right-hand side of the two demos against Simbody's own floor (the scenes without ropes), in one
 # run, as one Markdown table:
 #   pendulum: reeving-pendulum --axial-modes 3 (the demo's default case: quasi-static axial modes,
 #             n_t = 1, RK-Merson 1e-6, reports every 0.01 s) against bench-floor-pendulum;

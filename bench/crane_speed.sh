@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Real-time factor of the reeving-crane demo (issue 13, acceptance 7): the default cycle (4 falls,
+# Real-time factor of the reeving-crane demo: the default cycle (4 falls,
 # 36 s: lift 5 m, traverse 10 m, lower 5 m) and a 12-fall variant, each with n_a = 0 and 1
 # (QuasiStatic axial modes, n_t = 1, RK-Merson 1e-6, reports every 0.02 s: the demo's defaults).
 # Builds the Release demo, runs every configuration REPEATS times (interleaved) pinned to one

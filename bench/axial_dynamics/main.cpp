@@ -1,5 +1,5 @@
 // bench-axial-dynamics: AxialDynamics::QuasiStatic against the paper's Dynamic axial modes on the
-// default demo case (Table 1 pendulum, 1 m/s push, 20 s), for several n_a (issue 12, acceptance 3).
+// default demo case (Table 1 pendulum, 1 m/s push, 20 s), for several n_a.
 //
 // For each n_a and each model a converged reference is integrated (RK-Merson at --accuracy, checked
 // against a run at 10x that accuracy) and sampled every --sample s: payload centre, axial force at
@@ -42,7 +42,7 @@ Series simulate(int na, AxialDynamics axial, double accuracy, double tEnd, doubl
     o.axialModes = na;
     o.transverseModes = 1;
     o.axialDynamics = axial;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting of the recorded results
     const PendulumScene scene(PendulumParameters{}, o);
     SimTK::State s = scene.makeInitialState(1.0, 0.0);
     auto integ = makeIntegrator("rk-merson", scene.system());

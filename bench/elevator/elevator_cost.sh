@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Usage: bench/elevator/elevator_cost.sh [BUILD_DIR] [REPEATS]
-# The traction elevator's cost (issue 21): for each scenario of reeving-elevator, pinned to one core
+# The traction elevator's cost: for each scenario of reeving-elevator, pinned to one core
 # (taskset -c 0), the real-time factor (simulated / wall, median of REPEATS runs, default 5) with the
 # steps and right-hand sides; and the cost of the friction events: each scenario again with
 # --friction 10 (the sheave slips only in the stall, where the counterweight's fall is slack: no

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Usage: bench/elevator/elevator_sweep.sh [BUILD_DIR] [TIMEOUT_S]
-# Robustness sweep of the traction elevator (issue 21): the stall and the emergency stop, each with
+# Robustness sweep of the traction elevator: the stall and the emergency stop, each with
 # one option changed from the demo's defaults (accuracy, roping, compensation, report interval,
 # friction, mode counts, rope damping), then the stall at --friction 10 (e^(mu alpha) = 4.4e13, a
 # stress case beyond real grooves) with the same changes. One Markdown row per run: exit status

@@ -1,5 +1,5 @@
 #pragma once
-// Simbody's own floor (issue 20, item 5): what the shared bench-floor-* programs do. A scene
+// Simbody's own floor (the demos' scenes without ropes): what the shared bench-floor-* programs do. A scene
 // without the rope is integrated exactly as the demos integrate theirs (the named integrator from
 // SimbodyReeving::makeIntegrator, its accuracy, SimbodyReeving::InterpolatingTimeStepper with
 // reports at a fixed interval, a reporter that realizes the stage the demo's reporter realizes),

@@ -1,4 +1,4 @@
-// bench-floor-crane: Simbody's own floor for the overhead crane (issue 20, item 5). The
+// bench-floor-crane: Simbody's own floor for the overhead crane. The
 // reeving-crane demo's scene (SimbodyReeving::CraneScene, default parameters, 12 falls by default)
 // with the rope replaced by massless SimTK::Force::TwoPointLinearSpring's, integrated and reported
 // as the demo does; it prints the steps, right-hand sides and wall time that Simbody alone spends.

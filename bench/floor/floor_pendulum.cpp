@@ -1,4 +1,4 @@
-// bench-floor-pendulum: Simbody's own floor for the Table 1 pendulum (issue 20, item 5). The
+// bench-floor-pendulum: Simbody's own floor for the Table 1 pendulum. The
 // reeving-pendulum demo's scene (SimbodyReeving::PendulumScene) with the rope replaced by one
 // massless SimTK::Force::TwoPointLinearSpring, integrated and reported as the demo does; it prints
 // the steps, right-hand sides and wall time that Simbody alone spends. bench/cost.sh sets it

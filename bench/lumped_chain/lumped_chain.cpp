@@ -1,4 +1,4 @@
-// bench-lumped-chain (issue 5, "The alternative a Simbody user has today").
+// bench-lumped-chain: the alternative a Simbody user has without this plugin, a lumped-mass chain.
 //
 // The single-span hanging rope (Ground origin -> payload, Table 1 properties, EI = 0) built two ways:
 //   chain: what a Simbody user builds without the plugin: N segments, N-1 interior point masses on
@@ -253,7 +253,7 @@ public:
         rope.spanDefaults.transverseModes = nt;
         rope.spanDefaults.velocityModel = completeVelocity ? SimbodyReeving::VelocityModel::Complete
                                                            : SimbodyReeving::VelocityModel::Simplified;
-        rope.spanDefaults.axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+        rope.spanDefaults.axialDynamics = SimbodyReeving::AxialDynamics::Dynamic;  // not the default: the setting of the recorded results
         rope.planeNormal = Vec3(0, 0, 1);
         reeving_.addRope(rope);
         system_.realizeTopology();
@@ -601,7 +601,7 @@ void writeFrontsAndRatios(const std::vector<Row>& rows, const std::string& outDi
     std::ofstream ratios(outDir + "/lumped_chain_ratios.csv");
     ratios << "observable,level,chain_wall_s,chain_wall_kind,chain_segments_needed,chain_wall_estimate_s,ale_wall_s,"
               "ratio_chain_over_ale,ale_nodeforce_wall_s,ratio_chain_over_ale_nodeforce,ratio_estimate\n";
-    // The issue's four levels first, then intermediate ones both models reach.
+    // The four required error levels first, then intermediate ones both models reach.
     const std::vector<std::pair<std::string, double>> levels{{"pos", 1e-4}, {"pos", 1e-6},  {"force", 1.0},
                                                              {"force", 0.01}, {"pos", 1e-5}, {"force", 10.0},
                                                              {"force", 5.0}, {"force", 3.0}, {"force", 0.1}};

@@ -1,4 +1,4 @@
-// bench-moving-string: the axially moving string (issue 19, item 7) with both velocity models.
+// bench-moving-string: the axially moving string with both velocity models.
 //
 // A taut span (Table 1 rope's rhoA = 0.6205 kg/m and EA = 16.5 MN, EI = 0, no gravity) of material
 // length L = 20 m between fixed nodes, at axial force P = 9 810 N (c = sqrt(P / rhoA) = 125.7 m/s),

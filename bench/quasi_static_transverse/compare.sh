@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Quasi-static transverse modes on the Table 1 pendulum (issue 20, item 4 / acceptance 4): the demo's
+# Quasi-static transverse modes on the Table 1 pendulum: the demo's
 # default case (reeving-pendulum --axial-modes 3: quasi-static axial modes, n_t = 1, RK-Merson, 20 s,
 # reports every 0.01 s) with the 3 m span's transverse modes as states (none) and condensed
 # (horizontal), at accuracy 1e-6 (the default) and 1e-10. Prints per accuracy: steps, rhs, process

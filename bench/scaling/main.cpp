@@ -1,5 +1,5 @@
 // bench-scaling: cost of one right-hand side against the number of spans and the mode counts
-// (issue 20, item 5 and acceptance 3).
+// (the cost per span should stay constant as spans are added).
 //
 // Scene (planar, in the x-y plane, gravity -9.81 m/s^2 along y): one rope anchored on Ground at the
 // origin, running over N frictionless deviation sheaves fixed on Ground in a zigzag (sheave k at

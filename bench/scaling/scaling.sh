@@ -2,7 +2,7 @@
 # Instructions per right-hand side (callgrind) of one rope zigzagging over N deviation sheaves
 # (bench-scaling, see bench/scaling/main.cpp), as markdown tables:
 #   (a) against N = 1, 2, 4, ..., 64 at n_a = 3, n_t = 1, with the figure per sheave (/ N) and its
-#       ratio to N = 4's (issue 20, acceptance 3: constant within 20 % from 4 to 64);
+#       ratio to N = 4's (expected constant within 20 % from 4 to 64);
 #   (b) against n_a = 0, 1, 2, 4, 8 at n_t = 1 and n_t = 0, 1, 2, 4, 8 at n_a = 0, for N = 8.
 # Each case runs bench-scaling under callgrind twice, with K and 2K evaluations (the same 2K states
 # recorded from an RK-Merson 1e-6 run in both, set-up uninstrumented: --instr-atstart=no); the

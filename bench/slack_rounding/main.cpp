@@ -38,7 +38,7 @@ void run(double transition, double delta) {
     spec.spanDefaults.axialModes = 2;
     spec.spanDefaults.transverseModes = 1;
     spec.spanDefaults.axialDynamics = AxialDynamics::QuasiStatic;
-    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // not the default: the setting of the recorded results
     spec.spanDefaults.quasiStaticSlackTransitionStrain = transition;
     spec.spanDefaults.quasiStaticSlackStiffness = delta;
     spec.planeNormal = Vec3(0, 0, 1);

@@ -84,7 +84,7 @@ std::vector<double> numberList(const std::string& option, const std::string& tex
 
 std::string usage() {
     return R"(Usage: bench-work-precision [options]
-Work-precision study of issue 5 on the paper's pendulum (PendulumScene, Table 1 defaults, n_t = 1,
+Work-precision study on the paper's pendulum (PendulumScene, Table 1 defaults, n_t = 1,
 static equilibrium then vx0 = 1 m/s, reports every 0.01 s). For each integrator x accuracy (and
 fixed step for --fixed-step-integrators) x n_a: max over the reports of the payload-centre position
 error [m] and of the payload-end axial force error [N] against a reference trajectory, median wall

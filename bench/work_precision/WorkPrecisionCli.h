@@ -1,5 +1,5 @@
 #pragma once
-// Command line of bench-work-precision (issue 5, "Work-precision study"): options, defaults,
+// Command line of bench-work-precision (the work-precision study): options, defaults,
 // validation. See usage() for the meaning of every option.
 
 #include <SimbodyReeving/element/SpanModel.h>

@@ -1,4 +1,4 @@
-// bench-work-precision: the work-precision study of issue 5 on the paper's pendulum.
+// bench-work-precision: the work-precision study on the paper's pendulum.
 // Error vs wall time for every Simbody integrator the demo offers, against a cached tight reference.
 // See --help, and the comments below for what each recorded number means.
 //
@@ -108,7 +108,7 @@ RunResult runOnce(const Options& o, const RunSpec& spec, const Trajectory* ref, 
     spans.axialModes = spec.axialModes;
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
-    spans.velocityModel = SimbodyReeving::VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spans.velocityModel = SimbodyReeving::VelocityModel::Simplified;  // not the default: the setting of the recorded results
     const SimbodyReeving::PendulumParameters params{};
     SimbodyReeving::PendulumScene scene(params, spans);
     const SimTK::State s0 = scene.makeInitialState(o.vx0, o.vy0);
@@ -675,7 +675,7 @@ void writeTable(const Options& o, const std::vector<Point>& points, const std::v
               << (ran ? num(r.tReached, 6) : "") << " | " << note << " |\n";
         }
     }
-    // Fastest point per error target: position targets are the issue's 1e-3, 1e-6, 1e-9 m; the force
+    // Fastest point per error target: position targets 1e-3, 1e-6, 1e-9 m; the force
     // errors live on another scale (the axial modes' integration noise is newtons), so their targets are
     // 10, 1, 0.1 and 0.01 N.
     auto best = [&](int na, double target, bool position) {

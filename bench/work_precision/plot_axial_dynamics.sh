@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One work-precision figure for n_a = 3 with both axial-dynamics variants (issue 12): error against
+# One work-precision figure for n_a = 3 with both axial-dynamics variants: error against
 # rhs evaluations (machine independent) and against wall time, Dynamic (open symbols, the paper's
 # model) and QuasiStatic (filled), one colour per integrator, accuracy-controlled points only.
 #

@@ -1,4 +1,4 @@
-// reeving-crane: an overhead (gantry) crane's lift-traverse-lower cycle (issue 13) from one
+// reeving-crane: an overhead (gantry) crane's lift-traverse-lower cycle from one
 // command: a trolley with a prescribed traverse, a winch drum with a prescribed hoist profile, n
 // falls of wire rope between trolley and hook block, a payload on a sling. Or (--scenario lift-off)
 // the lift-off of a payload resting on the floor and its dynamic factor. See --help and README.md.

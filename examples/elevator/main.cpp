@@ -1,4 +1,4 @@
-// reeving-elevator: a traction elevator, roped 1:1 or 2:1 (issue 21), through EN 81-50's traction checks:
+// reeving-elevator: a traction elevator, roped 1:1 or 2:1, through EN 81-50's traction checks:
 // a trip, loading to 125 %, an emergency stop and a stalled counterweight, the hoist ropes over a
 // traction sheave that sticks and slips (capstan law). See --help and README.md.
 #include "common/Cli.h"

@@ -1,4 +1,4 @@
-// The reeving-crane executable end to end (issue 13, acceptance 6): outputs with their columns and
+// The reeving-crane executable end to end: outputs with their columns and
 // keys, the number of falls, a rope limit ending the run (exit 3, outputs written), bad input and
 // unusable output folders (exit 2, nothing written), SIGINT (exit 130, nothing written).
 #include <gtest/gtest.h>
@@ -107,7 +107,7 @@ nlohmann::json checkSummary(const fs::path& p) {
                             "max_abs_energy_residual_J", "energy_residual_relative", "wall_seconds",
                             "real_time_factor"})
         EXPECT_TRUE(json.contains(key) && json[key].is_number()) << key;
-    // The fall forces are axial forces P = EA eps (issue 19: not tensions), one per fall.
+    // The fall forces are axial forces P = EA eps (not tensions), one per fall.
     const size_t falls = json.value("falls", 0u);
     for (const char* key : {"static_fall_axial_force_N", "max_fall_axial_force_N"})
         EXPECT_TRUE(json.contains(key) && json[key].is_array() && json[key].size() == falls) << key;

@@ -205,7 +205,7 @@ TEST(ElevatorDemo, CompensationCarriesTheHoistRopesWeightAcross) {
     EXPECT_NEAR(weightEffect / predicted, 1.0, 0.05);  // measured 0.7 % off (n_a = 1, leaning falls)
 }
 
-// Acceptance 3 of issue 21 on the elevator itself, with its default quasi-static axial modes: the
+// The traction sheave's energy balance on the elevator itself, with its default quasi-static axial modes: the
 // emergency stop sticks, slips and sticks again (2 transitions), and E(t) - E(0) + W_friction +
 // W_damping - W_machine stays within 1e-6 of the largest term (measured 4.1e-7; it was 1.9e-5 while
 // the slipping node's condensed amplitudes carried the ratio's multiplier).

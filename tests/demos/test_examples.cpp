@@ -1,4 +1,4 @@
-// First contact with every installed example (issue 19, acceptance 1): what a new user runs first
+// First contact with every installed example: what a new user runs first
 // must work. Each program that examples/CMakeLists.txt installs (simbodyreeving_add_example) is run
 //  - with --help: exit 0, the usage text on stdout naming its options, nothing simulated or written;
 //  - with its defaults (the demos with a short --t-end), in an empty folder: exit 0, the expected
@@ -175,7 +175,7 @@ void checkQuickstart(const ProgramRun& r, const fs::path& cwd) {
     EXPECT_GT(force[0], 9810.0);
     EXPECT_LT(force[0], 9810.0 + 122.0);
     // The table: t = 1, 2, ..., 20 s; energy conserved at accuracy 1e-6: |E - E0| / KE0 measured
-    // at most 2.5e-8 (2026-12-01), bound 40x that.
+    // at most 2.5e-8, bound 40x that.
     std::stringstream ss(r.out);
     std::string line;
     std::vector<double> times, drift;

@@ -1,4 +1,4 @@
-// The reeving-pendulum executable end to end (issue 4): outputs with their columns and keys, every
+// The reeving-pendulum executable end to end: outputs with their columns and keys, every
 // integrator name, and bad input (exit 2, output folder untouched).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -192,7 +192,7 @@ TEST(PendulumDemo, BadInputExitsTwoAndWritesNothing) {
     }
 }
 
-// Hostile output locations (issue 14): an existing file, a path under a file, a place no one may
+// Hostile output locations: an existing file, a path under a file, a place no one may
 // create in. Exit 2 with one clear line, before anything is simulated, nothing written.
 TEST(PendulumDemo, UnusableOutputFolderExitsTwoWithOneClearLine) {
     const fs::path file = scratch("out_is_a_file");

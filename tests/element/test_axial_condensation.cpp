@@ -29,7 +29,7 @@ SpanModel<Dim> makeSpan(int na, int nt, bool tensionOnly = false, double transit
     o.transverseModes = nt;
     o.axialDynamics = AxialDynamics::QuasiStatic;
     if (transverse) o.transverseDynamics = TransverseDynamics::QuasiStatic;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     Eigen::Matrix<double, Dim, 1> g = Eigen::Matrix<double, Dim, 1>::Zero();
     g[0] = 1.3;
     g[1] = -9.81;
@@ -100,7 +100,7 @@ void checkAgainstSpanEnergy(int na, int nt, bool tensionOnly = false, double tra
         const double scale = Q.cwiseAbs().maxCoeff();
         for (int i = 0; i < nc; ++i)
             EXPECT_NEAR(d.value[cond.phi(i)], -Q[2 * Dim + i], 1e-11 * scale) << "phi " << i;
-        // Measured at most 2.2e-12 of scale (2026-12-01, 2e3eafb); margin 52x.
+        // Measured at most 2.2e-12 of scale; margin 52x.
         EXPECT_NEAR(d.value[cond.lengthDerivative()], -Q[span.s2Index()], 5e-12 * scale);
         for (int i = 0; i < nc; ++i) {
             const double h = transition > 0 ? 1e-8 : 1e-6;  // the rounding is sharp: small steps
@@ -116,7 +116,7 @@ void checkAgainstSpanEnergy(int na, int nt, bool tensionOnly = false, double tra
             EXPECT_NEAR(d.value[cond.endStrain(end)], es.strain, 1e-15);
             for (int i = 0; i < nc; ++i)
                 EXPECT_NEAR(d.value[cond.endStrainModeSlope(end, i)], es.gradient[2 * Dim + i], 1e-13);
-            // Measured at most 4.4e-16 (values ~0.5) (2026-12-01, 2e3eafb); margin 45x.
+            // Measured at most 4.4e-16 (values ~0.5); margin 45x.
             EXPECT_NEAR(d.value[cond.endStrainLengthSlope(end)], es.gradient[span.s2Index()], 2e-14);
         }
 

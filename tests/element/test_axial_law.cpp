@@ -70,7 +70,7 @@ TEST(AxialLaw, RoundedLawIsSmoothBoundedAndExactOutsideTheTransition) {
         const double h = 1e-5 * es;
         const double fRight = law.f(joint + h) - h * law.fPrime(joint + h);
         const double fLeft = law.f(joint - h) + h * law.fPrime(joint - h);
-        // Measured (2026-12-01, 2e3eafb) at both joints: f 1.2e-20 (bound 1e-18, 83x), F 2.0e-28 (bound 1e-26,
+        // Measured at both joints: f 1.2e-20 (bound 1e-18, 83x), F 2.0e-28 (bound 1e-26,
         // 50x), f' 1.8e-9 (bound 1e-7, 56x); the O(h^2) Taylor terms cancel for the polynomial pieces.
         EXPECT_NEAR(fRight, fLeft, 1e-18) << "joint " << joint;
         const double FRight = law.F(joint + h) - h * law.f(joint + h);
@@ -83,5 +83,5 @@ TEST(AxialLaw, RoundedLawIsSmoothBoundedAndExactOutsideTheTransition) {
     }
     // F is continuous at eps_s exactly as written (0.4 eps_s^2 from both sides).
     EXPECT_NEAR(law.F(es * (1 - 1e-12)), 0.4 * es * es, 1e-22);
-    EXPECT_NEAR(law.F(es), 0.4 * es * es, 2e-27);  // measured 5.0e-29 (round-off of 4e-13) (2026-12-01, 2e3eafb), margin 40x
+    EXPECT_NEAR(law.F(es), 0.4 * es * es, 2e-27);  // measured 5.0e-29 (round-off of 4e-13), margin 40x
 }

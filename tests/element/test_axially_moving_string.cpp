@@ -1,4 +1,4 @@
-// The axially moving string (issue 19, item 7): a taut span of material length L between fixed
+// The axially moving string: a taut span of material length L between fixed
 // nodes, with rope flowing through it at speed v (both end material coordinates Driven,
 // s_0 = s_00 + v t, s_1 = s_00 + L + v t), EI = 0, gravity 0. The classical result (Wickert & Mote
 // 1990): with c = sqrt(P / rhoA), the transverse natural frequencies are

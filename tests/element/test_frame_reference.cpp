@@ -1,4 +1,4 @@
-// Item 9 of issue 19, element level (no Simbody): re-expressing a spatial span's transverse modes in
+// Spans that turn without limit, element level (no Simbody): re-expressing a spatial span's transverse modes in
 // a new reference frame (reReferenceTransverseModes) leaves the span's configuration, velocity
 // field and energies unchanged.
 #include "SimbodyReeving/element/ChordFrame.h"

@@ -1,4 +1,4 @@
-// RopeModel's chain solve (band LU of the KKT system in rope order, issue 20) against the dense
+// RopeModel's chain solve (band LU of the KKT system in rope order) against the dense
 // reduction it replaced: S = Mbar_xx - Mbar_xm Mbar_mm^-1 Mbar_mx, h likewise and the modal
 // accelerations, from RopeData::reducedMass / reducedForce (G^T M G formed densely). Ropes: zigzags
 // over 1..9 sheaves with quasi-static axial modes (condensation rows and multipliers), with the

@@ -23,7 +23,7 @@ std::vector<SpanModel<2>> makeSpans(int n, int na, int nt, AxialDynamics axial) 
     o.axialModes = na;
     o.transverseModes = nt;
     o.axialDynamics = axial;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     return std::vector<SpanModel<2>>(n, SpanModel<2>(kRope, o, kGravity));
 }
 
@@ -108,7 +108,7 @@ TEST(RopeDrivenNodes, GeneralizedForceOnDrivenCoordinateIsMinusPotentialGradient
             sm[i] -= h;
             const double dV = (potential(sp) - potential(sm)) / (2 * h);
             const double Q = d.reducedForce()[10 + i];
-            // Central differences at h = 1e-6: measured at most 3.9e-8 N of 27 N (2026-12-01, 2e3eafb); margin 51x.
+            // Central differences at h = 1e-6: measured at most 3.9e-8 N of 27 N; margin 51x.
             EXPECT_NEAR(Q, -dV, 2e-6) << "driven coordinate " << i;
         }
     }
@@ -185,7 +185,7 @@ TEST(RopeDrivenNodes, StoredRopeMakesTheDrumForceDatumFree) {
         rope.computeDynamics(nodes, Eigen::Matrix2Xd::Zero(2, 3), sd, zero1, qm, zero, a);
         nodes.row(1).array() += 25.0;  // the same machine 25 m higher
         rope.computeDynamics(nodes, Eigen::Matrix2Xd::Zero(2, 3), sd, zero1, qm, zero, b);
-        // Measured 1.4e-16 relative (round-off) (2026-12-01, 2e3eafb); margin 74x.
+        // Measured 1.4e-16 relative (round-off); margin 74x.
         EXPECT_NEAR(a.nodeForce[6], b.nodeForce[6], 1e-14 * std::abs(a.nodeForce[6]));
         auto potential = [&](double s0) {
             RopeData<2> d;
@@ -197,7 +197,7 @@ TEST(RopeDrivenNodes, StoredRopeMakesTheDrumForceDatumFree) {
         // Qbar holds the spans' generalized force; the stored rope adds rhoA g . r_0 (slope +1).
         const double stored = kRope.massPerLength * kGravity.dot(nodes.col(0));
         // Central differences of a potential 25 m above the datum (round-off eps V / h): measured
-        // 1.9e-4 N of 4.3e5 N (2026-12-01, 2e3eafb); margin 27x.
+        // 1.9e-4 N of 4.3e5 N; margin 27x.
         EXPECT_NEAR(b.reducedForce()[6] + stored, -dV, 5e-3);
         EXPECT_THROW_MESSAGE(RopeModel<2>(make()).setStoredRope(1, 1.0), std::invalid_argument,
                              "RopeModel::setStoredRope: node 1 is not a Driven end node");

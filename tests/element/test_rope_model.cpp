@@ -73,7 +73,7 @@ PointMassPendulum makePendulum(int na, int nt, VelocityModel vm, double EA) {
     o.axialModes = na;
     o.transverseModes = nt;
     o.velocityModel = vm;
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     const Eigen::Vector2d g(0, -9.81);
     std::vector<SpanModel<2>> spans{SpanModel<2>(props, o, g), SpanModel<2>(props, o, g)};
     return PointMassPendulum{RopeModel<2>(std::move(spans), 23.0), 1000.0, g, {}};
@@ -140,7 +140,7 @@ TEST(RopeModel, PointMassPendulumConservesEnergy) {
         std::printf("[ rope ] %s: |E - E0| max %.3e J (E0 = %.3f J, KE0 = 500 J), max |F_a - F_b| %.3e N, s_sheave %.6f\n",
                     vm == VelocityModel::Complete ? "complete" : "simplified", drift, E0, maxC,
                     p.data.materialCoordinates[1]);
-        // Measured (2026-12-01, 2e3eafb) (both velocity models): drift 2.9e-8 J of KE0 = 500 J, margin 34x;
+        // Measured (both velocity models): drift 2.9e-8 J of KE0 = 500 J, margin 34x;
         // sheave residual 6.7e-11 N, margin 75x.
         EXPECT_LT(drift, 1e-6);
         EXPECT_LT(maxC, 5e-9);

@@ -100,7 +100,7 @@ TEST(SpanDamping, RopeFlowingThroughAtUniformStrainDissipatesNothing) {
     const double P = 16.5e6 * 0.5 * (36.0 / (5.994 * 5.994) - 1.0);
     const double transported = P * 4.0;
     std::printf("flow: damping power %.3e W of transported %.3e W\n", d.dampingPower, transported);
-    EXPECT_LE(d.dampingPower, 1e-12 * transported);  // the bound
+    EXPECT_LE(d.dampingPower, 1e-12 * transported);  // the required bound
     EXPECT_LE(d.dampingForces.cwiseAbs().maxCoeff(), 1e-9 * P);
 }
 

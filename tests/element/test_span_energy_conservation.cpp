@@ -87,7 +87,7 @@ void runFreeSpan(VelocityModel velocityModel, int na, int nt, int stepsPerFastes
     o.axialModes = na;
     o.transverseModes = nt;
     o.velocityModel = velocityModel;
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
     if constexpr (Dim == 3) ref = makeReferenceFrame(Eigen::Vector3d(1, 0.3, -0.2));
     const SpanModel<Dim> model(rope, o, Eigen::Matrix<double, Dim, 1>::Zero(), ref);

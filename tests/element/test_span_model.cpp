@@ -60,7 +60,7 @@ SpanModel<Dim> makeModel(const Config& c) {
     o.transverseModes = c.nt;
     o.velocityModel = c.velocity;
     o.elasticModel = c.elastic;
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     return SpanModel<Dim>(kRope, o, someGravity<Dim>(), someReference<Dim>());
 }
 
@@ -114,10 +114,10 @@ void checkMassMatrix(const Config& c, int seed) {
         g.segment<Dim>(0) = g.segment<Dim>(Dim) = e / l;
         g[model.s1Index()] = g[model.s2Index()] = 1.0;
         if (c.velocity == VelocityModel::Simplified) {
-            EXPECT_LT(g.dot(M * g), 1e-14 * M.norm());  // measured 3.6e-16 |M| (2026-12-01, 2e3eafb), margin 28x
+            EXPECT_LT(g.dot(M * g), 1e-14 * M.norm());  // measured 3.6e-16 |M|, margin 28x
         }
     }
-    // Measured 5.9e-16 relative (2026-12-01, 2e3eafb); margin 51x.
+    // Measured 5.9e-16 relative; margin 51x.
     EXPECT_NEAR(d.kineticEnergy, 0.5 * qd.dot(M * qd), 3e-14 * d.kineticEnergy);
 
     const double h = 1e-2;  // T is exactly quadratic in qdot: the difference is exact but for round-off
@@ -133,7 +133,7 @@ void checkMassMatrix(const Config& c, int seed) {
             };
             H(i, j) = (T(h, h) - T(h, -h) - T(-h, h) + T(-h, -h)) / (4 * h * h);
         }
-    // Measured 8.7e-12 (2026-12-01, 2e3eafb); margin 57x.
+    // Measured 8.7e-12; margin 57x.
     EXPECT_LT((H - M).cwiseAbs().maxCoeff() / M.cwiseAbs().maxCoeff(), 5e-10);
 }
 
@@ -153,7 +153,7 @@ void checkVelocityForces(const Config& c, int seed) {
     const Eigen::VectorXd MdotQd = (dp.massMatrix - dm.massMatrix) * qd / (2 * h);
     const Eigen::VectorXd dTdq = centralGradient([&](const Eigen::VectorXd& x) { return kinetic(model, x, qd); }, q, h);
     const Eigen::VectorXd expected = -MdotQd + dTdq;
-    // Measured 1.1e-9 (2026-12-01, 2e3eafb); margin 46x.
+    // Measured 1.1e-9; margin 46x.
     EXPECT_LT(relativeError(Eigen::VectorXd(d.velocityForces), expected), 5e-8)
         << "Q_v   = " << d.velocityForces.transpose() << "\nFD    = " << expected.transpose();
 }
@@ -180,7 +180,7 @@ void checkConservativeForces(const Config& c, int seed) {
     const Eigen::VectorXd gradUg = centralGradient(energy(false), q, h);
     EXPECT_LT(relativeError(Eigen::VectorXd(d.elasticForces), -gradU), 1e-6)
         << "Q_el = " << d.elasticForces.transpose() << "\n-dU  = " << -gradU.transpose();
-    // Measured 4.8e-11 (2026-12-01, 2e3eafb); margin 41x.
+    // Measured 4.8e-11; margin 41x.
     EXPECT_LT(relativeError(Eigen::VectorXd(d.gravityForces), -gradUg), 2e-9)
         << "Q_g  = " << d.gravityForces.transpose() << "\n-dUg = " << -gradUg.transpose();
 }
@@ -230,7 +230,7 @@ TEST(SpanModel, RigidMotionOfUnstrainedSpanGivesZeroElasticForce) {
             q[model.s2Index()] = 0.7 * trial + L;
             SpanData<3> d;
             model.evaluate(q, Eigen::VectorXd::Zero(model.numCoordinates()), d);
-            // Measured 1.1e-11 N = 5.6e-16 EA (2026-12-01, 2e3eafb); margin 54x.
+            // Measured 1.1e-11 N = 5.6e-16 EA; margin 54x.
             EXPECT_LE(d.elasticForces.cwiseAbs().maxCoeff(), 3e-14 * kRope.axialStiffness);
         }
     }
@@ -245,7 +245,7 @@ TEST(SpanModel, RigidMotionOfUnstrainedSpanGivesZeroElasticForce) {
             q[model.s2Index()] = 1.5;
             SpanData<2> d;
             model.evaluate(q, Eigen::VectorXd::Zero(model.numCoordinates()), d);
-            // Measured 7.8e-12 N = 3.9e-16 EA (2026-12-01, 2e3eafb); margin 77x.
+            // Measured 7.8e-12 N = 3.9e-16 EA; margin 77x.
             EXPECT_LE(d.elasticForces.cwiseAbs().maxCoeff(), 3e-14 * kRope.axialStiffness);
         }
     }
@@ -278,7 +278,7 @@ TEST(SpanModel, AxialForceWithoutAxialModesMatchesClosedForm) {
             }
             const double closed = 0.5 * kRope.axialStiffness * ((chord2 + slope2) / (l * l) - 1.0);
             const double P = model.axialForce(q, s1 + xi * l);
-            // Measured 4.4e-15 relative (2026-12-01, 2e3eafb); margin 46x.
+            // Measured 4.4e-15 relative; margin 46x.
             EXPECT_NEAR(P, closed, 2e-13 * std::abs(closed)) << "n_t=" << nt << " xi=" << xi;
         }
         if (nt == 0) {
@@ -301,7 +301,7 @@ TEST(SpanModel, AutomaticQuadratureMatchesMuchHigherOrder) {
                 o.transverseModes = nt;
                 o.velocityModel = vm;
                 o.elasticModel = ElasticEnergyModel::PaperLiteral;  // the richest integrand
-                o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+                o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
                 const SpatialSpanModel autoModel(kRope, o, someGravity<3>(), someReference<3>());
                 o.quadraturePoints = 150;
                 const SpatialSpanModel refModel(kRope, o, someGravity<3>(), someReference<3>());
@@ -326,7 +326,7 @@ TEST(SpanModel, PlanarSpanEqualsInPlaneSpatialSpan) {
     o.axialModes = 2;
     o.transverseModes = 2;
     o.velocityModel = VelocityModel::Complete;
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     const PlanarSpanModel planar(kRope, o, Eigen::Vector2d(0.5, -9.81));
     const SpatialSpanModel spatial(kRope, o, Eigen::Vector3d(0.5, -9.81, 0),
                                    makeReferenceFrame(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1)));
@@ -445,7 +445,7 @@ TEST(SpanModel, EndStrainDerivativesMatchFiniteDifferences) {
             model.endStrain(q, qd, end, es);
             EXPECT_NEAR(es.strain, eps(q), 1e-15);
             const Eigen::VectorXd g = centralGradient(eps, q, 1e-6);
-            // Measured 2.2e-10 (2026-12-01, 2e3eafb); margin 46x.
+            // Measured 2.2e-10; margin 46x.
             EXPECT_LT(relativeError(Eigen::VectorXd(es.gradient), g), 1e-8);
             EXPECT_NEAR(es.rate, es.gradient.dot(qd), 1e-13 * std::abs(es.rate) + 1e-15);
             const double h = 1e-4;

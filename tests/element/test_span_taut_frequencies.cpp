@@ -55,8 +55,8 @@ void checkTautSpan(ElasticEnergyModel energy, double expectedRatio, double toler
     o.axialModes = 2;
     o.transverseModes = 3;
     o.elasticModel = energy;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     Eigen::Matrix<double, Dim, Dim> ref = Eigen::Matrix<double, Dim, Dim>::Identity();
     if constexpr (Dim == 3) ref = makeReferenceFrame(Eigen::Vector3d(0, -1, 0));  // a vertical span
     const SpanModel<Dim> model(rope, o, Eigen::Matrix<double, Dim, 1>::Zero(), ref);
@@ -65,11 +65,11 @@ void checkTautSpan(ElasticEnergyModel energy, double expectedRatio, double toler
     Eigen::VectorXd q0 = Eigen::VectorXd::Zero(model.numCoordinates());
     q0.template segment<Dim>(Dim) = lambda * L * ref.col(0);
     q0[model.s2Index()] = L;
-    ASSERT_NEAR(model.axialForce(q0, 0.3 * L), P, 5e-12 * P);  // measured 1.0e-13 relative (2026-12-01, 2e3eafb), margin 50x
+    ASSERT_NEAR(model.axialForce(q0, 0.3 * L), P, 5e-12 * P);  // measured 1.0e-13 relative, margin 50x
     for (int dir = 0; dir < Dim - 1; ++dir) {
         double coupling = 0;
         const Eigen::VectorXd f = transverseFrequencies(model, q0, dir, &coupling);
-        EXPECT_LT(coupling, 1e-14);  // measured 0 (exact) (2026-12-01, 2e3eafb); bound at round-off
+        EXPECT_LT(coupling, 1e-14);  // measured 0 (exact); bound at round-off
         for (int n = 1; n <= 3; ++n) {
             const double fString = n / (2 * L) * std::sqrt(P / rope.massPerLength);
             const double ratio = f[n - 1] / fString;
@@ -84,7 +84,7 @@ void checkTautSpan(ElasticEnergyModel energy, double expectedRatio, double toler
 }  // namespace
 
 // The ratios are exact up to round-off: measured at most 1.5e-12 relative over both models, both
-// dimensions and n = 1..3 (2026-12-01, 2e3eafb); tolerance 1e-10, margin 65x.
+// dimensions and n = 1..3; tolerance 1e-10, margin 65x.
 TEST(SpanTautFrequencies, ConsistentEnergyGivesStringFrequencies) {
     checkTautSpan<2>(ElasticEnergyModel::Consistent, 1.0, 1e-10);
     checkTautSpan<3>(ElasticEnergyModel::Consistent, 1.0, 1e-10);

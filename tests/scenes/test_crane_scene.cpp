@@ -1,4 +1,4 @@
-// CraneScene (issue 13, item 4): the gantry crane builds for every number of falls, hangs in static
+// CraneScene: the gantry crane builds for every number of falls, hangs in static
 // equilibrium with each fall carrying (M g)/n, stays in its plane, and its energy balance against
 // the prescribed drives closes. Also the SmoothMove / MotionProfile kinematics it is driven by.
 #include <SimbodyReeving/scenes/CraneScene.h>
@@ -24,7 +24,7 @@ SpanOptions spans(int na) {
     o.axialModes = na;
     o.transverseModes = 1;
     o.axialDynamics = AxialDynamics::QuasiStatic;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     return o;
 }
 
@@ -37,7 +37,7 @@ TEST(SmoothMove, RestToRestWithContinuousDerivatives) {
     EXPECT_NEAR(m.position(5.5), 2.5, 1e-12);  // symmetric
     EXPECT_NEAR(m.velocity(5.0), 5.0 / 7.0, 1e-12);
     // Phase boundaries: continuous. Across 2e-9 s the position moves by up to v 2e-9 = 1.4e-9 m
-    // (measured 1.43e-9 (2026-12-01, 2e3eafb), margin 7x); velocity and acceleration measured 8.9e-28 and
+    // (measured 1.43e-9, margin 7x); velocity and acceleration measured 8.9e-28 and
     // 2.7e-18 (equal to round-off), bound 1e-14 = 100x the round-off of values of order 1.
     for (double t : {1.0, 3.0, 8.0, 10.0}) {
         EXPECT_NEAR(m.position(t - 1e-9), m.position(t + 1e-9), 1e-8) << t;
@@ -46,7 +46,7 @@ TEST(SmoothMove, RestToRestWithContinuousDerivatives) {
     }
     // Derivatives are the exact derivatives (central differences, h = 1e-5: truncation h^2 / 6 times
     // the third derivative plus round-off eps f / h, both about 1e-11). Measured 4.3e-11 and 6.3e-11
-    // (2026-12-01, 2e3eafb); margins 23x and 16x.
+    //; margins 23x and 16x.
     for (double t : {1.3, 2.7, 4.0, 8.4, 9.9}) {
         const double h = 1e-5;
         EXPECT_NEAR((m.position(t + h) - m.position(t - h)) / (2 * h), m.velocity(t), 1e-9) << t;
@@ -54,7 +54,7 @@ TEST(SmoothMove, RestToRestWithContinuousDerivatives) {
     }
     double peak = 0;
     for (int i = 0; i <= 10000; ++i) peak = std::max(peak, std::abs(m.acceleration(1.0 + 9.0 * i / 10000)));
-    EXPECT_NEAR(peak, m.peakAcceleration(), 1e-6);  // sampled peak: measured 1.3e-8 (2026-12-01, 2e3eafb), margin 75x
+    EXPECT_NEAR(peak, m.peakAcceleration(), 1e-6);  // sampled peak: measured 1.3e-8, margin 75x
     EXPECT_THROW_MESSAGE((SmoothMove{0, 1, 0.6, 1}.validate()), std::invalid_argument,
                          "SmoothMove: ramp = 0.6 must be finite and in (0, duration / 2]");
     EXPECT_THROW_MESSAGE((SmoothMove{0, 0, 0, 1}.validate()), std::invalid_argument,
@@ -135,8 +135,8 @@ TEST(CraneScene, StaticEquilibriumSharesTheLoadEquallyAmongTheFalls) {
             // The same closed form without the rope's weight (a model that drops it would match it).
             worstMidWithoutWeight = std::min(worstMidWithoutWeight, std::abs(mid - bottom));
             EXPECT_NEAR(mid, expected, bound) << n << " " << k;
-            // Measured 1.5e-3 .. 4.0e-3 of the share (the n_a = 1 end bias, 16 N for the 11 m falls;
-            // 2026-12-01, 2e3eafb): this bound is the 0.5 % the test claims, margin 1.25x.
+            // Measured 1.5e-3 .. 4.0e-3 of the share (the n_a = 1 end bias, 16 N for the 11 m falls):
+            // this bound is the 0.5 % the test claims, margin 1.25x.
             EXPECT_NEAR(scene.fallTopForce(s, k), share + weight, 0.005 * share) << n << " " << k;
         }
         std::printf("[ crane ] %2d falls: mid-fall tension error %.3e N (%.2e of the share, bound %.1e N); the "
@@ -146,7 +146,7 @@ TEST(CraneScene, StaticEquilibriumSharesTheLoadEquallyAmongTheFalls) {
         // a fall's weight, 86 N (10x the bound for two or more falls, 1.9e4x for one).
         EXPECT_GT(worstMidWithoutWeight, 5 * bound) << n;
         const Vec3 hook = scene.hookPosition(s);
-        // Measured (2026-12-01, 2e3eafb) over n = 1..12: depth within 3.8e-5 m (margin 26x), sway 3.2e-6 rad
+        // Measured over n = 1..12: depth within 3.8e-5 m (margin 26x), sway 3.2e-6 rad
         // (31x), payload angle 0 (symmetric; bound at round-off), hook tilt 1.8e-5 (55x).
         EXPECT_NEAR(p.railHeight - hook[1], p.initialHookDepth, 1e-3) << n;
         EXPECT_NEAR(scene.swayAngle(s), 0.0, 1e-4) << n;
@@ -160,7 +160,7 @@ TEST(CraneScene, StaticEquilibriumSharesTheLoadEquallyAmongTheFalls) {
         // turns the drum the positive way).
         const double ropeTorque = scene.reeving().getDrivenNodeTorque(s, 0, 0);
         EXPECT_GT(ropeTorque, 0.9 * p.drumRadius * share) << n;
-        // Equal in exact arithmetic: measured 2.2e-15 relative (2026-12-01, 2e3eafb); margin 45x.
+        // Equal in exact arithmetic: measured 2.2e-15 relative; margin 45x.
         EXPECT_NEAR(scene.motorTorque(s), -ropeTorque, 1e-13 * ropeTorque) << n;
     }
 }
@@ -175,9 +175,8 @@ TEST(CraneScene, LiftClosesTheEnergyBalance) {
     const double y0 = scene.hookPosition(s)[1];
     const double rope0 = scene.reeving().calcRopePotentialEnergy(s);
     SimTK::RungeKuttaMersonIntegrator integ(scene.system());
-    // The energy balance's residual is the integrator's error: measured 6.6e-4 J at accuracy 1e-7
-    // (at 652ce21; 2.0e-5 J at 2e3eafb: round-off changes of the step sequence move it within that
-    // range), 5.5e-5 J at 1e-8 and 1.9e-5 J at 1e-9 (2026-12-02, d44472e). At 1e-8 it stays 14x
+    // The energy balance's residual is the integrator's error: measured between 2.0e-5 and 6.6e-4 J at
+    // accuracy 1e-7 (round-off changes of the step sequence move it within that range), 5.5e-5 J at 1e-8 and 1.9e-5 J at 1e-9. At 1e-8 it stays 14x
     // below the bound whatever the round-off.
     integ.setAccuracy(1e-8);
     InterpolatingTimeStepper ts(scene.system(), integ);
@@ -186,7 +185,7 @@ TEST(CraneScene, LiftClosesTheEnergyBalance) {
     const State& st = ts.getState();
     scene.system().realize(st, Stage::Acceleration);
     const double lift = scene.cycle().hoist.position(4.0);
-    // The change of stretch: measured 1.0e-3 m (2026-12-01, 2e3eafb), margin 20x.
+    // The change of stretch: measured 1.0e-3 m, margin 20x.
     EXPECT_NEAR(scene.hookPosition(st)[1] - y0, lift, 0.02);
     const double w = scene.workMeter().getWork(st);
     // The work lifted hook block and payload, raised the rope (the hauled rope to the drum, where
@@ -194,13 +193,13 @@ TEST(CraneScene, LiftClosesTheEnergyBalance) {
     const double kinetic = scene.system().calcKineticEnergy(st) + scene.reeving().calcRopeKineticEnergy(st);
     const double rope = scene.reeving().calcRopePotentialEnergy(st) - rope0;
     EXPECT_GT(rope, 0.005 * w);  // the stored rope's potential energy: about 1.4 kJ here
-    // Measured 1.3e-4 J of w = 77 440 J (1.7e-9 relative) (2026-12-01, 2e3eafb); margin 59x.
+    // Measured 1.3e-4 J of w = 77 440 J (1.7e-9 relative); margin 59x.
     EXPECT_NEAR(w - kinetic - rope, (p.payloadMass + p.hookMass) * p.g * (scene.hookPosition(st)[1] - y0), 1e-7 * w);
     const double power = scene.motorTorque(st) * scene.drumSpeed(st) + scene.trolleyForce(st) * scene.trolley().getOneU(st, 0);
     EXPECT_NEAR(power, scene.workMeter().getPower(st), 1e-9 * std::abs(power) + 1e-6);
-    // Measured 5.5e-5 J of w = 77 440 J (7.1e-10 relative) at accuracy 1e-8 (2026-12-02, d44472e); margin 14x.
+    // Measured 5.5e-5 J of w = 77 440 J (7.1e-10 relative) at accuracy 1e-8; margin 14x.
     EXPECT_NEAR(scene.reeving().calcMechanicalEnergy(st) - e0 - w, 0.0, 1e-8 * w);
-    // The drum angle is prescribed: measured exact (0) (2026-12-01, 2e3eafb); bound at round-off.
+    // The drum angle is prescribed: measured exact (0); bound at round-off.
     EXPECT_NEAR(scene.ropeOnDrum(st), p.ropeOnDrum + p.falls * lift, 1e-12 * p.falls * lift);
 }
 
@@ -271,7 +270,7 @@ TEST(CraneScene, MotorTorqueDoesNotDependOnTheHeightDatum) {
     }
     // The datum error this guards against is 71 N m (1.8e-2 relative). Both states come from
     // findStaticEquilibrium at a relative residual of 1e-9, so they agree to round-off only as far as
-    // both solves take the same iterates: measured 3.3e-15 relative (2e3eafb), 6.3e-13 with the
-    // chain solve of issue 20 (band LU, products in the coupling); bound 1e-11 (16x).
+    // both solves take the same iterates: measured 6.3e-13 relative (the chain solve's band LU and
+    // products in the coupling round differently for the two states); bound 1e-11 (16x).
     EXPECT_NEAR(torque[0], torque[1], 1e-11 * std::abs(torque[0]));
 }

@@ -1,4 +1,4 @@
-// The paper's pendulum in Simbody (acceptance 1 and 3 of the Simbody-layer issue): a conservative
+// The paper's pendulum in Simbody: a conservative
 // 20 s run conserves mechanical energy, better as the accuracy is tightened, with the sheave
 // constraint satisfied at every report; four Simbody integrators agree on the payload's path.
 #include "SimbodyReeving/simbody/Integrators.h"
@@ -54,8 +54,8 @@ SpanOptions spans(int na) {
     SpanOptions o;
     o.axialModes = na;
     o.transverseModes = 1;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     return o;
 }
 
@@ -70,15 +70,15 @@ TEST(ReevingPendulum, ConservativeRunConservesEnergy) {
         std::printf("[ energy ] accuracy %.0e: KE0 %.3f J, max |E - E0| %.3e J (%.3e of KE0), max |F_a - F_b| %.3e N, "
                     "%d steps, %.1f s\n",
                     accuracy, r.ke0, r.maxDrift, r.maxDrift / r.ke0, r.maxConstraint, r.steps, r.seconds);
-        // Measured 2.3e-13 of KE0 at accuracy 1e-10 (5.0e-11 at 1e-6, 7.5e-13 at 1e-8; 2026-12-01,
-        // 2e3eafb); margin 43x.
+        // Measured 2.3e-13 of KE0 at accuracy 1e-10 (5.0e-11 at 1e-6, 7.5e-13 at 1e-8);
+        // margin 43x.
         if (accuracy == 1e-10) {
             EXPECT_LE(r.maxDrift, 1e-11 * r.ke0);
         }
         EXPECT_LT(r.maxDrift, previous);
         previous = r.maxDrift;
-        // Constraint residual (the rope tension is ~1e4 N): measured at most 1.6e-8 N (2026-12-01,
-        // 2e3eafb); margin 61x.
+        // Constraint residual (the rope tension is ~1e4 N): measured at most 1.6e-8 N;
+        // margin 61x.
         EXPECT_LE(r.maxConstraint, 1e-6);
     }
 }
@@ -99,7 +99,7 @@ TEST(ReevingPendulum, IntegratorsAgreeOnPayloadPath) {
         for (size_t k = 0; k < results[0].positions.size(); ++k)
             worst = std::max(worst, (results[i].positions[k] - results[0].positions[k]).norm());
         std::printf("[ integrators ] %s vs rk-merson: max |dx| = %.3e m\n", names[i].c_str(), worst);
-        // Measured 1.3e-8 m (rk3), 3.8e-9 m (rk-feldberg), 1.1e-8 m (cpodes) (2026-12-01, 2e3eafb);
+        // Measured 1.3e-8 m (rk3), 3.8e-9 m (rk-feldberg), 1.1e-8 m (cpodes);
         // margins 23x, 79x and 28x.
         EXPECT_LE(worst, 3e-7) << names[i];
     }

@@ -1,4 +1,4 @@
-// What ReevingSubsystem's decorations draw (issue 19): spans coloured by axial force through the
+// What ReevingSubsystem's decorations draw: spans coloured by axial force through the
 // documented colour map, sheaves at their radius, the drum's stored rope following getRopeOnDrum,
 // and the force scale's validation.
 #include <SimbodyReeving/scenes/CraneScene.h>

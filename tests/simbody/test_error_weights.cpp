@@ -1,4 +1,4 @@
-// Item 10 of issue 19: the integrator error weights of a span's axial modal coordinates follow that
+// The integrator error weights of a span's axial modal coordinates follow that
 // span's own current material length l: w = i pi / (l eps_ref), eps_ref = 1e-3 (see
 // ReevingRealization.cpp, setZWeights); rates 1 / (eps_ref sqrt(EA / rhoA)); transverse 1.
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"

@@ -1,4 +1,4 @@
-// Item 8 of issue 19: the ropes' gravity is given once. ReevingSubsystem(system) takes the system's
+// The ropes' gravity is given once. ReevingSubsystem(system) takes the system's
 // gravity forces at realizeTopology; ReevingSubsystem(system, g) must agree with them; a per-state
 // change of Force::Gravity (a State parameter) is an error at realizeDynamics.
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"

@@ -1,4 +1,4 @@
-// Hoisting with driven rope nodes (issue 13): a locked winch drum is a fixed anchor; a drum at
+// Hoisting with driven rope nodes: a locked winch drum is a fixed anchor; a drum at
 // constant speed lifts a hook block on n falls at R omega / n with the motor's work equal to the
 // change of mechanical energy; after hoisting and braking the bounce frequency is the one of the
 // shortened rope; an Atwood machine over an idler with inertia; rope limits end the run cleanly;
@@ -147,7 +147,7 @@ TEST(Hoisting, LockedDrumReproducesTheFixedAnchor) {
         spec.spanDefaults.axialModes = 1;
         spec.spanDefaults.transverseModes = 1;
         spec.spanDefaults.axialDynamics = AxialDynamics::Dynamic;
-        spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+        spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
         spec.planeNormal = planar ? Vec3(0, 0, 1) : Vec3(0);
         reeving.addRope(spec);
         system.realizeTopology();
@@ -170,7 +170,7 @@ TEST(Hoisting, LockedDrumReproducesTheFixedAnchor) {
     for (size_t k = 0; k < anchored.size(); ++k) worst = std::max(worst, (anchored[k] - drummed[k]).norm());
     std::printf("[ hoist ] locked drum vs fixed anchor, %s rope, 2 s, n_a = 1 Dynamic: max payload distance %.3e m\n",
                 planar ? "planar" : "spatial", worst);
-    // Measured 0 (bit-identical paths) (2026-12-01, 2e3eafb); bound at round-off of a 20 m position.
+    // Measured 0 (bit-identical paths); bound at round-off of a 20 m position.
     EXPECT_LE(worst, 1e-12);
   }
 }
@@ -294,7 +294,7 @@ TEST(Hoisting, BounceFrequencyAfterHoistingMatchesTheShortenedRope) {
                 "%.5f Hz (error %.2e), of the initial rope %.5f Hz\n",
                 L, L0, f, expected, (f - expected) / expected, before);
     EXPECT_LT(L, L0 - 2.9);
-    // Measured 2.5e-4 relative (2026-12-01, 2e3eafb); margin 20x.
+    // Measured 2.5e-4 relative; margin 20x.
     EXPECT_NEAR(f, expected, 5e-3 * expected);
     EXPECT_GT(std::abs(f - before), 2 * 5e-3 * expected);  // the shortened rope is distinguishable
 }
@@ -369,7 +369,7 @@ TEST(Hoisting, AtwoodMachineOverAnIdlerWithInertia) {
                 "a = %.6f (formula %.6f, error %.2e)\n",
                 J, withInertia, expected, (withInertia - expected) / expected, slip, frictionless, expected0,
                 (frictionless - expected0) / expected0);
-    // Measured (2026-12-01, 2e3eafb): 1.4e-5 and 1.6e-5 relative (margins 72x, 61x); slip 4.4e-16 m (round-off
+    // Measured: 1.4e-5 and 1.6e-5 relative (margins 72x, 61x); slip 4.4e-16 m (round-off
     // of s = 5 m), margin 23x.
     EXPECT_NEAR(withInertia, expected, 1e-3 * expected);
     EXPECT_NEAR(frictionless, expected0, 1e-3 * expected0);
@@ -397,7 +397,7 @@ TEST(Hoisting, TwoBlockingEndsTheRunAtTheMinimumSpanLength) {
         const auto [s1, s2] = h.reeving->getSpanMaterialRange(end, 0, j);
         shortest = std::min(shortest, s2 - s1);
     }
-    EXPECT_NEAR(shortest, 0.5, 1e-12);  // measured 3.0e-14 m (2026-12-01, 2e3eafb), margin 33x
+    EXPECT_NEAR(shortest, 0.5, 1e-12);  // measured 3.0e-14 m, margin 33x
 }
 
 TEST(Hoisting, DrumRunningOutOfRopeEndsTheRun) {
@@ -414,7 +414,7 @@ TEST(Hoisting, DrumRunningOutOfRopeEndsTheRun) {
                 h.reeving->getRopeOnDrum(end, 0, 0), why.c_str());
     EXPECT_EQ(integ.getTerminationReason(), SimTK::Integrator::EventHandlerRequestedTermination);
     EXPECT_NE(why.find("winch drum at node 0 ran out of rope"), std::string::npos) << why;
-    // 1 m at R omega = 1 m/s: measured 1.2e-14 s and 1.2e-14 m (2026-12-01, 2e3eafb); margins 85x.
+    // 1 m at R omega = 1 m/s: measured 1.2e-14 s and 1.2e-14 m; margins 85x.
     EXPECT_NEAR(end.getTime(), 1.0, 1e-12);
     EXPECT_NEAR(h.reeving->getRopeOnDrum(end, 0, 0), 0.0, 1e-12);
 }
@@ -440,8 +440,8 @@ TEST(Hoisting, EndDrumHaulingItsSpanInEndsAtTheMinimum) {
     spec.unstretchedLength = 3.0;
     spec.spanDefaults.axialModes = 1;
     spec.spanDefaults.transverseModes = 1;
-    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
-    spec.spanDefaults.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
+    spec.spanDefaults.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     spec.planeNormal = Vec3(0, 0, 1);
     spec.minimumSpanLength = 0.5;
     reeving.addRope(spec);
@@ -458,7 +458,7 @@ TEST(Hoisting, EndDrumHaulingItsSpanInEndsAtTheMinimum) {
     std::printf("[ hoist ] end drum: t = %.6f s: %s\n", end.getTime(), why.c_str());
     EXPECT_NE(why.find("rope 'winch' span 0"), std::string::npos) << why;
     const auto [s1, s2] = reeving.getSpanMaterialRange(end, 0, 0);
-    // 2.5 m hauled at R omega = 1 m/s: measured 2.5e-14 m and 2.5e-14 s (2026-12-01, 2e3eafb); margins 40x.
+    // 2.5 m hauled at R omega = 1 m/s: measured 2.5e-14 m and 2.5e-14 s; margins 40x.
     EXPECT_NEAR(s2 - s1, 0.5, 1e-12);
     EXPECT_NEAR(end.getTime(), 2.5, 1e-12);
 }
@@ -529,7 +529,7 @@ TEST(Hoisting, BadDrumAndSheaveInputIsAnInvalidArgument) {
     EXPECT_NO_THROW(reeving.addRope(r));
 }
 
-// Item 2 of the issue: one span hauled in from 100 m to its 0.5 m minimum by an end drum, with
+// Long hauls: one span hauled in from 100 m to its 0.5 m minimum by an end drum, with
 // quasi-static axial modes and transverse modes: every evaluation succeeds (Newton, quadrature and
 // modes stay conditioned over the 200x length range), the run ends at the limit, and the motor's
 // work equals the change of mechanical energy.
@@ -552,7 +552,7 @@ TEST(Hoisting, SpanFromOneHundredMetresToHalfAMetre) {
     spec.spanDefaults.axialModes = 2;
     spec.spanDefaults.transverseModes = 2;
     spec.spanDefaults.axialDynamics = AxialDynamics::QuasiStatic;
-    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     spec.planeNormal = Vec3(0, 0, 1);
     spec.minimumSpanLength = 0.5;
     reeving.addRope(spec);
@@ -590,14 +590,14 @@ TEST(Hoisting, SpanFromOneHundredMetresToHalfAMetre) {
     ASSERT_TRUE(integ.isSimulationOver());
     EXPECT_EQ(integ.getTerminationReason(), SimTK::Integrator::EventHandlerRequestedTermination);
     EXPECT_NE(reeving.getLimitReached().find("rope 'winch' span 0"), std::string::npos);
-    // Measured 1.1e-12 m and 7.1e-14 s (2026-12-01, 2e3eafb); margins 94x and 70x.
+    // Measured 1.1e-12 m and 7.1e-14 s; margins 94x and 70x.
     EXPECT_NEAR(s2 - s1, 0.5, 1e-10);
     EXPECT_NEAR(end.getTime(), 99.5 / (-R * omega), 5e-12);
     EXPECT_EQ(reeving.getNumEvaluationFailures(), failures0);
     // The load bounces on the shortening rope (the stretch M g L / EA shrinks as it is hauled in;
     // the bounce's force amplitude grows with the stiffness): the tension is a sanity check only.
-    EXPECT_NEAR(tension, M * kG, 0.25 * M * kG);  // measured 12.7 % off (2026-12-01, 2e3eafb), margin 2x
-    // Measured 1.0e-5 J of W = 2.03e6 J (5.0e-12 relative) (2026-12-01, 2e3eafb); margin 40x.
+    EXPECT_NEAR(tension, M * kG, 0.25 * M * kG);  // measured 12.7 % off, margin 2x
+    // Measured 1.0e-5 J of W = 2.03e6 J (5.0e-12 relative); margin 40x.
     EXPECT_LE(worst, 2e-10 * work);
 }
 
@@ -648,7 +648,7 @@ TEST(Hoisting, FreeDrumLowersTheLoad) {
     const double expected = -m * kG / (m + J / (R * R));
     std::printf("[ hoist ] free drum: a = %.6f m/s^2 (m g / (m + J/R^2) = %.6f, error %.2e), |E - E0| max %.3e J\n",
                 2 * c[2], expected, (2 * c[2] - expected) / expected, drift);
-    // Measured (2026-12-01, 2e3eafb): 1.7e-4 relative (the stored rope's mass share above), margin 5.9x; drift
+    // Measured: 1.7e-4 relative (the stored rope's mass share above), margin 5.9x; drift
     // 3.8e-8 J, margin 65x.
     EXPECT_NEAR(2 * c[2], expected, 1e-3 * std::abs(expected));
     EXPECT_LE(drift, 5e-9 * m * kG * 1.0);

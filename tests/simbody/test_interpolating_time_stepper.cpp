@@ -27,7 +27,7 @@ RunRecord run(double reportInterval, double tEnd = 5.0) {
     SpanOptions o;
     o.axialModes = 0;
     o.transverseModes = 1;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     const PendulumScene scene(PendulumParameters{}, o);
     auto integ = makeIntegrator("rk-merson", scene.system());
     integ->setAccuracy(1e-6);
@@ -61,7 +61,7 @@ TEST(InterpolatingTimeStepper, StepCountIndependentOfReportInterval) {
     for (size_t k = 0; k < fine.positions.size(); ++k)
         worst = std::max(worst, (fine.positions[k] - stopping.positions[k]).norm());
     std::printf("max |payload position difference| interpolated vs stopping: %.2e m\n", worst);
-    // Both within the 1e-6 accuracy setting of the true path: measured 1.21e-6 m (2026-12-01, 2e3eafb),
+    // Both within the 1e-6 accuracy setting of the true path: measured 1.21e-6 m,
     // margin 8.3x. The two runs take different steps, so they differ by the integrator's error at this
     // accuracy; a tighter bound would test RK-Merson's error estimate, not the stepper.
     EXPECT_LT(worst, 1e-5);
@@ -111,7 +111,7 @@ TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper
             SpanOptions o;
             o.axialModes = 1;
             o.axialDynamics = AxialDynamics::QuasiStatic;
-            o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+            o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
             PendulumScene scene(PendulumParameters{}, o);
             auto* kick = new Kick(scene, 0.737);  // the system takes ownership
             auto* reporter = new CountingReporter(0.25);
@@ -143,7 +143,7 @@ TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper
         }
         std::printf("%s: final payload position difference %.2e m; reports %zu / %zu\n", name,
                     (finals[0] - finals[1]).norm(), reportTimes[0].size(), reportTimes[1].size());
-        // Measured 1.66e-10 m (rk-merson) and 1.36e-11 m (cpodes) at accuracy 1e-8 (2026-12-01, 2e3eafb):
+        // Measured 1.66e-10 m (rk-merson) and 1.36e-11 m (cpodes) at accuracy 1e-8:
         // the same steps, only the report states differ; margins 60x and 74x.
         EXPECT_LT((finals[0] - finals[1]).norm(), std::string(name) == "cpodes" ? 1e-9 : 1e-8) << name;
         ASSERT_EQ(reportTimes[0].size(), reportTimes[1].size()) << name;
@@ -157,7 +157,7 @@ TEST(InterpolatingTimeStepper, HandlesScheduledEventsAndReportersLikeTimeStepper
 TEST(InterpolatingTimeStepper, StepLimitReturnsEarlyAndRejectsNegative) {
     SpanOptions o;
     o.axialModes = 0;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     const PendulumScene scene(PendulumParameters{}, o);
     auto integ = makeIntegrator("rk-merson", scene.system());
     integ->setAccuracy(1e-8);
@@ -181,7 +181,7 @@ TEST(InterpolatingTimeStepper, ReportStageRealizesWhatTheReportersRead) {
     SpanOptions o;
     o.axialModes = 1;
     o.axialDynamics = AxialDynamics::QuasiStatic;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     const PendulumScene scene(PendulumParameters{}, o);
     std::vector<SimTK::Vec3> positions[3];
     const SimTK::Stage stages[3] = {SimTK::Stage::Position, SimTK::Stage::Velocity, SimTK::Stage::Dynamics};
@@ -206,7 +206,7 @@ TEST(InterpolatingTimeStepper, ReportStageRealizesWhatTheReportersRead) {
         }
     }
     // No constraints but the free body's quaternion norm: the reported positions are the same to
-    // the last bit whatever the stage (measured 0 m, 2026-12-01).
+    // the last bit whatever the stage (measured 0 m).
     for (int which = 1; which < 3; ++which)
         for (size_t k = 0; k < positions[0].size(); ++k)
             EXPECT_EQ((positions[which][k] - positions[0][k]).norm(), 0.0) << which << " " << k;
@@ -245,7 +245,7 @@ TEST(InterpolatingTimeStepper, ReportsSolveTheRopesAsAColdStartDoes) {
                 interpolated, worstS, worstForce);
     EXPECT_GT(interpolated, 50);
     // Measured s 1.4e-14 m, force 1.5e-12 relative over 99 interpolated reports (the Newton's 1e-14
-    // in strain; 2026-12-02, 1d89206); bounds about 70x.
+    // in strain); bounds about 70x.
     EXPECT_LE(worstS, 1e-12);
     EXPECT_LE(worstForce, 1e-10);
 }

@@ -46,5 +46,5 @@ TEST(MotionWorkMeter, WorkEqualsChangeOfMechanicalEnergy) {
     }
     std::printf("[ work ] max |E - E0 - W| = %.3e J, max |W| = %.3f J\n", worst, largest);
     EXPECT_GT(largest, 1.0);  // the motor does real work
-    EXPECT_LE(worst, 2e-9 * largest);  // measured 1.4e-9 J of 35 J (4.0e-11) (2026-12-01, 2e3eafb), margin 50x
+    EXPECT_LE(worst, 2e-9 * largest);  // measured 1.4e-9 J of 35 J (4.0e-11), margin 50x
 }

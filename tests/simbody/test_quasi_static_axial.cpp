@@ -1,4 +1,4 @@
-// AxialDynamics::QuasiStatic in the Simbody layer (issue 12, acceptance 1 and 2): the static
+// AxialDynamics::QuasiStatic in the Simbody layer: the static
 // equilibrium equals the Dynamic model's, and the conservative pendulum keeps its energy. In motion
 // (the pendulum's swing and bounce, a hoist start) its payload path and span-end axial forces follow
 // the Dynamic model's within bounds derived from the axial inertia it neglects, and only with the
@@ -30,7 +30,7 @@ SpanOptions spans(int na, AxialDynamics dynamics) {
     o.axialModes = na;
     o.transverseModes = 1;
     o.axialDynamics = dynamics;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     return o;
 }
 
@@ -70,10 +70,10 @@ TEST(QuasiStaticAxial, StaticEquilibriumEqualsDynamic) {
         }
         std::printf("n_a = %d: max |P_quasi-static - P_dynamic| = %.3e N of %.1f N (%.2e relative)\n", na, worst,
                     scale, worst / scale);
-        // Measured 7.4e-13 / 1.1e-12 / 2.0e-12 for n_a = 1 / 3 / 8 (2026-12-01, 2e3eafb); margin 49x.
+        // Measured 7.4e-13 / 1.1e-12 / 2.0e-12 for n_a = 1 / 3 / 8; margin 49x.
         EXPECT_LT(worst / scale, 1e-10) << "n_a = " << na;
         const double dy = (quasi.payloadPosition(sq) - dynamic.payloadPosition(sd)).norm();
-        // Measured at most 3.6e-15 m (round-off of a 20 m position; 2026-12-01, 2e3eafb); margin 28x.
+        // Measured at most 3.6e-15 m (round-off of a 20 m position); margin 28x.
         EXPECT_LT(dy, 1e-13) << "n_a = " << na;
         // Tension-only (the default): the slack regularisation U_delta stiffens the quasi-static
         // amplitudes by 1 + delta, which shifts the axial force profile by O(delta) of its
@@ -86,10 +86,10 @@ TEST(QuasiStaticAxial, StaticEquilibriumEqualsDynamic) {
         const double dyTO = (quasiTO.payloadPosition(st) - dynamic.payloadPosition(sd)).norm();
         std::printf("n_a = %d, tension-only quasi-static (delta = 1e-3): max |P - P_dynamic| = %.3e N (%.2e "
                     "relative), payload %.2e m\n", na, worstTO, worstTO / scale, dyTO);
-        // Measured 4.8e-6 / 5.4e-6 / 5.8e-6 (2026-12-01, 2e3eafb): the O(delta) shift this bound is
+        // Measured 4.8e-6 / 5.4e-6 / 5.8e-6: the O(delta) shift this bound is
         // for, so its margin is 1.7x and a change of delta shows.
         EXPECT_LT(worstTO / scale, 1e-5) << "n_a = " << na;
-        // Measured at most 1.7e-12 m (2026-12-01, 2e3eafb); margin 60x.
+        // Measured at most 1.7e-12 m; margin 60x.
         EXPECT_LT(dyTO, 1e-10) << "n_a = " << na;
     }
 }
@@ -119,9 +119,9 @@ TEST(QuasiStaticAxial, ConservativePendulumConservesEnergy) {
     std::printf("[ quasi-static n_a = 3 ] KE0 %.3f J, max |E - E0| %.3e J (%.3e of KE0), max |F_a - F_b| %.3e N, "
                 "%d steps, swing %.3f m\n",
                 ke0, drift, drift / ke0, constraint, integ->getNumStepsTaken(), maxX - minX);
-    // Measured 5.2e-13 of KE0 (2.6e-10 J of 502 J; 2026-12-01, 2e3eafb; issue 19: 4.6e-13); margin 19x.
+    // Measured 5.2e-13 of KE0 (2.6e-10 J of 502 J); margin 19x.
     EXPECT_LE(drift, 1e-11 * ke0);
-    // Measured 1.1e-8 N (2026-12-01, 2e3eafb); margin 45x.
+    // Measured 1.1e-8 N; margin 45x.
     EXPECT_LE(constraint, 5e-7);
     EXPECT_GT(maxX - minX, 2.0);  // measured 2.873 m: the payload really swings
 }

@@ -1,4 +1,4 @@
-// TransverseDynamics::QuasiStatic in the Simbody layer (issue 20, item 4): the condensed span's
+// TransverseDynamics::QuasiStatic in the Simbody layer: the condensed span's
 // static equilibrium equals the Dynamic model's, and the conservative pendulum with its 3 m span's
 // transverse modes condensed keeps its energy.
 #include "SimbodyReeving/simbody/Integrators.h"
@@ -126,7 +126,7 @@ TEST(QuasiStaticTransverse, ConservativePendulumConservesEnergyInHalfTheSteps) {
     std::printf("[ n_t condensed on the 3 m span ] max |E - E0| / KE0: %.3e at 1e-10, %.3e at 1e-12 (dynamic "
                 "%.3e at 1e-10); steps %d against %d at 1e-10; payload at 20 s %.3e m from the dynamic run's\n",
                 q10.drift / q10.ke0, q12.drift / q12.ke0, d10.drift / d10.ke0, q10.steps, d10.steps, dx);
-    // Measured 5.2e-13 of KE0 at 1e-12 (2026-12-02); margin 38x.
+    // Measured 5.2e-13 of KE0 at 1e-12; margin 38x.
     EXPECT_LE(q12.drift, 2e-11 * q12.ke0);
     // Measured 5.7e-11 -> 5.2e-13 of KE0 from 1e-10 to 1e-12 (110x): the integrator's error, not a model floor.
     EXPECT_GT(q10.drift, 10.0 * q12.drift);

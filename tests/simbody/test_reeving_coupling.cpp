@@ -52,7 +52,7 @@ SpanOptions oneModeEach(SimbodyReeving::AxialDynamics axial) {
     o.axialModes = 1;
     o.transverseModes = 1;
     o.axialDynamics = axial;
-    o.velocityModel = SimbodyReeving::VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = SimbodyReeving::VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     return o;
 }
 
@@ -155,7 +155,7 @@ void movingSheave(SimbodyReeving::AxialDynamics axial, const char* name) {
     ASSERT_LE(residual, 1e-10);
     // Horizontal push; the pinned payload follows its parent (pin rate stays 0).
     block.setUToFitLinearVelocity(s, Vec3(0.5, 0, 0));
-    // Measured (2026-12-01, 2e3eafb): drift 6.6e-13 of KE0 (Dynamic) and 1.0e-11 (QuasiStatic), margins 30x
+    // Measured: drift 6.6e-13 of KE0 (Dynamic) and 1.0e-11 (QuasiStatic), margins 30x
     // and 48x; sheave residual 5.5e-9 N in both, margin 36x.
     if (axial == SimbodyReeving::AxialDynamics::QuasiStatic)
         runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, block, Limits{5e-10, 2e-7});
@@ -203,7 +203,7 @@ void payloadHeldBySimbodyConstraint(SimbodyReeving::AxialDynamics axial, const c
     payload.setUToFitLinearVelocity(s, Vec3(1, 0, 0));
     w.system.realize(s, Stage::Velocity);
     w.system.project(s);
-    // Measured (2026-12-01, 2e3eafb): drift 2.1e-11 of KE0 (Dynamic) and 9.5e-12 (QuasiStatic),
+    // Measured: drift 2.1e-11 of KE0 (Dynamic) and 9.5e-12 (QuasiStatic),
     // margins 48x and 52x; sheave residual 3.7e-9 N and 5.5e-9 N, margins 55x and 36x.
     if (axial == SimbodyReeving::AxialDynamics::QuasiStatic)
         runConservative<SimbodyReeving::InterpolatingTimeStepper>(name, w, s, payload, Limits{5e-10, 2e-7});

@@ -30,8 +30,8 @@ SpanOptions spans(int na, int nt = 1) {
     SpanOptions o;
     o.axialModes = na;
     o.transverseModes = nt;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     return o;
 }
 
@@ -175,7 +175,7 @@ TEST(ReevingSubsystem, StaticTensionApproachesHangingRopeSolution) {
         PendulumScene scene(p, spans(na));
         const State s = scene.makeInitialState(0, 0);
         const ReevingSubsystem& rv = scene.reeving();
-        // Measured 3.7e-9 N = 2.2e-16 EA (2026-12-01, 2e3eafb); the bound is the sheave Newton's acceptance
+        // Measured 3.7e-9 N = 2.2e-16 EA; the bound is the sheave Newton's acceptance
         // (RopeModel: residual <= 1e-14 in strain units, or stagnation below 1e-12).
         EXPECT_LE(rv.getMaxConstraintError(s), 1e-12 * p.EA);
         const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, 1);
@@ -242,7 +242,7 @@ TEST(ReevingSubsystem, VerticalBounceFrequencyMatchesRopeSpring) {
     std::printf("[ bounce ] f = %.5f Hz, expected %.5f Hz (uncorrected sqrt(EA/((L+a)M))/2pi = %.5f Hz), "
                 "error %.3f %%\n",
                 f, fExpected, fUncorrected, 100 * (f / fExpected - 1));
-    // Measured 3.1e-5 relative to the corrected formula (2026-12-01, 2e3eafb); tolerance 3.5e-4, margin 11x.
+    // Measured 3.1e-5 relative to the corrected formula; tolerance 3.5e-4, margin 11x.
     // The uncorrected formula is 0.15 % away: outside four times the tolerance band, so a model that
     // loses the rope-mass or Green-strain correction fails here.
     EXPECT_NEAR(f, fExpected, 3.5e-4 * fExpected);
@@ -285,7 +285,7 @@ TEST(ReevingSubsystem, SmallSwingPeriodMatchesCompoundPendulum) {
     const double period = down[1] - down[0];
     std::printf("[ swing ] period %.5f s, compound pendulum %.5f s (l = %.4f m), error %.4f %%\n", period,
                 periodExpected, l, 100 * (period / periodExpected - 1));
-    // Measured 1.5e-6 relative (2026-12-01, 2e3eafb); margin 68x.
+    // Measured 1.5e-6 relative; margin 68x.
     EXPECT_NEAR(period, periodExpected, 1e-4 * periodExpected);
 }
 
@@ -302,7 +302,7 @@ TEST(ReevingSubsystem, QueriesAndDecorations) {
     const double sSheave = rv.getMaterialCoordinate(s, 0, 1);
     EXPECT_NEAR(sSheave, 3.0, 0.01);
     // Axial forces of both spans at the sheave are equal (the constraint).
-    // Measured 1.8e-9 N (2026-12-01, 2e3eafb); bound: the sheave Newton's acceptance, 1e-12 in strain units.
+    // Measured 1.8e-9 N; bound: the sheave Newton's acceptance, 1e-12 in strain units.
     EXPECT_NEAR(rv.getAxialForce(s, 0, 0, sSheave), rv.getAxialForce(s, 0, 1, sSheave), 1e-12 * 16.5e6);
     const std::vector<Vec3> pts = rv.sampleSpan(s, 0, 1, 11);
     ASSERT_EQ(pts.size(), 11u);
@@ -377,7 +377,7 @@ TEST(ReevingSubsystem, MechanicalEnergyMatchesIndependentlyComputedKineticEnergy
     std::printf("[ energy ] payload T %.9f J, rope T by differences %.9f J (model %.9f J), E - E_rest %.9f J: "
                 "error %.3e J; E_rest - (M g y + U_rope) %.3e J of %.3e J\n",
                 bodies, rope, rv.calcRopeKineticEnergy(s), e - e0, e - e0 - bodies - rope, e0 - potential, e0);
-    // Measured (2026-12-01, 2e3eafb): 3.2e-10 J of 627.7 J and 3.0e-10 J of the rope's 2.663 J (the central
+    // Measured: 3.2e-10 J of 627.7 J and 3.0e-10 J of the rope's 2.663 J (the central
     // differences' truncation), margins 31x and 33x; the energy at rest 0 J off of -2.0e5 J (bound
     // 1e-14 relative, 70 round-off units).
     EXPECT_NEAR(e - e0, bodies + rope, 1e-8);
@@ -404,7 +404,7 @@ TEST(ReevingSubsystem, NodeForceBalancesTheBodiesExactly) {
                     "%.6f N\n",
                     na, end[0], end[1], Mg, rv.getAxialForce(s, 0, 1, range.second));
         // findStaticEquilibrium may stop at a relative residual of 1e-9 of the largest force (~1e-5 N);
-        // its Newton converges quadratically and lands far below that. Measured (2026-12-01, 2e3eafb) for
+        // its Newton converges quadratically and lands far below that. Measured for
         // n_a = 0 and 3: end x 3.6e-20 N, end y 2.5e-9 N, total x 8.5e-9 N, total y 6.3e-9 N; the
         // bound 1e-11 M g = 9.8e-8 N has margins 39x (end y), 11x (total x) and 15x (total y).
         EXPECT_NEAR(end[0], 0.0, 1e-11 * Mg);
@@ -428,7 +428,7 @@ TEST(ReevingSubsystem, NodeForceBalancesTheBodiesExactly) {
         std::printf("[ node force ] n_a=%d t=0.3 s: F_N = (%.6f, %.6f) N, M (a - g) = (%.6f, %.6f) N\n", na,
                     nodeForce[0], nodeForce[1], newton[0], newton[1]);
         EXPECT_GT(std::abs(nodeForce[0]), 1.0);  // the swing is under way
-        // Measured 9.1e-13 N (one round-off unit of the 4 600 N force) (2026-12-01, 2e3eafb); margin 54x.
+        // Measured 9.1e-13 N (one round-off unit of the 4 600 N force); margin 54x.
         EXPECT_LE((nodeForce - newton).norm(), 5e-15 * Mg);
     }
     PendulumScene scene(p, spans(1));
@@ -490,12 +490,12 @@ TEST(ReevingSubsystem, SpatialRopeMatchesPlanarRopeInPlane) {
             const State& st = integ.getState();
             scene.system().realize(st, Stage::Velocity);
             path[planar].push_back(scene.payloadPosition(st));
-            // Measured 4.9e-10 J (KE0 = 500 J, accuracy 1e-9) (2026-12-01, 2e3eafb); margin 40x.
+            // Measured 4.9e-10 J (KE0 = 500 J, accuracy 1e-9); margin 40x.
             EXPECT_NEAR(scene.reeving().calcMechanicalEnergy(st), e0, 2e-8);
         }
     }
     for (size_t k = 0; k < path[0].size(); ++k) {
-        EXPECT_LT((path[0][k] - path[1][k]).norm(), 1e-10) << k;  // measured 3.1e-12 m (2026-12-01, 2e3eafb), margin 32x
+        EXPECT_LT((path[0][k] - path[1][k]).norm(), 1e-10) << k;  // measured 3.1e-12 m, margin 32x
         EXPECT_LT(std::abs(path[0][k][2]), 1e-12) << k;
     }
 }

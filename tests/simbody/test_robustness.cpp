@@ -265,7 +265,7 @@ SceneOutcome randomScene(Hostile& h) {
     spec.spanDefaults.axialModes = h.chance(0.05) ? h.integer(-1, 20) : h.integer(0, 2);
     spec.spanDefaults.transverseModes = h.chance(0.05) ? h.integer(-1, 20) : h.integer(0, 2);
     spec.spanDefaults.axialDynamics = h.chance(0.5) ? AxialDynamics::QuasiStatic : AxialDynamics::Dynamic;
-    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     spec.planeNormal = h.chance(0.5) ? Vec3(0) : (h.chance(0.8) ? Vec3(0, 0, 1) : h.point(1, 0.3));
     try {
         reeving->addRope(spec);

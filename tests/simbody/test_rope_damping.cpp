@@ -88,7 +88,7 @@ TEST(RopeDamping, BouncingMassDecaysWithTheKelvinVoigtDampingRatio) {
         const Bounce b = bounce(target, axial, na);
         std::printf("n_a = %d: zeta %.6f vs c omega / 2 = %.6f (rel %.2e); energy residual %.3e J of W_damping %.4f J\n", na,
                     b.zeta, target, b.zeta / target - 1, b.residual, b.dissipated);
-        // The bound 2 %; measured 1.9e-4 (the rope's 0.1 kg and the Green strain's nonlinearity).
+        // Required within 2 %; measured 1.9e-4 (the rope's 0.1 kg and the Green strain's nonlinearity).
         EXPECT_NEAR(b.zeta / target, 1.0, 0.02);
         // Measured 2.3e-10 of W_damping (RK-Merson 1e-9, reports every 5e-4 s); margin 40x.
         EXPECT_LE(b.residual, 1e-8 * b.dissipated);
@@ -140,6 +140,6 @@ TEST(RopeDamping, TransverseModalDampingGivesItsRatio) {
     const double dissipated = reeving.getDampingWork(integ.getState());
     std::printf("transverse: zeta %.6f vs %.6f (rel %.2e) over %zu peaks; energy residual %.3e J of %.4f J\n", zeta,
                 target, zeta / target - 1, peaks.size(), residual, dissipated);
-    EXPECT_NEAR(zeta / target, 1.0, 0.02);  // the bound; measured -4.4e-4
+    EXPECT_NEAR(zeta / target, 1.0, 0.02);  // required within 2 %; measured -4.4e-4
     EXPECT_LE(residual, 1e-8 * dissipated);  // measured 1.1e-10; margin 90x
 }

@@ -1,4 +1,4 @@
-// Item 9 of issue 19: a spatial span whose chord turns without limit. A slewing jib (a Pin about the
+// A spatial span whose chord turns without limit. A slewing jib (a Pin about the
 // vertical z axis, driven at a steady rate by Motion::Steady) carries a rope span between two of
 // its stations through two full turns: the span's reference frame is changed by an event whenever
 // its chord has turned far from it (ReevingSubsystem::setFrameChangeAlignment), and the results
@@ -248,7 +248,7 @@ TEST(Slew, AFrameChangeKeepsConfigurationVelocityAndForces) {
                 std::abs(T1 - T0) / T0, T0, (F1 - F0).norm() / F0.norm(), F0.norm());
     // Measured: |A0' - A0| = 1.76, modal coordinates 1.6e-17 m, rates changed by 3.9e-3 m/s,
     // positions 2.8e-17 m, kinetic energy equal to the last bit, end force 2.1e-17 relative (3.5e-15
-    // since issue 20: the two states may take different routes to S xddot, the formed S or a
+    // with the chain solve: the two states may take different routes to S xddot, the formed S or a
     // product by the chain solve, which round differently; bound 1e-13, 29x).
     EXPECT_GT((A1 - A0).norm(), 1.0);
     EXPECT_LE((q1 - q0).norm(), 1e-15);

@@ -1,4 +1,4 @@
-// Step failures are not crashes (issue 14). What Simbody 3.7 does with an exception thrown from
+// Step failures are not crashes. What Simbody 3.7 does with an exception thrown from
 // realize at a trial state of a step (read in its sources, AbstractIntegratorRep.cpp,
 // CPodesIntegrator.cpp, cpodes_nls.c, and confirmed here):
 //  - Runge-Kutta integrators (AbstractIntegratorRep::attemptDAEStep) catch it, reject the step and
@@ -38,7 +38,7 @@ Outcome run(const char* integrator, double initialStep, double fixedStep = 0, do
     o.axialModes = axialModes;
     o.transverseModes = 1;
     o.axialDynamics = axial;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     PendulumParameters params;
     params.tensionOnly = false;  // the linear law: its Newton fails at the far trial states built here
     PendulumScene scene(params, o);
@@ -78,7 +78,7 @@ TEST(StepFailures, RungeKuttaRetriesAfterAFailedTrialEvaluation) {
     EXPECT_GE(wild.evaluationFailures, 1);
     EXPECT_NE(wild.lastFailure.find("rope 'pendulum rope' at t = "), std::string::npos);
     EXPECT_NE(wild.lastFailure.find("sheave node 1"), std::string::npos);
-    // After the rejected first step both runs take the same steps: measured 8.5e-13 m (2026-12-01, 2e3eafb),
+    // After the rejected first step both runs take the same steps: measured 8.5e-13 m,
     // margin 59x (a run that took other steps would differ by about the 1e-6 accuracy setting).
     EXPECT_LT((wild.payload - normal.payload).norm(), 5e-11);
 }

@@ -90,13 +90,13 @@ std::vector<StressCase> stressCases() {
         light.params.M = 10.0;
         light.params.J = 0.36;
     }
-    // The over-the-top push with a tension-only rope (issue 14): slack instead of compression.
+    // The over-the-top push with a tension-only rope: slack instead of compression.
     {
         StressCase& c20 = add("Push20TensionOnly", "vx0 = 20 m/s, tension-only rope");
         c20.vx0 = 20.0;
         c20.params.tensionOnly = true;
     }
-    // The same scenes with quasi-static axial modes (issue 12): a stiffer rope should cost no more.
+    // The same scenes with quasi-static axial modes: a stiffer rope should cost no more.
     const size_t dynamicCases = c.size();
     for (size_t i = 0; i < dynamicCases; ++i) {
         StressCase q = c[i];
@@ -195,7 +195,7 @@ Measurement runCase(const StressRun& run) {
     spans.axialModes = c.na;
     spans.transverseModes = c.nt;
     spans.axialDynamics = c.axialDynamics;
-    spans.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spans.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     try {
         const PendulumScene scene(c.params, spans);
         const ReevingSubsystem& rv = scene.reeving();
@@ -337,7 +337,7 @@ INSTANTIATE_TEST_SUITE_P(Pendulum, StressSuite, ::testing::ValuesIn(allRuns()), 
 
 }  // namespace
 
-// One hour of simulated time (issue 14): the conservative pendulum, n_a = 1 (quasi-static axial
+// One hour of simulated time: the conservative pendulum, n_a = 1 (quasi-static axial
 // mode, the demo default; the Dynamic model would need about 5 M steps), RK-Merson at 1e-8.
 // Energy drift and sheave residual stay bounded; both are printed every simulated 6 minutes so
 // their growth can be read (bench/STRESS.md).
@@ -346,7 +346,7 @@ TEST(LongRun, OneHourConservativePendulum) {
     o.axialModes = 1;
     o.transverseModes = 1;
     o.axialDynamics = AxialDynamics::QuasiStatic;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     const PendulumScene scene(PendulumParameters{}, o);
     const ReevingSubsystem& rv = scene.reeving();
     const State s0 = scene.makeInitialState(1.0, 0.0);
@@ -374,7 +374,7 @@ TEST(LongRun, OneHourConservativePendulum) {
                         s.getTime(), drift / ke0, residual / weight, integ->getNumStepsTaken(),
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    // bench/STRESS.md (tension-only default, 2026-11-29): drift 3.7e-08 of KE0 at 3 600 s, margin
+    // bench/STRESS.md (tension-only default): drift 3.7e-08 of KE0 at 3 600 s, margin
     // 27x; residual 1.1e-12 of the weight (round-off floor), margin 91x.
     EXPECT_LT(drift, 1e-6 * ke0);
     EXPECT_LT(residual, 1e-10 * weight);

@@ -1,4 +1,4 @@
-// Tension-only rope (RopeProperties::tensionOnly): the element law, and the drop test of issue 14.
+// Tension-only rope (RopeProperties::tensionOnly): the element law, and the drop test.
 // A payload hangs from a ground anchor on one vertical span and is thrown up, so the rope goes
 // slack, the payload flies freely, and the rope snaps taut again:
 //  - while slack the payload's path is free flight (light rope),
@@ -55,8 +55,8 @@ TEST(TensionOnlySpan, EnergyAndForcesFollowTheClampedLaw) {
     SpanOptions o;
     o.axialModes = 2;
     o.transverseModes = 1;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
-    o.axialDynamics = AxialDynamics::Dynamic;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
+    o.axialDynamics = AxialDynamics::Dynamic;  // not the default: the setting these bounds were measured with
     RopeProperties linear{0.62, 16.5e6, 0.0, false};
     RopeProperties tensionOnly = linear;
     tensionOnly.tensionOnly = true;
@@ -105,7 +105,7 @@ TEST(TensionOnlySpan, EnergyAndForcesFollowTheClampedLaw) {
     }
     std::printf("partly slack span: strain %.3e .. %.3e, max |Q_el - (-dU/dq)_fd| = %.2e of max |Q_el| %.3e N\n",
                 minEps, maxEps, worst / scale, scale);
-    // Measured 1.4e-4 N = 2.4e-10 of max |Q_el| (central differences at h = 1e-6) (2026-12-01, 2e3eafb); margin 41x.
+    // Measured 1.4e-4 N = 2.4e-10 of max |Q_el| (central differences at h = 1e-6); margin 41x.
     EXPECT_LT(worst, 1e-8 * scale);
 }
 
@@ -145,7 +145,7 @@ TEST(TensionOnlySpan, SlackRegularisationEnergyAndForces) {
     qs.axialModes = 3;
     qs.transverseModes = 1;
     qs.axialDynamics = AxialDynamics::QuasiStatic;
-    qs.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    qs.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     qs.quasiStaticSlackStiffness = 2e-3;
     const PlanarSpanModel span(p, qs, Eigen::Vector2d(0, -kG));
     // A slack span (chord 2.9 m, material 3 m): no axial energy, only U_delta.
@@ -336,7 +336,7 @@ TEST(TensionOnlyDrop, LightRopeFreeFlightSnapLoadAndEnergy) {
     std::printf("\n");
 
     EXPECT_GT(last - first, 3000u);  // about 0.6 s of flight at 1e-4 s reports
-    EXPECT_LT(flightError, 2e-7);  // measured 6.0e-9 m (2026-12-01, 2e3eafb), margin 33x
+    EXPECT_LT(flightError, 2e-7);  // measured 6.0e-9 m, margin 33x
     // Peak against the closed form with the Green strain: measured 2.0e-9 relative (the parabola
     // through the samples; the largest sample alone is 7.1e-7 low); bound 2e-7, margin 100x, and
     // 4x over the 5e-8 the energy drift below could move it (dP / P = 1/2 dE / E_spring, E_spring
@@ -367,7 +367,7 @@ static void tableOneDrop(AxialDynamics axialDynamics) {
     o.axialModes = 2;
     o.transverseModes = 1;
     o.axialDynamics = axialDynamics;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     const char* name = axialDynamics == AxialDynamics::Dynamic ? "Dynamic" : "QuasiStatic";
     DropScene scene(p, o);
     const double v0 = 3.0;
@@ -404,7 +404,7 @@ static void tableOneDrop(AxialDynamics axialDynamics) {
                 name, slackReports, run.size(), peak, minForce, drift / ke0, ke0, scene.monitor->transitions().size());
     EXPECT_GT(slackReports, 100);
     EXPECT_GE(minForce, 0.0);
-    // Measured (2026-12-01, 2e3eafb): 5.2e-10 of KE0 (Dynamic; bound 2e-8, margin 38x) and 1.4e-7 (QuasiStatic;
+    // Measured: 5.2e-10 of KE0 (Dynamic; bound 2e-8, margin 38x) and 1.4e-7 (QuasiStatic;
     // bound 1e-6, margin 7.4x).
     EXPECT_LT(drift, (axialDynamics == AxialDynamics::Dynamic ? 2e-8 : 1e-6) * ke0);
     EXPECT_GE(scene.monitor->transitions().size(), 2u);
@@ -425,7 +425,7 @@ static void pendulumOverTheTop(AxialDynamics axialDynamics) {
     o.axialModes = 1;
     o.transverseModes = 1;
     o.axialDynamics = axialDynamics;
-    o.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    o.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     const char* name = axialDynamics == AxialDynamics::Dynamic ? "Dynamic" : "QuasiStatic";
     PendulumScene scene(params, o);
     SlackMonitor monitor(scene.system(), scene.reeving());
@@ -465,7 +465,7 @@ static void pendulumOverTheTop(AxialDynamics axialDynamics) {
     EXPECT_GT(maxHeight, 0.0);  // over the top
     EXPECT_GE(minForce, 0.0);
     EXPECT_GE(monitor.transitions().size(), 2u);
-    // Measured 3.5e-10 (Dynamic) and 2.6e-10 (QuasiStatic) of KE0 (2026-12-01, 2e3eafb); margins 28x and 38x.
+    // Measured 3.5e-10 (Dynamic) and 2.6e-10 (QuasiStatic) of KE0; margins 28x and 38x.
     EXPECT_LT(drift, 1e-8 * ke0);
 }
 
@@ -501,7 +501,7 @@ static void hookBlockBothSlack(AxialDynamics axialDynamics) {
     spec.spanDefaults.axialModes = 1;
     spec.spanDefaults.transverseModes = 1;
     spec.spanDefaults.axialDynamics = axialDynamics;
-    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // pre-issue-19 default, explicit
+    spec.spanDefaults.velocityModel = VelocityModel::Simplified;  // not the default: the setting these bounds were measured with
     spec.planeNormal = Vec3(0, 0, 1);
     reeving.addRope(spec);
     SlackMonitor monitor(system, reeving);
@@ -546,7 +546,7 @@ static void hookBlockBothSlack(AxialDynamics axialDynamics) {
                 integ.getNumStepsTaken());
     EXPECT_GT(bothSlack, 10);
     EXPECT_GE(minForce, 0.0);
-    // Measured (2026-12-01, 2e3eafb): 1.4e-9 of KE0 (Dynamic; bound 5e-8, margin 37x) and 1.8e-7 (QuasiStatic;
+    // Measured: 1.4e-9 of KE0 (Dynamic; bound 5e-8, margin 37x) and 1.8e-7 (QuasiStatic;
     // bound 1e-6, margin 5.6x).
     EXPECT_LT(drift, (axialDynamics == AxialDynamics::Dynamic ? 5e-8 : 1e-6) * ke0);
 }

@@ -168,12 +168,12 @@ TEST(TractionSheave, SlippingMassesAccelerateAsTheCapstanAtwoodMachine) {
     const double expected = kG * (m1 - m2 * kLimit) / (m1 + m2 * kLimit);
     std::printf("capstan Atwood: a = %.6f m/s^2, expected %.6f (rel %.2e)\n", measured, expected,
                 measured / expected - 1);
-    // The issue's bound 0.5 %; measured -6.4e-4 (the rope's 0.1 kg and its oscillation on the masses).
+    // Required within 0.5 %; measured -6.4e-4 (the rope's 0.1 kg and its oscillation on the masses).
     EXPECT_NEAR(measured / expected, 1.0, 5e-3);
     const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.energy(s) - e0;
     std::printf("energy: dE %.6e J, W_friction %.6e J, residual %.3e\n", de, wf, de + wf);
     EXPECT_GT(wf, 0);
-    // Measured 6.5e-10 of 171 J (RK-Merson 1e-8); margin 15x (the issue asks 1e-6).
+    // Measured 6.5e-10 of 171 J (RK-Merson 1e-8); margin 15x (1e-6 required).
     EXPECT_LE(std::abs(de + wf), 1e-8 * std::max(std::abs(de), wf));
     EXPECT_NEAR(a.reeving->getTractionRatio(s, 0, 1), kLimit, 1e-9);  // the Newton's 1e-14 strain tolerance
     EXPECT_GT(a.reeving->getSlipRate(s, 0, 1), 0);
@@ -268,7 +268,7 @@ TEST(TractionSheave, ZeroFrictionIsADeviationSheaveAndLargeFrictionATurningSheav
     std::printf("mu = 0 vs deviation: %.3e m; mu = 10 vs turning: %.3e m; deviation moved %.3f m\n",
                 std::abs(frictionless.first - deviation.first), std::abs(gripping.first - turning.first),
                 deviation.first + 5.0);
-    // The issue's bound 1e-9 m; measured 3.0e-10 m (mu = 0) and 0 (mu = 10: the same Driven model).
+    // Required within 1e-9 m; measured 3.0e-10 m (mu = 0) and 0 (mu = 10: the same Driven model).
     EXPECT_LE(std::abs(frictionless.first - deviation.first), 1e-9);
     EXPECT_LE(std::abs(frictionless.second - deviation.second), 1e-9);
     EXPECT_LE(std::abs(gripping.first - turning.first), 1e-9);
@@ -296,7 +296,7 @@ TEST(TractionSheave, DrivenSheaveMovesAStickingLoadAtItsSurfaceSpeed) {
     const double speed = (chord(s) - c1) / 1.0;
     std::printf("driven: start fall lengthens at %.7f m/s vs R omega %.7f\n", speed, R * omega);
     EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::Stick);
-    EXPECT_NEAR(speed / (R * omega), 1.0, 1e-3);  // the issue's 0.1 %; measured 2.1e-5 (the stretch 1e-4 changing)
+    EXPECT_NEAR(speed / (R * omega), 1.0, 1e-3);  // required within 0.1 %; measured 2.1e-5 (the stretch 1e-4 changing)
 }
 
 // The pin swings (theta = A sin(omega t)) harder than the traction can follow: the surface
@@ -350,7 +350,7 @@ TEST(TractionSheave, EnergyClosesThroughStickSlipAndStickAgain) {
     const SwingBalance b = runSwing(swingOptions());
     EXPECT_GE(b.transitions, 4);  // stick -> slip -> stick, twice
     EXPECT_GT(b.frictionWork, 0);
-    // The issue's bound 1e-6; measured 1.35e-8 of 484 J over 11 transitions (without booking the
+    // Required within 1e-6; measured 1.35e-8 of 484 J over 11 transitions (without booking the
     // kinetic-energy jumps at stick -> slip as friction work: 5e-5).
     EXPECT_LE(b.worst, 1e-6 * b.largest);
 }

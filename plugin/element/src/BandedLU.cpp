@@ -14,7 +14,7 @@ inline void axpy(double a, const double* __restrict x, double* __restrict y, int
 }
 // Clears n doubles with vector stores. Not memset: glibc clears a band of this size (a few to tens
 // of kB) by `rep stosb`, which callgrind counts byte by byte (8-20 k "instructions" per reset of the
-// 12-fall crane's bands, in the instruction counts issue 20 measures), so GCC must not turn this
+// 12-fall crane's bands, in the instruction counts of bench/cost.sh), so GCC must not turn this
 // loop into a memset call.
 __attribute__((optimize("no-tree-loop-distribute-patterns"))) void clearBand(double* w, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) w[i] = 0.0;

@@ -15,7 +15,7 @@ namespace SimbodyReeving {
 namespace {
 // Taut spans (SpanModel::strainTautEverywhere) evaluate their strain integrals by the exact
 // midpoint rule of automaticStrainPoints: 7 points instead of Gauss-Legendre's 26 at n_max = 3,
-// 3 instead of 17 at n_max = 1, the same integrals to round-off (issue 20).
+// 3 instead of 17 at n_max = 1, the same integrals to round-off.
 }  // namespace
 
 namespace {

@@ -30,10 +30,10 @@ inline bool strainAboveTransitionEverywhere(const AxialLaw& law, int numAxialMod
 
 /// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
 ///
-/// The default is Complete (issue 19): it is exact, it costs 27-29 % more instructions per span
+/// The default is Complete: it is exact, it costs 27-29 % more instructions per span
 /// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 8 075 against
 /// 6 283 at n_a = 0, n_t = 1; 12 932 against 10 173 at n_a = 3, n_t = 3; bench/moving_string/cost.sh,
-/// issue 20; before issue 20's closed-form mass matrix both cost 21-54 k and differed by 2.4-4.8 %),
+/// with the closed-form mass matrix),
 /// and Simplified misses the transport of the transverse motion by rope
 /// flowing through a span (hoisting, a drum paying out, a belt) at a speed v that is not small
 /// against the wave speed c = sqrt(P / rhoA). Measured on the axially moving string (a taut span
@@ -78,7 +78,7 @@ enum class ElasticEnergyModel {
 
 /// How a span's axial modal amplitudes q_a (the paper's axial part of q_m, eq 3 and 10) evolve.
 ///
-/// The default is QuasiStatic (issue 19): on the Table 1 pendulum with n_a = 3 (RK-Merson 1e-6,
+/// The default is QuasiStatic: on the Table 1 pendulum with n_a = 3 (RK-Merson 1e-6,
 /// 20 s; bench/RESULTS.md, "Quasi-static axial modes") it takes 61x less wall time than Dynamic
 /// (0.223 s against 13.69 s; 1 127 steps against 76 790) with the payload within 7.2e-8 m and the
 /// slow part of the axial force within 0.062 N of Dynamic's; what it leaves out is the axial-wave
