@@ -1,4 +1,4 @@
-// Acceptance 5: a single free span (no gravity, material coordinates held, ends free) integrated with
+// A single free span (no gravity, material coordinates held, ends free) integrated with
 // a tight fixed-step RK4 from a deformed, moving start conserves T + U to 1e-10 relative over 100 of
 // its slowest periods, for both velocity models. Only a mass matrix and velocity forces derived from
 // one kinetic energy can do that: a dropped or mis-signed term in Q_v drifts by orders of magnitude.

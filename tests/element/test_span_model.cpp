@@ -81,7 +81,7 @@ double kinetic(const SpanModel<Dim>& m, const Eigen::VectorXd& q, const Eigen::V
     return d.kineticEnergy;
 }
 
-// Acceptance 1: M symmetric positive definite and equal to the Hessian of T in the velocities;
+// M symmetric positive definite and equal to the Hessian of T in the velocities;
 // plus T = 1/2 qdot^T M qdot.
 // Positive definiteness holds on every coordinate set a span is used with: nodes and modes with the
 // material coordinates held (free ends), and modes and material coordinates with the nodes held
@@ -158,7 +158,7 @@ void checkVelocityForces(const Config& c, int seed) {
         << "Q_v   = " << d.velocityForces.transpose() << "\nFD    = " << expected.transpose();
 }
 
-// Acceptance 2: Q_elastic = -dU/dq and Q_gravity = -dU_g/dq by central differences.
+// Q_elastic = -dU/dq and Q_gravity = -dU_g/dq by central differences.
 template <int Dim>
 void checkConservativeForces(const Config& c, int seed) {
     SCOPED_TRACE(describe(Dim, c));
@@ -211,7 +211,7 @@ TEST(SpanModel, ElasticAndGravityForcesAreMinusEnergyGradients) {
     }
 }
 
-// Acceptance 3: rigid translation and rotation of an unstrained span: zero elastic force.
+// Rigid translation and rotation of an unstrained span: zero elastic force.
 TEST(SpanModel, RigidMotionOfUnstrainedSpanGivesZeroElasticForce) {
     for (const Config& c : allConfigs()) {
         SCOPED_TRACE(describe(3, c));
@@ -251,7 +251,7 @@ TEST(SpanModel, RigidMotionOfUnstrainedSpanGivesZeroElasticForce) {
     }
 }
 
-// Acceptance 4: with n_a = 0 the axial force is the closed form
+// With n_a = 0 the axial force is the closed form
 //   P(s) = EA/2 ((|e|^2 + |u'_perp(xi)|^2) / l^2 - 1)
 // (chord length |e| and l = s2 - s1; the transverse slope term vanishes when there are no transverse
 // modes), and the quadrature energy equals the closed-form integral.

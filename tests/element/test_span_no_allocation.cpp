@@ -1,4 +1,4 @@
-// Acceptance 8 (the "how you know" part): one span evaluation performs no heap allocation.
+// One span evaluation performs no heap allocation.
 // This test binary replaces the global operator new/delete with counting versions; the count over
 // repeated evaluate() calls must stay zero for planar and spatial spans, both velocity models and
 // both energy models, at the largest mode counts. The same holds for a whole rope's evaluation

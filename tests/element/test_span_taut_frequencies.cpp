@@ -1,4 +1,4 @@
-// Acceptance 6: a taut span with fixed ends at tension P: the first three transverse frequencies of
+// A taut span with fixed ends at tension P: the first three transverse frequencies of
 // the linearised modal equations equal the taut string's f_n = n/(2L) sqrt(P/rhoA) with the
 // Consistent energy; the PaperLiteral energy (eq 19 as printed) counts the geometric stiffness twice
 // and comes out sqrt(2) higher.

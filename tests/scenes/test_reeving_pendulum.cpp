@@ -61,7 +61,7 @@ SpanOptions spans(int na) {
 
 }  // namespace
 
-// Acceptance 1: n_a = 3, RK-Merson, 20 s, accuracies 1e-6, 1e-8, 1e-10.
+// Energy: n_a = 3, RK-Merson, 20 s, accuracies 1e-6, 1e-8, 1e-10.
 TEST(ReevingPendulum, ConservativeRunConservesEnergy) {
     const PendulumScene scene(PendulumParameters{}, spans(3));
     double previous = SimTK::Infinity;
@@ -83,7 +83,7 @@ TEST(ReevingPendulum, ConservativeRunConservesEnergy) {
     }
 }
 
-// Acceptance 3: RK-Merson, RK3, RK-Feldberg and CPodes at accuracy 1e-8 agree on the payload
+// RK-Merson, RK3, RK-Feldberg and CPodes at accuracy 1e-8 agree on the payload
 // position within 3e-7 m over 20 s.
 TEST(ReevingPendulum, IntegratorsAgreeOnPayloadPath) {
     const PendulumScene scene(PendulumParameters{}, spans(1));

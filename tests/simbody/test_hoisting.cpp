@@ -124,7 +124,7 @@ RopeProperties stiffRope() { return RopeProperties{0.05, 1e7, 0.0}; }
 
 }  // namespace
 
-// Acceptance 1: a drum held by its motion (theta fixed) is a fixed anchor.
+// A drum held by its motion (theta fixed) is a fixed anchor.
 TEST(Hoisting, LockedDrumReproducesTheFixedAnchor) {
   for (bool planar : {true, false}) {
     auto run = [planar](bool withDrum) {
@@ -251,7 +251,7 @@ TEST(Hoisting, ConstantDrumSpeedLiftsAtROmegaOverN) {
     EXPECT_LE(worstEnergy, 5e-13 * work);
 }
 
-// Acceptance 3: hoist 3 m of rope in, brake (drum stopped), measure the bounce: the frequency of
+// Hoist 3 m of rope in, brake (drum stopped), measure the bounce: the frequency of
 // k = n^2 EA / L_rope (all falls share the tension over frictionless sheaves) with L_rope the rope
 // left between drum and dead end, within 0.5 %.
 TEST(Hoisting, BounceFrequencyAfterHoistingMatchesTheShortenedRope) {
@@ -357,7 +357,7 @@ double atwoodAcceleration(double m1, double m2, double J, double R, double* shea
 
 }  // namespace
 
-// Acceptance 4: Atwood machine over an idler with inertia, and over today's frictionless sheave.
+// Atwood machine over an idler with inertia, and over a frictionless sheave.
 TEST(Hoisting, AtwoodMachineOverAnIdlerWithInertia) {
     const double m1 = 30, m2 = 20, J = 0.5, R = 0.2;
     double slip = 0;
@@ -376,7 +376,7 @@ TEST(Hoisting, AtwoodMachineOverAnIdlerWithInertia) {
     EXPECT_LE(slip, 1e-14);
 }
 
-// Acceptance 5: rope limits end the run cleanly with a message naming rope and span or drum.
+// Rope limits end the run cleanly with a message naming rope and span or drum.
 TEST(Hoisting, TwoBlockingEndsTheRunAtTheMinimumSpanLength) {
     Hoist h(2, 500.0, stiffRope(), 2.0, 100.0, 0.5);
     State s = h.start(-8.0);  // 2 m/s of rope: the falls shorten at 1 m/s

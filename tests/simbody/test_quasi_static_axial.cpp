@@ -94,7 +94,7 @@ TEST(QuasiStaticAxial, StaticEquilibriumEqualsDynamic) {
     }
 }
 
-// Acceptance 2: the conservative pendulum, n_a = 3 condensed, RK-Merson 1e-10, 20 s: energy drift
+// The conservative pendulum, n_a = 3 condensed, RK-Merson 1e-10, 20 s: energy drift
 // <= 1e-11 of the initial kinetic energy; the sheave constraint holds.
 TEST(QuasiStaticAxial, ConservativePendulumConservesEnergy) {
     const PendulumScene scene(paperLaw(), spans(3, AxialDynamics::QuasiStatic));

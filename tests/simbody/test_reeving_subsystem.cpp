@@ -163,7 +163,7 @@ TEST(ReevingSubsystem, BodyOfAnotherSystemIsAnInvalidArgument) {
                   "ReevingSubsystem: rope 'rope': end node (Anchor, node 1) is on a body of another system's matter subsystem");
 }
 
-// Acceptance 4: static tension along the hanging span approaches M g + rhoA g (distance to the
+// Static tension along the hanging span approaches M g + rhoA g (distance to the
 // payload); the sine modes represent the linear strain by a truncated cosine series, so the error
 // is largest at the span ends and shrinks roughly like 1/n_a there.
 TEST(ReevingSubsystem, StaticTensionApproachesHangingRopeSolution) {
@@ -205,7 +205,7 @@ TEST(ReevingSubsystem, StaticTensionApproachesHangingRopeSolution) {
     }
 }
 
-// Acceptance 5: vertical bounce of the payload, n_a = 0: frequency of a spring of the whole rope
+// Vertical bounce of the payload, n_a = 0: frequency of a spring of the whole rope
 // (the sheave lets rope flow between spans) with rope-mass and Green-strain corrections.
 TEST(ReevingSubsystem, VerticalBounceFrequencyMatchesRopeSpring) {
     const PendulumParameters p;
@@ -249,7 +249,7 @@ TEST(ReevingSubsystem, VerticalBounceFrequencyMatchesRopeSpring) {
     EXPECT_GT(std::abs(f - fUncorrected), 4 * 3.5e-4 * fExpected);
 }
 
-// Acceptance 6: small horizontal swing with rhoA / 1000: period of the two-degree-of-freedom compound
+// Small horizontal swing with rhoA / 1000: period of the two-degree-of-freedom compound
 // pendulum (string of length l from the sheave to the attachment, payload centre d below it,
 // inertia J): M = [[m l^2, m l d], [m l d, m d^2 + J]], K = diag(m g l, m g d).
 TEST(ReevingSubsystem, SmallSwingPeriodMatchesCompoundPendulum) {
