@@ -5,10 +5,8 @@
 //
 //   reeving-quickstart               prints a table
 //   reeving-quickstart --t-end 5     a shorter run
-// (The bundled demos, reeving-pendulum and reeving-crane, show their runs with --visualize.)
-//
-// The lines between the "README" markers are README.md's "Using it from your project" code; the
-// readme_code_blocks test checks that the README shows them verbatim.
+// (The bundled demos, reeving-pendulum, reeving-crane and reeving-elevator, show their runs with
+// --visualize.) README.md's smallest complete program is this machine without the command line.
 #include "common/Cli.h"
 
 #include <SimbodyReeving/SimbodyReeving.h>
@@ -23,7 +21,6 @@
 namespace {
 
 int run(double tEnd) {
-    // README: quickstart begin
     using namespace SimTK;
     MultibodySystem system;
     SimbodyMatterSubsystem matter(system);
@@ -73,7 +70,6 @@ int run(double tEnd) {
         std::printf("%6.2f %10.5f %10.5f %14.2f %12.3e\n", s.getTime(), x[0], x[1], P,
                     (reeving.calcMechanicalEnergy(s) - E0) / KE0);
     }
-    // README: quickstart end
     std::printf("%d integrator steps\n", integ.getNumStepsTaken());
     return 0;
 }
@@ -87,7 +83,7 @@ int main(int argc, char** argv) {
         "payload on a rope from a Ground anchor over a deviation sheave 3 m away and 20 m down\n"
         "(n_a = 3 quasi-static axial modes, n_t = 1). From the static equilibrium, a 1 m/s sideways\n"
         "push, RK-Merson at accuracy 1e-6; prints every second the payload position, the rope's axial\n"
-        "force at the payload and the energy drift. The code of README.md's \"Using it from your project\".\n",
+        "force at the payload and the energy drift.\n",
         "reeving-quickstart");
     demo_common::applyConventions(app);
     app.footer("Prints a table to stdout.\nExit status: 0 done; 2 bad command line; 1 the simulation failed.");

@@ -1,13 +1,46 @@
-# ctest script: every ```cpp and ```cmake block of README.md must appear, line for line (leading and
-# trailing blanks and empty lines ignored), in one of SOURCES ('|'-separated): compiled, tested
-# files (the examples run by the demo tests, the consumer project of the package test). So the
-# code a reader copies from the README is code that compiles and runs. A README line starting with
-# "// ..." stands for elided code: it splits the block into parts, each of which must appear.
-foreach(var README SOURCES)
+# ctest script for README.md's code (README, BLOCKS_DIR, CMAKE_SOURCES):
+# - every ```cmake block must appear, line for line (leading and trailing blanks and empty lines
+#   ignored), in one of CMAKE_SOURCES ('|'-separated; the consumer project the package test builds
+#   against the installed tree). A line starting with "# ..." stands for elided code: it splits the
+#   block into parts, each of which must appear.
+# - the ```cpp blocks compiled from BLOCKS_DIR (readme_block_<n>.cpp, written at configure time)
+#   must be those of the README.md as it is now: an edited README needs a build before the test.
+cmake_minimum_required(VERSION 3.16)  # script mode: today's policies (while, if)
+foreach(var README BLOCKS_DIR CMAKE_SOURCES)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "${var} not set")
   endif()
 endforeach()
+
+include(${CMAKE_CURRENT_LIST_DIR}/ReadmeBlocks.cmake)
+string(RANDOM LENGTH 8 tag)
+set(fresh_dir "${BLOCKS_DIR}/check-${tag}")
+file(MAKE_DIRECTORY "${fresh_dir}")
+readme_cpp_blocks("${README}" "${fresh_dir}" fresh)
+file(GLOB built "${BLOCKS_DIR}/readme_block_*.cpp")
+list(LENGTH fresh n_fresh)
+list(LENGTH built n_built)
+set(stale "")
+if(NOT n_fresh EQUAL n_built)
+  set(stale "README.md has ${n_fresh} C++ blocks, the build compiled ${n_built}")
+else()
+  foreach(f IN LISTS fresh)
+    get_filename_component(name "${f}" NAME)
+    file(READ "${f}" a)
+    file(READ "${BLOCKS_DIR}/${name}" b)
+    if(NOT a STREQUAL b)
+      set(stale "${name} differs from its block in README.md")
+    endif()
+  endforeach()
+endif()
+file(REMOVE_RECURSE "${fresh_dir}")
+if(stale)
+  message(FATAL_ERROR "${stale}: build again (the configure step extracts the blocks) before testing")
+endif()
+if(n_fresh EQUAL 0)
+  message(FATAL_ERROR "no ```cpp block found in ${README}")
+endif()
+set(SOURCES "${CMAKE_SOURCES}")
 
 # Reads a file into a list of normalized lines (';', '[' and ']' escaped so CMake lists keep them).
 function(normalized_lines path out)
@@ -51,7 +84,7 @@ set(lineno 0)
 foreach(line IN LISTS lines)
   math(EXPR lineno "${lineno} + 1")
   if(NOT in_block)
-    if(line STREQUAL "```cpp" OR line STREQUAL "```cmake")
+    if(line STREQUAL "```cmake")
       set(in_block ON)
       set(block "")
       set(start ${lineno})
@@ -62,7 +95,7 @@ foreach(line IN LISTS lines)
     set(parts "")
     set(part "")
     foreach(l IN LISTS block)
-      if(l MATCHES "^// \\.\\.\\.")
+      if(l MATCHES "^# \\.\\.\\.")
         join_code("${part}" needle)
         list(APPEND parts "${needle}")
         set(part "")
@@ -82,7 +115,7 @@ foreach(line IN LISTS lines)
         string(REPLACE "@SEMI@" ";" shown "${shown}")
         string(REPLACE "@LB@" "[" shown "${shown}")
         string(REPLACE "@RB@" "]" shown "${shown}")
-        message(FATAL_ERROR "README.md line ${start}: this code is not in any compiled, tested source "
+        message(FATAL_ERROR "README.md line ${start}: this CMake code is not in the tested consumer project "
                             "(${SOURCES}):\n${shown}")
       endif()
     endforeach()
@@ -90,7 +123,4 @@ foreach(line IN LISTS lines)
     list(APPEND block "${line}")
   endif()
 endforeach()
-if(count EQUAL 0)
-  message(FATAL_ERROR "no ```cpp or ```cmake block found in ${README}")
-endif()
-message(STATUS "${count} README code blocks found verbatim in compiled, tested sources")
+message(STATUS "${n_fresh} README C++ blocks current; ${count} CMake blocks found verbatim in the consumer project")
