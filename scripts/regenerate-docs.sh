@@ -18,10 +18,13 @@
 # The commands use the Release build in build/ (./scripts/build.sh); the script builds nothing
 # itself (bench/cost.sh and bench/crane_speed.sh build their own targets).
 #
-# usage: scripts/regenerate-docs.sh [--all] [--only TEXT] [--list] [FILE.md ...]
+# usage: scripts/regenerate-docs.sh [--all] [--only TEXT [--use-output FILE]] [--list] [FILE.md ...]
 #   --all        also the long blocks (--all markers)
 #   --only TEXT  only blocks whose command contains TEXT
 #   --list       list the blocks (file, default or --all, command) and exit
+#   --use-output FILE   do not run the selected command: take FILE as its standard output (a long
+#                bench run separately, e.g. `CMD > FILE` on an idle machine); needs --only
+#                selecting one command
 #   FILE.md      documents to process (default docs/*.md)
 # Exit status: 0 every selected block regenerated; 1 a command failed; 2 bad command line.
 set -euo pipefail
@@ -29,12 +32,14 @@ cd "$(dirname "$0")/.."
 all=0
 only=
 list=0
+useOutput=
 files=()
 while (($#)); do
     case "$1" in
         --all) all=1 ;;
         --only) [[ $# -ge 2 ]] || { echo "regenerate-docs.sh: --only needs TEXT" >&2; exit 2; }; only=$2; shift ;;
         --list) list=1 ;;
+        --use-output) [[ $# -ge 2 ]] || { echo "regenerate-docs.sh: --use-output needs FILE" >&2; exit 2; }; useOutput=$2; shift ;;
         -h | --help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
         -*) echo "regenerate-docs.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
         *) files+=("$1") ;;
@@ -42,13 +47,14 @@ while (($#)); do
     shift
 done
 ((${#files[@]})) || files=(docs/*.md)
+[[ -z $useOutput || -n $only ]] || { echo "regenerate-docs.sh: --use-output needs --only" >&2; exit 2; }
 command -v python3 >/dev/null || { echo "regenerate-docs.sh: python3 not found" >&2; exit 2; }
 
-python3 - "$all" "$only" "$list" "${files[@]}" <<'PY'
+python3 - "$all" "$only" "$list" "$useOutput" "${files[@]}" <<'PY'
 import re, subprocess, sys, time
 
-run_all, only, list_only = sys.argv[1] == "1", sys.argv[2], sys.argv[3] == "1"
-files = sys.argv[4:]
+run_all, only, list_only, use_output = sys.argv[1] == "1", sys.argv[2], sys.argv[3] == "1", sys.argv[4]
+files = sys.argv[5:]
 BEGIN = re.compile(r"^<!-- BEGIN generated( --all)?: (.*) -->\s*$")
 END = "<!-- END generated -->"
 
@@ -111,6 +117,11 @@ for path in files:
             print(f"{path}:{i + 1}: {'--all  ' if long_ else 'default'}  {cmd}")
         if list_only or not selected:
             out_lines.extend(text[i:j + 1]); i = j + 1; continue
+        if cmd not in cache and use_output:
+            if cache:
+                print(f"regenerate-docs.sh: --use-output: --only selects more than one command", file=sys.stderr)
+                sys.exit(2)
+            cache[cmd] = format_output(cmd, open(use_output).read())
         if cmd not in cache:
             t0 = time.time()
             print(f"regenerate-docs.sh: {cmd}", file=sys.stderr, flush=True)
