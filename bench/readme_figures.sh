@@ -9,7 +9,7 @@
 #     payload-end axial force differences from the default (tension-only) run, n_a = 1 and 3;
 #   crane (reeving-crane defaults: 4 falls, n_a = 1): the largest |energy residual| and its ratio
 #     to the drives' largest work, steps, wall, real-time factor;
-#   the lumped-chain comparison's speed ratios (bench/LUMPED_CHAIN.md), from the sweep's table
+#   the lumped-chain comparison's speed ratios (docs/performance.md), from the sweep's table
 #     bench/lumped_chain/results/lumped_chain_runs.csv (`bench-lumped-chain ratios`, no runs).
 # usage: bench/readme_figures.sh [--no-build] [BUILD_DIR]   (default build; builds the two demos and
 #        bench-lumped-chain there unless --no-build)

@@ -9,7 +9,7 @@
 // and the rest (the axial-wave part). Writes DIR/summary.md, DIR/series_na<N>.csv and gnuplot
 // figures DIR/axial_dynamics_na<N>.png.
 //
-// Reproduce: build/bench/bench-axial-dynamics --out out/axial-dynamics   (bench/RESULTS.md)
+// Reproduce: build/bench/bench-axial-dynamics --out out/axial-dynamics   (docs/verification.md)
 #include <SimbodyReeving/simbody/Integrators.h>
 #include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
 #include <SimbodyReeving/scenes/PendulumScene.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces bench/LUMPED_CHAIN.md: builds bench-lumped-chain, runs the references, the sweep
+# Reproduces the lumped-mass chain comparison of docs/performance.md: builds bench-lumped-chain, runs the references, the sweep
 # (one process at a time), the analysis and the plot. Resumable: a run whose file exists is skipped.
 # Usage: bench/lumped_chain/run.sh [build-dir] [run-dir]
 set -euo pipefail
@@ -56,7 +56,7 @@ if [[ $stage == all || $stage == sweep ]]; then
     run ale_na${na}_nt1_${integ}_${acc}.csv --model ale --na $na --nt 1 --integrator $integ --accuracy $acc $R
   done; done; done
   # The exact velocity model (paper eq 12): with axial modes, the default simplified one (eq 13) has an
-  # inertial model error of 0.13-0.2 N in the force on the payload (see LUMPED_CHAIN.md).
+  # inertial model error of 0.13-0.2 N in the force on the payload (see docs/performance.md).
   for na in 1 3; do for nt in 1 2; do for acc in 1e-6 1e-8; do
     run ale_complete_na${na}_nt${nt}_rk-merson_${acc}.csv --model ale --na $na --nt $nt --velocity complete --integrator rk-merson --accuracy $acc $R
   done; done; done
@@ -80,7 +80,7 @@ fi
 if [[ $stage == all || $stage == analyze ]]; then
   out=$here/results
   mkdir -p "$out"
-  # Reference (see LUMPED_CHAIN.md): position from the ALE with the exact velocity model, n_a = 16,
+  # Reference (see docs/performance.md): position from the ALE with the exact velocity model, n_a = 16,
   # n_t = 8; axial force from the chain's Richardson extrapolation 2 P(N=100) - P(N=50) (its
   # error is O(1/N)). Checks: the same from N = 25, 50; position by order-2 extrapolation.
   "$B" richardson "$runs/ref_chain_N100_a1e-9.csv" "$runs/ref_chain_N50_a1e-9.csv" 2 1 "$runs/rich1_chain_N50_N100.csv"

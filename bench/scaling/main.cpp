@@ -29,7 +29,7 @@
 //   --t-end T         (default, T = 1 s) an ordinary run with the InterpolatingTimeStepper: prints
 //                     steps, rhs evaluations and wall time.
 //
-// Reproduce: bench/scaling/scaling.sh [BUILD_DIR]   (bench/RESULTS.md)
+// Reproduce: bench/scaling/scaling.sh [BUILD_DIR]   (docs/performance.md)
 #include <SimbodyReeving/simbody/Integrators.h>
 #include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
 #include <SimbodyReeving/simbody/ReevingSubsystem.h>

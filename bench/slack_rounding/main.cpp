@@ -1,6 +1,6 @@
 // Energy conservation of the quasi-static tension-only rope through slack and snap, against the
 // rounding strain eps_s (SpanOptions::quasiStaticSlackTransitionStrain) and the slack
-// regularisation delta (quasiStaticSlackStiffness): bench/RESULTS.md, "Tension-only by default".
+// regularisation delta (quasiStaticSlackStiffness): docs/stability.md, "Slack and snap".
 //
 // Scene: the Table 1 rope, one 20 m span from a Ground anchor to a 1000 kg payload on a vertical
 // Translation, n_a = 2 quasi-static, n_t = 1; static equilibrium, thrown up at 3 m/s; RK-Merson at

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces the work-precision study of bench/RESULTS.md: bench-work-precision on the paper's
+# Reproduces the work-precision study of docs/performance.md: bench-work-precision on the paper's
 # pendulum, n_a = 3 in one process and n_a = 0, 1 in another (one process per core of the 2-core
 # machine: timings want one run per idle core), then the two merged into one table and one plot per
 # n_a. Resumable: each part keeps the points already in its results.csv (--resume) and its cached
