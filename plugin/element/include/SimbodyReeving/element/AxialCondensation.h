@@ -19,12 +19,16 @@ namespace SimbodyReeving {
 /// qdot^T (d^2 f/dq^2) qdot (the second time derivative with qddot = 0).
 template <int Dim>
 struct AxialCondensationData {
-    static constexpr int kMaxQuantities = 3 * Dim * kMaxModesPerDirection + 5;
+    static constexpr int kMaxQuantities = 3 * Dim * kMaxModesPerDirection + 5;  ///< most quantities of any span
+    /// One entry per quantity (fixed maximum size).
     using Values = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxQuantities, 1>;
+    /// One row per quantity, one column per span coordinate (fixed maximum size).
     using Gradients = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxQuantities,
                                     SpanData<Dim>::kMaxCoordinates>;
-    Values value, rate, accelerationBias;
-    Gradients gradient;
+    Values value;             ///< f
+    Values rate;              ///< df/dt = df/dq qdot
+    Values accelerationBias;  ///< qdot^T (d^2 f/dq^2) qdot
+    Gradients gradient;       ///< df/dq
     ChordFrame<Dim> frame;  ///< scratch
 };
 
@@ -66,15 +70,15 @@ struct AxialCondensationData {
 template <int Dim>
 class AxialCondensation {
 public:
-    using Data = AxialCondensationData<Dim>;
+    using Data = AxialCondensationData<Dim>;  ///< the results of one evaluation
 
     /// @throws std::invalid_argument if the span uses ElasticEnergyModel::PaperLiteral.
     explicit AxialCondensation(const SpanModel<Dim>& span);
 
-    int numAxialModes() const { return na_; }
+    int numAxialModes() const { return na_; }  ///< n_a of the span
     /// n_c: the span's condensed amplitudes (SpanModel::numCondensedModes), the first n_c modal coordinates.
     int numCondensedModes() const { return nc_; }
-    int numQuantities() const { return 3 * nc_ + 5; }
+    int numQuantities() const { return 3 * nc_ + 5; }  ///< rows of Data: 3 n_c + 5
 
     /// Row indices of the quantities in Data.
     int phi(int i) const { return i; }                      ///< dU/da_i, i < n_c [N]

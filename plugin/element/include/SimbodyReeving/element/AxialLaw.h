@@ -27,6 +27,7 @@ struct AxialLaw {
     double transition = 0;      ///< eps_s [-]: 0 = the plain clamp max(eps, 0)
 
     AxialLaw() = default;
+    /// The law of a rope (EA, tensionOnly) with transition strain eps_s (used if tension-only).
     AxialLaw(const RopeProperties& properties, double transitionStrain)
         : EA(properties.axialStiffness), tensionOnly(properties.tensionOnly),
           transition(properties.tensionOnly ? transitionStrain : 0.0) {}
@@ -63,8 +64,8 @@ struct AxialLaw {
         return x * x * (18.0 + x * (-32.0 + 15.0 * x));
     }
 
-    double f(double eps) const { return f<double>(eps, eps); }
-    double F(double eps) const { return F<double>(eps, eps); }
+    double f(double eps) const { return f<double>(eps, eps); }  ///< f(eps) [-] for a plain strain
+    double F(double eps) const { return F<double>(eps, eps); }  ///< F(eps) [-] for a plain strain
     /// Axial force P = EA f(eps) [N].
     double force(double eps) const { return EA * f(eps); }
 };

@@ -18,9 +18,9 @@ public:
     /// Sets the size and bandwidths and zeroes the matrix.
     /// @throws std::invalid_argument if n < 0, kl < 0 or ku < 0.
     void reset(int n, int kl, int ku);
-    int size() const { return n_; }
-    int lowerBandwidth() const { return kl_; }
-    int upperBandwidth() const { return ku_; }
+    int size() const { return n_; }             ///< n, the matrix's order
+    int lowerBandwidth() const { return kl_; }  ///< kl, the number of subdiagonals
+    int upperBandwidth() const { return ku_; }  ///< ku, the number of superdiagonals
 
     /// A(i, j) += value (before factor()).
     /// @throws std::out_of_range if (i, j) is outside the matrix or its band (-kl <= j - i <= ku).

@@ -38,12 +38,12 @@ namespace SimbodyReeving {
 /// - Addot   = sum_m dAdot[m] edot_m       (second time derivative with zero chord acceleration)
 template <int Dim>
 struct ChordFrame {
-    using Mat = Eigen::Matrix<double, Dim, Dim>;
-    Mat A;
-    std::array<Mat, Dim> dA;
-    Mat Adot;
-    std::array<Mat, Dim> dAdot;
-    Mat Addot;
+    using Mat = Eigen::Matrix<double, Dim, Dim>;  ///< a Dim x Dim matrix
+    Mat A;                                        ///< the element frame A_e(e), columns [i_e j_e (k_e)]
+    std::array<Mat, Dim> dA;                      ///< dA/de_m
+    Mat Adot;                                     ///< sum_m dA[m] edot_m
+    std::array<Mat, Dim> dAdot;                   ///< d(Adot)/de_m at fixed edot
+    Mat Addot;                                    ///< sum_m dAdot[m] edot_m
 };
 
 /// 1 + i0 . i_e below this value is treated as a degenerate (reversed) chord in 3D.

@@ -173,7 +173,7 @@ struct SpanOptions {
     /// Table 1 pendulum with n_a = 3) or states (Dynamic, the paper's; needed for axial waves and
     /// for ElasticEnergyModel::PaperLiteral with n_a > 0); no effect when n_a = 0. See AxialDynamics.
     AxialDynamics axialDynamics = AxialDynamics::QuasiStatic;
-    ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;
+    ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;  ///< see ElasticEnergyModel
     /// Transverse amplitudes as states (Dynamic, default) or condensed (QuasiStatic: the span's
     /// static sag without its string vibration). See TransverseDynamics.
     TransverseDynamics transverseDynamics = TransverseDynamics::Dynamic;
@@ -239,10 +239,13 @@ struct SpanOptions {
 /// workspace ("Data") of a SpanModel. Fixed maximum sizes: evaluating never allocates.
 template <int Dim>
 struct SpanData {
-    static constexpr int kMaxModal = Dim * kMaxModesPerDirection;
-    static constexpr int kMaxCoordinates = 2 * Dim + kMaxModal + 2;
+    static constexpr int kMaxModal = Dim * kMaxModesPerDirection;    ///< most modal coordinates of a span
+    static constexpr int kMaxCoordinates = 2 * Dim + kMaxModal + 2;  ///< most coordinates of a span
+    /// A vector over the span's coordinates (fixed maximum size).
     using CoordVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCoordinates, 1>;
+    /// A matrix over the span's coordinates (fixed maximum size).
     using CoordMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxCoordinates>;
+    /// Dim rows, one column per span coordinate (fixed maximum size).
     using Jacobian = Eigen::Matrix<double, Dim, Eigen::Dynamic, 0, Dim, kMaxCoordinates>;
 
     /// M(q) = int rhoA B^T B ds with rdot = B(q) qdot; symmetric positive definite [kg, kg m, ...].
@@ -270,7 +273,7 @@ struct SpanData {
 
     /// Elastic energy [J]: axial + bending + string + U_delta.
     double strainEnergy() const { return axialEnergy + bendingEnergy + stringEnergy + slackRegularisationEnergy; }
-    double potentialEnergy() const { return strainEnergy() + gravityEnergy; }
+    double potentialEnergy() const { return strainEnergy() + gravityEnergy; }  ///< strain + gravity [J]
 
     ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
     /// Not written by evaluate() any more (M is assembled in closed form and Q_v without forming
@@ -324,9 +327,9 @@ struct EndStrain {
 template <int Dim>
 class SpanModel {
 public:
-    using Vec = Eigen::Matrix<double, Dim, 1>;
-    using Mat = Eigen::Matrix<double, Dim, Dim>;
-    using Data = SpanData<Dim>;
+    using Vec = Eigen::Matrix<double, Dim, 1>;    ///< a point or direction
+    using Mat = Eigen::Matrix<double, Dim, Dim>;  ///< a frame or rotation
+    using Data = SpanData<Dim>;                   ///< the results of one evaluation
 
     /// @param properties rope properties (see RopeProperties for units and ranges).
     /// @param options    mode counts and numerical options.
@@ -347,7 +350,7 @@ public:
     SpanModel(const RopeProperties& properties, const SpanOptions& options, const Vec& gravity,
               const Mat& referenceFrame = Mat::Identity());
 
-    int numCoordinates() const { return 2 * Dim + numModal_ + 2; }
+    int numCoordinates() const { return 2 * Dim + numModal_ + 2; }  ///< r1, r2, modal, s1, s2
     /// true if the span carries U_delta (SpanOptions::quasiStaticSlackStiffness on condensed axial
     /// amplitudes, quasiStaticTransverseSlackStiffness on condensed transverse ones): a tension-only
     /// rope with condensed modes (numCondensedModes() > 0).
@@ -375,9 +378,9 @@ public:
         const double k = (i + 1) * 3.14159265358979323846;
         return k * k;
     }
-    int numModalCoordinates() const { return numModal_; }
-    int axialModes() const { return options_.axialModes; }
-    int transverseModes() const { return options_.transverseModes; }
+    int numModalCoordinates() const { return numModal_; }  ///< n_a + (Dim - 1) n_t
+    int axialModes() const { return options_.axialModes; }  ///< n_a
+    int transverseModes() const { return options_.transverseModes; }  ///< n_t per transverse direction
     /// Quadrature points used for the kinetic (M, Q_v, T) or strain (U_ax, U_str) integrals.
     int quadraturePoints(Integrand integrand) const {
         return static_cast<int>((integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).xi.size());
@@ -387,24 +390,26 @@ public:
     const Eigen::VectorXd& quadratureNodes(Integrand integrand) const {
         return (integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).xi;
     }
+    /// The weights w_k of that rule (they sum to 1).
     const Eigen::VectorXd& quadratureWeights(Integrand integrand) const {
         return (integrand == Integrand::Kinetic ? kineticTable_ : strainTable_).w;
     }
-    const RopeProperties& properties() const { return properties_; }
-    const SpanOptions& options() const { return options_; }
-    const Vec& gravity() const { return gravity_; }
-    const Mat& referenceFrame() const { return referenceFrame_; }
+    const RopeProperties& properties() const { return properties_; }  ///< as constructed
+    const SpanOptions& options() const { return options_; }            ///< as constructed
+    const Vec& gravity() const { return gravity_; }                    ///< g [m/s^2]
+    const Mat& referenceFrame() const { return referenceFrame_; }      ///< A0 (Dim = 3; identity for Dim = 2)
 
     /// Index of r1 (first of Dim), r2, of axial mode i (0-based), of transverse mode i in direction
     /// dir (0: j_e, 1: k_e), and of s1, s2 in the coordinate vector.
     static constexpr int r1Index() { return 0; }
-    static constexpr int r2Index() { return Dim; }
-    int axialModeIndex(int i) const { return 2 * Dim + i; }
+    static constexpr int r2Index() { return Dim; }                 ///< index of r2 (first of Dim)
+    int axialModeIndex(int i) const { return 2 * Dim + i; }          ///< index of axial mode i (0-based)
+    /// Index of transverse mode i (0-based) in direction dir (0: j_e, 1: k_e).
     int transverseModeIndex(int dir, int i) const {
         return 2 * Dim + options_.axialModes + dir * options_.transverseModes + i;
     }
-    int s1Index() const { return 2 * Dim + numModal_; }
-    int s2Index() const { return 2 * Dim + numModal_ + 1; }
+    int s1Index() const { return 2 * Dim + numModal_; }      ///< index of s1
+    int s2Index() const { return 2 * Dim + numModal_ + 1; }  ///< index of s2
 
     /// The Gauss-Legendre count that integrates the span's integrands to round-off (tested against
     /// 150 points): with n_max = max(n_a, n_t) and k the integrand's largest number of half-waves
@@ -420,8 +425,8 @@ public:
     /// (SpanOptions::quadraturePoints = 0), and then tautStrainNodes / tautStrainWeights are the
     /// midpoint rule of automaticStrainPoints.
     bool tautStrainRule() const { return tautStrainTable_.xi.size() > 0; }
-    const Eigen::VectorXd& tautStrainNodes() const { return tautStrainTable_.xi; }
-    const Eigen::VectorXd& tautStrainWeights() const { return tautStrainTable_.w; }
+    const Eigen::VectorXd& tautStrainNodes() const { return tautStrainTable_.xi; }   ///< xi_j of the taut rule
+    const Eigen::VectorXd& tautStrainWeights() const { return tautStrainTable_.w; }  ///< w_j of the taut rule
     /// True if the strain of the span at these coordinates is above the axial law's transition
     /// strain at every point (or the law is linear), by the bound
     ///     lambda(xi) = |e| + sum_i S_i'(xi) a_i >= |e| - sum_i i pi |a_i| = lambda_min,
@@ -543,7 +548,7 @@ private:
     Eigen::VectorXd sinMean_, bendFactor_;
 };
 
-using PlanarSpanModel = SpanModel<2>;
-using SpatialSpanModel = SpanModel<3>;
+using PlanarSpanModel = SpanModel<2>;   ///< a span in the x-y plane
+using SpatialSpanModel = SpanModel<3>;  ///< a span in space
 
 }  // namespace SimbodyReeving

@@ -71,7 +71,7 @@ struct CraneParameters {
     bool tensionOnly = true;       ///< RopeProperties::tensionOnly (false: the linear law, ropes may push)
     double minimumSpanLength = 0.2;  ///< a span this short ends the run (two-blocking) [m], > 0
     // ---- scenario
-    CraneScenario scenario = CraneScenario::Cycle;
+    CraneScenario scenario = CraneScenario::Cycle;  ///< what the crane starts from
     // ---- lift-off (used by CraneScenario::LiftOff and CraneCycle::liftOff only)
     double hoistSpeed = 0.3;       ///< v_h: steady hoisting speed of the hook (drum: falls x v_h) [m/s], > 0
     double hoistRamp = 0.5;        ///< time the hoist takes from rest to v_h (quintic speed ramp) [s], > 0
@@ -183,20 +183,20 @@ public:
     /// @throws std::invalid_argument for bad parameters, cycle or span options.
     CraneScene(const CraneParameters& parameters, const CraneCycle& cycle, const SpanOptions& spans);
 
-    SimTK::MultibodySystem& system() { return *system_; }
-    const SimTK::MultibodySystem& system() const { return *system_; }
-    const SimTK::SimbodyMatterSubsystem& matter() const { return *matter_; }
-    const ReevingSubsystem& reeving() const { return *reeving_; }
-    const MotionWorkMeter& workMeter() const { return *workMeter_; }
-    const CraneParameters& parameters() const { return parameters_; }
-    const CraneCycle& cycle() const { return cycle_; }
-    const SimTK::MobilizedBody::Slider& trolley() const { return *trolley_; }
-    const SimTK::MobilizedBody::Pin& drum() const { return *drum_; }
-    const SimTK::MobilizedBody::Planar& hookBlock() const { return *hook_; }
+    SimTK::MultibodySystem& system() { return *system_; }  ///< the scene's system (the scene owns it)
+    const SimTK::MultibodySystem& system() const { return *system_; }  ///< the scene's system
+    const SimTK::SimbodyMatterSubsystem& matter() const { return *matter_; }  ///< its matter subsystem
+    const ReevingSubsystem& reeving() const { return *reeving_; }  ///< the rope (rope 0)
+    const MotionWorkMeter& workMeter() const { return *workMeter_; }  ///< work of the hoist and traverse drives
+    const CraneParameters& parameters() const { return parameters_; }  ///< as given, validated
+    const CraneCycle& cycle() const { return cycle_; }  ///< the machine's program, as given
+    const SimTK::MobilizedBody::Slider& trolley() const { return *trolley_; }  ///< the trolley, on a Slider along x
+    const SimTK::MobilizedBody::Pin& drum() const { return *drum_; }  ///< the winch drum, on a Pin on the trolley
+    const SimTK::MobilizedBody::Planar& hookBlock() const { return *hook_; }  ///< the hook block (x, y, rotation)
     /// The payload: a MobilizedBody::Pin on the hook block (Cycle) or a MobilizedBody::Planar from
     /// Ground (LiftOff); its frame origin is its centre of mass.
     const SimTK::MobilizedBody& payload() const { return *payload_; }
-    int falls() const { return parameters_.falls; }
+    int falls() const { return parameters_.falls; }  ///< number of falls n
 
     /// The state at t = 0: prescribed motions applied, hook block, payload and rope at static
     /// equilibrium (ReevingSubsystem::findStaticEquilibrium, relative residual <= 1e-9; LiftOff: the

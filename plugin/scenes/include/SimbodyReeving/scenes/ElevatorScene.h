@@ -39,7 +39,7 @@ ElevatorScenario elevatorScenarioFromString(const std::string& name);
 /// Physical parameters (SI units). The defaults: a 630 kg passenger elevator, 1.6 m/s, 1:1 roping,
 /// four 10 mm ropes over a 640 mm traction sheave with an undercut U groove.
 struct ElevatorParameters {
-    ElevatorScenario scenario = ElevatorScenario::Trip;
+    ElevatorScenario scenario = ElevatorScenario::Trip;  ///< which traction check the scene runs
     double g = 9.81;                ///< [m/s^2], > 0
     double carMass = 1000.0;        ///< empty car with its sling [kg], > 0
     double ratedLoad = 630.0;       ///< [kg], >= 0
@@ -84,6 +84,7 @@ struct ElevatorParameters {
     /// @throws std::invalid_argument naming the first parameter out of range (carPosition's range
     /// depends on `scenario`).
     void validate() const;
+    /// The counterweight's mass [kg]: counterweightMass if > 0, else carMass + ratedLoad / 2.
     double counterweight() const { return counterweightMass > 0 ? counterweightMass : carMass + 0.5 * ratedLoad; }
 };
 
@@ -108,12 +109,12 @@ public:
     /// @throws std::invalid_argument for bad parameters or span options.
     ElevatorScene(const ElevatorParameters& parameters, const SpanOptions& spans);
 
-    SimTK::MultibodySystem& system() { return *system_; }
-    const SimTK::MultibodySystem& system() const { return *system_; }
-    const ReevingSubsystem& reeving() const { return *reeving_; }
-    const MotionWorkMeter& workMeter() const { return *workMeter_; }
-    const ElevatorParameters& parameters() const { return parameters_; }
-    const SimTK::MobilizedBody::Pin& sheave() const { return *sheave_; }
+    SimTK::MultibodySystem& system() { return *system_; }  ///< the scene's system (the scene owns it)
+    const SimTK::MultibodySystem& system() const { return *system_; }  ///< the scene's system
+    const ReevingSubsystem& reeving() const { return *reeving_; }  ///< the hoist rope (and the compensating rope)
+    const MotionWorkMeter& workMeter() const { return *workMeter_; }  ///< work of the machine (the prescribed sheave)
+    const ElevatorParameters& parameters() const { return parameters_; }  ///< as given, validated
+    const SimTK::MobilizedBody::Pin& sheave() const { return *sheave_; }  ///< the machine's traction sheave
     /// The car's mass in this scenario (empty in Stall, rated load in Trip and EmergencyStop, 125 % of
     /// it in Loading; carMass + carLoad ratedLoad when carLoad is set) [kg].
     double carTotalMass() const;

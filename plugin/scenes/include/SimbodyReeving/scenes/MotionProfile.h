@@ -35,7 +35,7 @@ struct SmoothMove {
     double peakVelocity() const { return distance / (duration - ramp); }
     /// Largest |acceleration|: |v_peak| / ramp * 15/8.
     double peakAcceleration() const;
-    double end() const { return start + duration; }
+    double end() const { return start + duration; }  ///< time the move ends [s]
     /// @throws std::invalid_argument naming the field out of range or not finite.
     void validate() const;
 };
@@ -43,7 +43,7 @@ struct SmoothMove {
 /// The sum of any number of SmoothMoves (usually one after the other): a coordinate's displacement
 /// from its initial value as a function of time. Empty: always 0.
 struct MotionProfile {
-    std::vector<SmoothMove> moves;
+    std::vector<SmoothMove> moves;  ///< the moves, summed (they may overlap)
 
     double position(double t) const;      ///< sum of the moves' positions
     double velocity(double t) const;      ///< sum of the moves' velocities

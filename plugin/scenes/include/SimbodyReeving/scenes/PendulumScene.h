@@ -47,12 +47,13 @@ public:
     PendulumScene(const PendulumParameters& parameters, const SpanOptions& spans, bool planarRope = true,
                   const std::optional<SpanOptions>& horizontalSpan = std::nullopt);
 
-    SimTK::MultibodySystem& system() { return *system_; }
-    const SimTK::MultibodySystem& system() const { return *system_; }
-    const SimTK::SimbodyMatterSubsystem& matter() const { return *matter_; }
+    SimTK::MultibodySystem& system() { return *system_; }  ///< the scene's system (the scene owns it)
+    const SimTK::MultibodySystem& system() const { return *system_; }  ///< the scene's system
+    const SimTK::SimbodyMatterSubsystem& matter() const { return *matter_; }  ///< its matter subsystem
+    /// The rope: rope 0, span 0 the horizontal one, span 1 the vertical one.
     const ReevingSubsystem& reeving() const { return *reeving_; }
-    const SimTK::MobilizedBody::Free& payload() const { return *payload_; }
-    const PendulumParameters& parameters() const { return parameters_; }
+    const SimTK::MobilizedBody::Free& payload() const { return *payload_; }  ///< the payload, a free body
+    const PendulumParameters& parameters() const { return parameters_; }  ///< as given, validated
 
     /// Realizes the topology, starts from the straight hanging guess, moves the state to static
     /// equilibrium (relative residual <= 1e-9; its round-off floor grows with EA: 4e-10 at 100 x Table 1) and then sets the payload's velocity (vx, vy) [m/s].

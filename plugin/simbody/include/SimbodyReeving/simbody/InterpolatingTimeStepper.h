@@ -78,12 +78,14 @@ public:
     /// too (its next step needs Stage::Acceleration of it anyway).
     /// @throws std::invalid_argument for a stage before Position or after Acceleration.
     void setReportStage(SimTK::Stage stage);
+    /// The stage reports are realized to (setReportStage; default Stage::Velocity).
     SimTK::Stage getReportStage() const { return reportStage_; }
 
     /// The state at the last report time reached by stepTo (interpolated, or the integrator's
     /// advanced state when the report fell on a step end), realized to getReportStage() (default
     /// Stage::Velocity).
     const SimTK::State& getState() const;
+    /// The integrator the stepper drives.
     const SimTK::Integrator& getIntegrator() const { return integrator_; }
     /// Right-hand-side evaluations (realizations through Stage::Acceleration) since initialize():
     /// the integrator's Integrator::getNumRealizations() plus those this stepper did at step

@@ -64,7 +64,7 @@ enum class TractionMode {
 /// {body, station} and three-argument {body, centre, radius} forms make an Anchor and a
 /// DeviationSheave, as RopeSpec's fields accepted before the other kinds existed.
 struct RopeNode {
-    RopeNodeKind kind = RopeNodeKind::Anchor;
+    RopeNodeKind kind = RopeNodeKind::Anchor;  ///< what the node is (anchor, sheave, drum...)
     SimTK::MobilizedBody body;  ///< Ground allowed for Anchor and DeviationSheave; a Pin for the others
     SimTK::Vec3 point{0};       ///< station (Anchor) or centre, in the body frame [m]
     double radius = 0;          ///< sheaves and drums [m], > 0
@@ -85,9 +85,9 @@ struct RopeNode {
 /// A station (point fixed on a body) where a rope end is fastened: a MobilizedBody (Ground allowed)
 /// and the point's location in that body's frame [m].
 struct RopeAnchor {
-    SimTK::MobilizedBody body;
-    SimTK::Vec3 station{0};
-    operator RopeNode() const { return RopeNode(body, station); }
+    SimTK::MobilizedBody body;  ///< the body the end is fastened to (Ground allowed)
+    SimTK::Vec3 station{0};     ///< the point in the body's frame [m]
+    operator RopeNode() const { return RopeNode(body, station); }  ///< the RopeNode of kind Anchor
 };
 
 /// A frictionless deviation sheave: its centre on a body (Ground allowed) [m] and its radius [m].
@@ -96,10 +96,10 @@ struct RopeAnchor {
 /// the motion of the tangent points are neglected (an O(radius/span length) geometric
 /// approximation). The radius is used for validation and drawing.
 struct DeviationSheave {
-    SimTK::MobilizedBody body;
-    SimTK::Vec3 centre{0};
-    double radius = 0;
-    operator RopeNode() const { return RopeNode(body, centre, radius); }
+    SimTK::MobilizedBody body;  ///< the body carrying the sheave (Ground allowed)
+    SimTK::Vec3 centre{0};      ///< the sheave's centre in the body's frame [m]
+    double radius = 0;          ///< [m], > 0
+    operator RopeNode() const { return RopeNode(body, centre, radius); }  ///< the RopeNode of kind DeviationSheave
 };
 
 /// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
@@ -108,11 +108,12 @@ struct DeviationSheave {
 /// pin angle pays rope out) and the point on the pin axis where the rope node sits (drum body
 /// frame, default its origin).
 struct WinchDrum {
-    SimTK::MobilizedBody body;
-    double radius = 0;
-    double ropeOnDrum = 0;
-    int payoutSense = 1;
-    SimTK::Vec3 centre{0};
+    SimTK::MobilizedBody body;  ///< the drum: a MobilizedBody::Pin
+    double radius = 0;          ///< R [m], > 0
+    double ropeOnDrum = 0;      ///< rope stored on the drum at pin angle 0 [m], >= 0
+    int payoutSense = 1;        ///< +1: a positive pin angle pays rope out; -1: it hauls rope in
+    SimTK::Vec3 centre{0};      ///< the rope node's point on the pin axis, drum body frame [m]
+    /// The RopeNode of kind WinchDrum.
     operator RopeNode() const {
         RopeNode n(body, centre, radius);
         n.kind = RopeNodeKind::WinchDrum;
@@ -129,11 +130,12 @@ struct WinchDrum {
 /// sheave to its start side, i.e. towards the rope's start) and the point on the pin axis
 /// (body frame, default origin).
 struct TurningSheave {
-    SimTK::MobilizedBody body;
-    double radius = 0;
-    double materialCoordinateAtZeroAngle = 0;
-    int sense = 1;
-    SimTK::Vec3 centre{0};
+    SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
+    double radius = 0;                         ///< R [m], > 0
+    double materialCoordinateAtZeroAngle = 0;  ///< s_ref, the material coordinate at the sheave at pin angle 0 [m]
+    int sense = 1;                             ///< +1 or -1: s = s_ref + sense R theta
+    SimTK::Vec3 centre{0};                     ///< the rope node's point on the pin axis, body frame [m]
+    /// The RopeNode of kind TurningSheave.
     operator RopeNode() const {
         RopeNode n(body, centre, radius);
         n.kind = RopeNodeKind::TurningSheave;
@@ -183,13 +185,14 @@ struct TurningSheave {
 /// 7 transitions (real-time factor 3.0). With the groove coefficients of real sheaves (mu <= 0.3)
 /// no chatter was seen.
 struct TractionSheave {
-    SimTK::MobilizedBody body;
-    double radius = 0;
-    double frictionCoefficient = 0;
-    double wrapAngle = 0;
-    double materialCoordinateAtZeroAngle = 0;
-    int sense = 1;
-    SimTK::Vec3 centre{0};
+    SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
+    double radius = 0;                         ///< R [m], > 0
+    double frictionCoefficient = 0;            ///< mu [-], >= 0 (effective: groove shape included)
+    double wrapAngle = 0;                      ///< alpha [rad]; 0: from the geometry at the first realization
+    double materialCoordinateAtZeroAngle = 0;  ///< s_ref at pin angle 0 with no slip yet [m]
+    int sense = 1;                             ///< +1 or -1, as for a TurningSheave
+    SimTK::Vec3 centre{0};                     ///< the rope node's point on the pin axis, body frame [m]
+    /// The RopeNode of kind TractionSheave.
     operator RopeNode() const {
         RopeNode n(body, centre, radius);
         n.kind = RopeNodeKind::TractionSheave;
@@ -203,7 +206,7 @@ struct TractionSheave {
 
 /// Everything that describes one rope. SI units.
 struct RopeSpec {
-    std::string name = "rope";
+    std::string name = "rope";       ///< names the rope in messages (limits, failed evaluations)
     RopeNode start;                  ///< Anchor or WinchDrum
     std::vector<RopeNode> sheaves;   ///< DeviationSheave or TurningSheave, in path order
     RopeNode end;                    ///< Anchor or WinchDrum
@@ -288,17 +291,24 @@ public:
     ///         the plane and throws std::logic_error).
     int addRope(const RopeSpec& spec);
 
+    /// Number of ropes added.
     int getNumRopes() const;
+    /// The spec a rope was added with (rope index from addRope).
     const RopeSpec& getRopeSpec(int rope) const;
+    /// Number of spans of a rope: its nodes less one.
     int getNumSpans(int rope) const;
+    /// True if the rope is planar (RopeSpec::planeNormal non-zero).
     bool isPlanar(int rope) const;
     /// Number of modal coordinates of a rope (its Z holds these and as many rates).
     int getNumModalCoordinates(int rope) const;
 
-    /// Modal coordinates of a rope [m] and their rates [m/s] (Stage::Model or later).
+    /// The rope's modal coordinates [m] (Stage::Model or later).
     SimTK::Vector getModalCoordinates(const SimTK::State& state, int rope) const;
+    /// Sets the rope's modal coordinates [m], getNumModalCoordinates(rope) of them.
     void setModalCoordinates(SimTK::State& state, int rope, const SimTK::Vector& q) const;
+    /// The rates of the rope's modal coordinates [m/s] (Stage::Model or later).
     SimTK::Vector getModalRates(const SimTK::State& state, int rope) const;
+    /// Sets the rates of the rope's modal coordinates [m/s].
     void setModalRates(SimTK::State& state, int rope, const SimTK::Vector& qdot) const;
 
     // ---- queries (Stage::Position unless said otherwise) ------------------------------------
@@ -469,6 +479,7 @@ public:
     /// between chord and reference, so small values let it grow (14 per radian at 0.01).
     /// @throws std::invalid_argument outside the range.
     void setFrameChangeAlignment(double alignment);
+    /// The alignment set by setFrameChangeAlignment [-] (default 0.5).
     double getFrameChangeAlignment() const;
     /// Number of reference-frame changes of a rope's spans in this state's history (0 for planar
     /// ropes and before the first change).
@@ -500,6 +511,7 @@ public:
     /// span axial force of the frame (sampled as drawn; 0 if every span is slack) (Stage::Position).
     double getDecorationForceScale(const SimTK::State& state) const;
 
+    /// @cond INTERNAL
     class Guts;
 private:
     double strainAt(const SimTK::State& state, int rope, int span, double s) const;
@@ -508,6 +520,7 @@ public:
     SimTK_PIMPL_DOWNCAST(ReevingSubsystem, SimTK::ForceSubsystem);
     Guts& updGuts();
     const Guts& getGuts() const;
+    /// @endcond
 };
 
 }  // namespace SimbodyReeving

@@ -14,8 +14,8 @@ namespace SimbodyReeving {
 /// One slack/taut transition of a span.
 struct SlackTransition {
     double time = 0;     ///< [s], localized by the integrator to its event-time window
-    int rope = 0;
-    int span = 0;
+    int rope = 0;        ///< the rope's index (ReevingSubsystem::addRope)
+    int span = 0;        ///< the span's index in the rope, from its start
     bool slack = false;  ///< true: the span went slack (max strain fell to 0); false: taut again
 };
 
