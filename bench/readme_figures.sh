@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Prints the figures README.md quotes from the two bundled demos' default runs (one run each):
+# Prints the numbers the documents quote (docs/verification.md) from the bundled demos' default runs
+# (one run each):
 #   pendulum (reeving-pendulum defaults: n_a = 0..3, quasi-static, 20 s): steps and wall per case,
 #     the largest payload x difference from n_a = 0 (Fig 2), the mean payload-end axial force
 #     below n_a = 0's (Fig 4/5), the largest energy drift / KE0;

@@ -30,33 +30,30 @@ inline bool strainAboveTransitionEverywhere(const AxialLaw& law, int numAxialMod
 
 /// Which velocity field of the span defines its kinetic energy T = 1/2 int rhoA |rdot|^2 ds (eq 15).
 ///
-/// The default is Complete: it is exact, it costs 27-29 % more instructions per span
-/// evaluation than Simplified (callgrind, Table 1 rope, n_a = 0..3, n_t = 1..3: 8 075 against
-/// 6 283 at n_a = 0, n_t = 1; 12 932 against 10 173 at n_a = 3, n_t = 3; bench/moving_string/cost.sh,
-/// with the closed-form mass matrix),
-/// and Simplified misses the transport of the transverse motion by rope
-/// flowing through a span (hoisting, a drum paying out, a belt) at a speed v that is not small
-/// against the wave speed c = sqrt(P / rhoA). Measured on the axially moving string (a taut span
-/// between fixed nodes, both material coordinates moving at v; tests/element/test_axially_moving_string.cpp),
-/// whose frequencies are omega_n = (n pi c / l)(1 - v^2 / c^2) (Wickert & Mote 1990).
+/// The default is Complete: it is exact, for a somewhat higher cost per span evaluation than
+/// Simplified (docs/performance.md), and Simplified misses the transport of the transverse motion
+/// by rope flowing through a span (hoisting, a drum paying out, a belt) at a speed v that is not
+/// small against the wave speed c = sqrt(P / rhoA). The reference is the axially moving string (a
+/// taut span between fixed nodes, both material coordinates moving at v;
+/// tests/element/test_axially_moving_string.cpp), whose frequencies are
+/// omega_n = (n pi c / l)(1 - v^2 / c^2) (Wickert & Mote 1990); docs/verification.md compares both
+/// models with it.
 enum class VelocityModel {
     /// Paper eq 13: rdot = Ndot q_a + N qdot_a + A_e S qdot_m. Drops the frame-rotation term
-    /// Adot_e S q_m and the mode-convection term A_e Sdot q_m of eq 12. Measured consequences:
+    /// Adot_e S q_m and the mode-convection term A_e Sdot q_m of eq 12. Consequences:
     /// - rope flowing through a span leaves its transverse modes at the frequencies of a rope at
-    ///   rest, n pi c / l at every speed (to 7e-11): 1 / (1 - v^2/c^2) above the moving string's,
-    ///   +1.0 % at v/c = 0.1, +9.9 % at 0.3, +33 % at 0.5, +96 % at 0.7;
-    /// - (bench/LUMPED_CHAIN.md, 20 m hanging rope swinging at 1 m/s) with axial modes the force the
-    ///   rope puts on the payload carries an inertial model error of 0.13-0.20 N (2e-5 of the
-    ///   tension); Complete removes it at the same step count.
+    ///   rest, n pi c / l at every speed: a factor 1 / (1 - v^2/c^2) above the moving string's
+    ///   (+33 % at v/c = 0.5, +96 % at 0.7);
+    /// - with axial modes, the force the rope puts on a swinging payload carries an inertial
+    ///   model error (docs/verification.md, against the lumped-mass chain); Complete removes it at
+    ///   the same step count.
     /// Use it to reproduce the paper's eq 13.
     Simplified,
     /// Default. Paper eq 12 with no term dropped: the exact material velocity of the discretised
     /// rope. On the axially moving string its linearised modal equations are the string's Galerkin
-    /// system on the same sine modes (to 1e-9: the Coriolis and centripetal transport terms are
-    /// exact), so its frequencies converge to Wickert & Mote's as n_t grows, about like n_t^-3: at
-    /// v/c = 0.7, first mode +4.9e-3 with n_t = 3, +5.0e-4 with n_t = 8, +6.3e-5 with n_t = 16; at
-    /// v/c = 0.3, +1.5e-3 / +7.4e-5 / +1.0e-5 (the highest modes of a basis converge last: with
-    /// n_t = 3 the third is +14 % off at v/c = 0.3).
+    /// system on the same sine modes (the Coriolis and centripetal transport terms are exact), so
+    /// its frequencies converge to Wickert & Mote's as n_t grows, about like n_t^-3, the highest
+    /// modes of a basis last (docs/verification.md, "The axially moving string").
     Complete,
 };
 
@@ -78,15 +75,14 @@ enum class ElasticEnergyModel {
 
 /// How a span's axial modal amplitudes q_a (the paper's axial part of q_m, eq 3 and 10) evolve.
 ///
-/// The default is QuasiStatic: on the Table 1 pendulum with n_a = 3 (RK-Merson 1e-6,
-/// 20 s; bench/RESULTS.md, "Quasi-static axial modes") it takes 61x less wall time than Dynamic
-/// (0.223 s against 13.69 s; 1 127 steps against 76 790) with the payload within 7.2e-8 m and the
-/// slow part of the axial force within 0.062 N of Dynamic's; what it leaves out is the axial-wave
-/// part of the force (0.18 N of 9.8 kN there). Choose Dynamic for axial waves (snap loads
+/// The default is QuasiStatic: without axial waves, whose frequencies limit the step of explicit
+/// integrators, it takes far fewer steps than Dynamic, while the bodies' motion and the slow part
+/// of the axial force agree with Dynamic's; what it leaves out is the axial-wave part of the force
+/// (docs/verification.md, "Quasi-static against dynamic axial modes"). Choose Dynamic for axial waves (snap loads
 /// travelling along a long rope, axial resonance) or with ElasticEnergyModel::PaperLiteral. With
 /// n_a = 0 (the default mode count) there are no axial amplitudes and the choice has no effect.
 /// The transverse modes do not care: on the axially moving string (see VelocityModel) n_a = 2
-/// gives the n_a = 0 transverse frequencies with either choice (to 3e-12).
+/// gives the n_a = 0 transverse frequencies with either choice.
 enum class AxialDynamics {
     /// The paper's model: the axial amplitudes are generalized coordinates with their own
     /// inertia, so the span carries axial waves. Their frequencies, i pi / l sqrt(EA / rhoA) for a
@@ -102,22 +98,16 @@ enum class AxialDynamics {
     /// accelerations follow exactly from the implicit function theorem, and the kinetic energy
     /// keeps the rope mass carried along by the quasi-static axial displacement field (the axial
     /// inertia of the slow motion). So:
-    /// - T + U stays an exact invariant (measured: 4.6e-13 of the initial kinetic energy over 20 s
-    ///   of the Table 1 pendulum, n_a = 3, RK-Merson 1e-10);
-    /// - static equilibria equal the Dynamic model's (measured: axial force within 2e-12 relative,
-    ///   n_a = 1, 3, 8);
+    /// - T + U stays an exact invariant;
+    /// - static equilibria equal the Dynamic model's;
     /// - the axial waves are gone, and with them the explicit-step limit: the integrator steps at
-    ///   the pace of the slow motion (Table 1 pendulum, n_a = 3, RK-Merson 1e-6: 1 127 steps instead
-    ///   of 76 790).
+    ///   the pace of the slow motion.
     /// Force queries at Stage::Dynamics or later add the mode-acceleration correction, the strain
     /// of the rope's own inertial load (RopeModel::recoverInertialStrain); with it the slow part of
     /// the axial force agrees with the Dynamic model's to O((omega_slow / omega_axial)^2) of the
-    /// inertial load. Measured on the Table 1 pendulum (1 m/s push, 20 s, both models converged;
-    /// bench/RESULTS.md, "Quasi-static axial modes"), n_a = 1 / 3 / 8: payload position within
-    /// 6.9e-8 / 7.2e-8 / 7.2e-8 m, slow part (below 43 Hz) of the payload-end axial force within
-    /// 0.059 / 0.062 / 0.062 N of 9.8 kN; what is left out is the axial-wave part, 0.13 / 0.18 /
-    /// 0.21 N. The slow difference grows about linearly in time (a small shift of the payload's
-    /// bounce frequency), so compare over the horizon you need.
+    /// inertial load; what is left out is the axial-wave part. The slow difference grows about
+    /// linearly in time (a small shift of the payload's bounce frequency), so compare over the
+    /// horizon you need (docs/verification.md, "Quasi-static against dynamic axial modes").
     /// Requires ElasticEnergyModel::Consistent on every span of the rope that has axial modes (the
     /// SpanModel constructor throws otherwise: set Dynamic for PaperLiteral). With a tension-only rope
     /// (RopeProperties::tensionOnly) the condensation uses the clamped law and a slack span's
@@ -138,9 +128,8 @@ enum class AxialDynamics {
 /// sag under its own weight at its current tension, and the kinetic energy keeps the rope mass
 /// carried by that sag as the span moves, but it has no string vibration. T + U stays an exact
 /// invariant. Use it when the transverse vibration of a span is not of interest and its frequency is
-/// well above the motion of the bodies (the rope's sag is quasi-static): for the Table 1 pendulum
-/// its effect on the payload and the axial force is measured in bench/RESULTS.md ("Quasi-static
-/// transverse modes"). A span that is slack and straight has no transverse stiffness from its
+/// well above the motion of the bodies (the rope's sag is quasi-static; its effect on the Table 1
+/// pendulum: docs/performance.md, "Quasi-static transverse modes"). A span that is slack and straight has no transverse stiffness from its
 /// tension; a tension-only rope's condensed transverse amplitudes are then held by
 /// SpanOptions::quasiStaticTransverseSlackStiffness.
 /// Requires ElasticEnergyModel::Consistent, AxialDynamics::QuasiStatic when n_a > 0 (transverse
@@ -165,12 +154,10 @@ struct SpanOptions {
     /// n_t: number of transverse sine modes per transverse direction, 0..16 (one direction in a
     /// planar span, two in a spatial one).
     int transverseModes = 1;
-    /// Complete (default: exact, 27-29 % more instructions per evaluation) or Simplified (the
-    /// paper's eq 13: misses the transport of transverse motion by rope flowing through the span;
-    /// see VelocityModel for the measurements).
+    /// Complete (default: exact, a little more costly) or Simplified (the paper's eq 13: misses
+    /// the transport of transverse motion by rope flowing through the span; see VelocityModel).
     VelocityModel velocityModel = VelocityModel::Complete;
-    /// Axial amplitudes condensed (QuasiStatic, default: no axial waves, 61x less wall time on the
-    /// Table 1 pendulum with n_a = 3) or states (Dynamic, the paper's; needed for axial waves and
+    /// Axial amplitudes condensed (QuasiStatic, default: no axial waves, far fewer steps) or states (Dynamic, the paper's; needed for axial waves and
     /// for ElasticEnergyModel::PaperLiteral with n_a > 0); no effect when n_a = 0. See AxialDynamics.
     AxialDynamics axialDynamics = AxialDynamics::QuasiStatic;
     ElasticEnergyModel elasticModel = ElasticEnergyModel::Consistent;  ///< see ElasticEnergyModel
@@ -200,13 +187,11 @@ struct SpanOptions {
     /// dU/dq_a = 0; their rates (the Hessian of U) enter the rope's kinetic energy and their
     /// acceleration bias (third derivatives of U) the equations of motion. With the plain clamp
     /// max(eps, 0) the rates jump whenever a strain quadrature point goes slack or taut, and each
-    /// jump changes T at fixed velocities (measured: 2.8e-3 of the initial kinetic energy over a
-    /// drop test with 10 slack/taut transitions); with a C1 rounding the accelerations still
+    /// jump changes T at fixed velocities; with a C1 rounding the accelerations still
     /// jump and adaptive steps collapse to 1e-15 s there. With the quintic T + U is an invariant
     /// again, provided the integrator resolves the rounding: a step that carries a span's strain
-    /// across (0, eps_s) at once can fool its error estimate (Table 1 rope dropped 20 m, n_a = 2,
-    /// RK-Merson 1e-10: energy error 7.7e-5 of the initial kinetic energy at eps_s = 1e-6, one
-    /// step; 2.2e-8 at 1e-5; 1.7e-8 at 1e-4). Outside (0, eps_s) the law is exact; inside,
+    /// across (0, eps_s) at once can fool its error estimate, the more so the smaller eps_s
+    /// (docs/stability.md, "Slack and snap: the rounding of the tension-only law"). Outside (0, eps_s) the law is exact; inside,
     /// 0 <= P <= EA eps and P falls short of EA eps by at most 0.1975 EA eps_s (33 N for the
     /// Table 1 rope, EA = 16.5 MN, at the default 1e-5: the force of a rope carrying less than
     /// EA eps_s = 165 N is rounded down by up to a fifth of that).

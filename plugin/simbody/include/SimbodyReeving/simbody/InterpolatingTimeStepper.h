@@ -16,8 +16,7 @@ namespace SimbodyReeving {
 /// Why: Simbody 3.7's TimeStepper passes min(next scheduled event, report time) to
 /// Integrator::stepTo as the event time (TimeStepperRep::stepTo in SimTKmath's TimeStepper.cpp),
 /// and an integrator never steps past an event time, so every report interval ends a step: the
-/// step count grows with the report rate (measured on the Table 1 pendulum, n_a = 0, RK-Merson
-/// 1e-6, 20 s: 2 000 steps with reports every 0.01 s, 20 000 with 0.001 s, 1 122 with 1 s).
+/// step count grows with the report rate once reports are more frequent than the steps.
 /// This stepper passes the next scheduled event time only, and interpolates the reports itself:
 /// the integrator returns after every internal step (initialize() sets
 /// Integrator::setReturnEveryInternalStep(true)), and a report time inside the last step gets the
@@ -26,15 +25,14 @@ namespace SimbodyReeving {
 /// motion applied and q and u projected onto the constraint manifold at the integrator's
 /// constraint tolerance, realized to Stage::Velocity (Z included; see setReportStage). Unlike
 /// Simbody's interpolation, which copies the whole advanced State into its interpolated State at
-/// every report (about 0.5 M instructions, ~170 us, for the Table 1 pendulum: more than the steps
-/// cost at 100 reports per second), the report State here is copied once and then only gets t
+/// every report (on a small system that costs more than the steps themselves at frequent
+/// reports), the report State here is copied once and then only gets t
 /// and Y. Events (scheduled, triggered, time-advanced, termination) are handled as TimeStepper
 /// handles them; the report State is refreshed by a full copy after each handled event. The
 /// ReevingSubsystems of the system start the Newton solve of their ropes' dependent coordinates
 /// (sheave material coordinates, quasi-static amplitudes) at a report from the advanced state's
-/// solution, a step away, rather than from the last report's, a report interval away (measured on
-/// the 12-fall crane: 2.7 instead of 6.4 Newton iterations per report); the solution is the same
-/// to the Newton's tolerance.
+/// solution, a step away, rather than from the last report's, a report interval away (fewer
+/// Newton iterations per report); the solution is the same to the Newton's tolerance.
 ///
 /// Interpolated reports are exact at step ends and third-order accurate between them; a report
 /// that must be exactly on the integrated trajectory can use SimTK::TimeStepper instead.

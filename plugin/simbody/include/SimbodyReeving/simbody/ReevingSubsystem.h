@@ -166,24 +166,20 @@ struct TurningSheave {
 /// the stick limit act on the elastic forces P = EA eps at the node, not on EA (eps + c Deps/Dt).
 /// In slip the elastic ratio is held at e^(mu alpha) at every instant, so the strain rates at
 /// the node keep that ratio too and the total forces follow it (exactly for uniform strain along
-/// the spans; otherwise up to c EA times the strain gradient times the slip rate, measured below
-/// 7e-9 relative in the elevator, from reported forces). What differs is the onset of slip, which waits
-/// until the elastic ratio reaches e^(mu alpha): about c later than the total force ratio does
-/// (measured in the elevator's emergency stop at c = 0.01 s: 12 ms later, while the damping
-/// stress at the sheave is up to 3.7 % of the rope force; slip distance 1.1 % above the undamped
-/// run's). The exact law makes s_k a state relaxing with time constant c in slip (not built).
+/// the spans; otherwise up to c EA times the strain gradient times the slip rate). What differs is
+/// the onset of slip, which waits until the elastic ratio reaches e^(mu alpha): about c later than
+/// the total force ratio does (docs/elevator.md). The exact law makes s_k a state relaxing with
+/// time constant c in slip (not built).
 ///
 /// Chatter: where neither mode is consistent, the sheave switches at the scale of the events'
 /// hysteresis (1e-9 of the rope force, 1e-9 m/s). Seen with a slack side and a huge mu alpha
 /// (the elevator's stall at mu = 10, e^(mu alpha) = 4.4e13): slip decelerates to zero rate while
 /// the slack side is at zero force, and stick lets the slack side go slack at once. The motion is
-/// the Filippov average of both (rope at the groove's speed, slack side at zero force), and the
-/// energy still closes (1.3e-6), but it cost 3 421 transitions in 15 ms (real-time factor 0.27;
-/// 2.8 with 1000x and 100x the hystereses, which in turn break the mu = 0 = DeviationSheave
-/// equivalence at 1e-9 m). Whether a run enters it depends on round-off (the slack side's force
-/// is round-off there): with the Newton's tolerance at 1e-14 instead of 1e-15 the same stall takes
-/// 7 transitions (real-time factor 3.0). With the groove coefficients of real sheaves (mu <= 0.3)
-/// no chatter was seen.
+/// the Filippov average of both (rope at the groove's speed, slack side at zero force) and the
+/// energy still closes, but every switch is an event, so the run slows down; larger hystereses
+/// would break the mu = 0 = DeviationSheave equivalence. Whether a run enters it depends on
+/// round-off (the slack side's force is round-off there). The transition counts and costs
+/// measured on the elevator are in docs/elevator.md.
 struct TractionSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
@@ -379,7 +375,7 @@ public:
     /// getFrictionPower (a Z entry of the subsystem), plus at each stick -> slip transition the
     /// rope's kinetic energy lost there (positive or negative: the point contact changes the
     /// material rate at the node at once, from the groove's speed to the one that keeps the capstan
-    /// ratio; measured 2e-4 to 2e-3 J per transition of a 0.1 kg rope in test_traction_sheave), so
+    /// ratio), so
     /// that E(t) - E(0) + W_friction = W_drives closes exactly.
     double getFrictionWork(const SimTK::State& state, int rope, int node) const;
     /// Work dissipated by friction in every TractionSheave of every rope [J].
