@@ -402,9 +402,21 @@ private:
         }
         if (!hint.empty()) return message + " (did you mean " + hint + "?)";
         std::string known;
-        for (const std::string& pattern : scene.metricPatterns) known += (known.empty() ? "" : ", ") + pattern;
-        return message + " (" + scene.program + "'s summary.json has " + known +
-               ", where # is an index and * a key; the runner adds wall_seconds)";
+        bool index = false, key = false;  // whether the list has # (an array index) and * (any key)
+        for (const std::string& pattern : scene.metricPatterns) {
+            known += (known.empty() ? "" : ", ") + pattern;
+            std::stringstream parts(pattern);
+            for (std::string part; std::getline(parts, part, '.');) {
+                index |= part == "#";
+                key |= part == "*";
+            }
+        }
+        const std::string legend = index && key ? ", where # is an index and * a key"
+                                   : index      ? ", where # is an index"
+                                   : key        ? ", where * is a key"
+                                                : "";
+        return message + " (" + scene.program + "'s summary.json has " + known + legend +
+               "; the runner adds wall_seconds)";
     }
 
     void parseLimits(const YAML::Node& n) {

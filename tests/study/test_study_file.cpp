@@ -188,6 +188,29 @@ TEST(StudyFile, UnknownMetric) {
                          "s.yaml:2:21: metric 'friction' is listed twice (also at 2:11)");
     EXPECT_THROW_MESSAGE(parse("scene: elevator\nmetrics: []\n"), StudyError, "s.yaml:2:10: metrics: the list is empty");
     EXPECT_NO_THROW(parse("scene: crane\nmetrics: [parameters.payloadMass, max_fall_axial_force_N.3]\n"));
+    // The scene parameters are listed key by key: a misspelt one is found before any case runs.
+    EXPECT_THROW_MESSAGE(parse("scene: pendulum\nfixed: {axial-modes: 0}\nmetrics: [parameters.Ea]\n"), StudyError,
+                         "s.yaml:3:11: unknown metric 'parameters.Ea' for scene pendulum (reeving-pendulum's "
+                         "summary.json has integrator, accuracy, fixed_step, axial_modes, transverse_modes, "
+                         "axial_dynamics, quasi_static_transverse, axial_law, t_end, vx0, vy0, steps, rhs_evaluations, "
+                         "wall_seconds, initial_kinetic_energy_J, max_energy_drift_J, max_constraint_error_N, "
+                         "parameters.a, parameters.L, parameters.d, parameters.r, parameters.g, parameters.rhoA, "
+                         "parameters.EA, parameters.EI, parameters.M, parameters.J; the runner adds wall_seconds)");
+    EXPECT_THROW_MESSAGE(parse("scene: pendulum\nfixed: {axial-modes: 0}\nmetrics: [EA]\n"), StudyError,
+                         "s.yaml:3:11: unknown metric 'EA' for scene pendulum (did you mean parameters.EA?)");
+    EXPECT_THROW_MESSAGE(parse("scene: crane\nmetrics: [parameters.payloadmass]\n"), StudyError,
+                         "s.yaml:2:11: unknown metric 'parameters.payloadmass' for scene crane (reeving-crane's "
+                         "summary.json has program, scenario,");
+    EXPECT_THROW_MESSAGE(parse("scene: crane\nmetrics: [hoistSpeed]\n"), StudyError,
+                         "s.yaml:2:11: unknown metric 'hoistSpeed' for scene crane (did you mean parameters.hoistSpeed?)");
+    EXPECT_THROW_MESSAGE(parse("scene: crane\nmetrics: [parameters.snapshot_times.0]\n"), StudyError,
+                         "snapshot_times.#, parameters.g, parameters.railHeight,");
+    EXPECT_THROW_MESSAGE(parse("scene: crane\nmetrics: [parameters.payloadmass]\n"), StudyError,
+                         "parameters.slingDampingRatio, where # is an index; the runner adds wall_seconds)");
+    // The lift-off scenario's parameters and results.
+    EXPECT_NO_THROW(parse("scene: crane\nscenario: lift-off\nmetrics: [parameters.hoistSpeed, parameters.slackTime, "
+                          "parameters.slingDampingRatio, lift_off_time, spring_mass_dynamic_factor, "
+                          "final_contact_dissipation_J]\n"));
 }
 
 TEST(StudyFile, BadLimits) {
