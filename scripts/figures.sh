@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the figures README.md shows, from the bundled demos' default runs, into docs/:
-#   fig2..fig5_*.png                   reeving-pendulum (the paper's Table 1 study, n_a = 0..3)
+#   fig2_payload_displacement.png, fig3_static_axial_force.png, fig4_payload_end_axial_force.png,
+#   fig5_axial_force_difference.png   reeving-pendulum (the paper's Table 1 study, n_a = 0..3)
 #   crane_snapshots.png, crane_hook_height_sway.png, crane_fall_axial_forces.png, crane_energy.png
 #                                      reeving-crane (the default lift-traverse-lower cycle)
 #   elevator_emergency_stop.png, elevator_emergency_stop_machine.png
@@ -17,11 +18,15 @@ cmake --build "$build" --target reeving-pendulum reeving-crane reeving-elevator 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$build/examples/reeving-pendulum" --quiet --out "$work/pendulum" > /dev/null
-cp "$work"/pendulum/fig[2-5]_*.png "$docs/"
-"$build/examples/reeving-crane" --quiet --out "$work/crane" > /dev/null
-for f in snapshots hook_height_sway fall_axial_forces energy; do
-    cp "$work/crane/fig_$f.png" "$docs/crane_$f.png"
+for f in fig2_payload_displacement.png fig3_static_axial_force.png fig4_payload_end_axial_force.png \
+         fig5_axial_force_difference.png; do
+    cp "$work/pendulum/$f" "$docs/$f"
 done
+"$build/examples/reeving-crane" --quiet --out "$work/crane" > /dev/null
+cp "$work/crane/fig_snapshots.png" "$docs/crane_snapshots.png"
+cp "$work/crane/fig_hook_height_sway.png" "$docs/crane_hook_height_sway.png"
+cp "$work/crane/fig_fall_axial_forces.png" "$docs/crane_fall_axial_forces.png"
+cp "$work/crane/fig_energy.png" "$docs/crane_energy.png"
 "$build/examples/reeving-elevator" --quiet --scenario emergency-stop --out "$work/elevator" > /dev/null
 cp "$work/elevator/elevator_emergency-stop.png" "$docs/elevator_emergency_stop.png"
 cp "$work/elevator/elevator_emergency-stop_machine.png" "$docs/elevator_emergency_stop_machine.png"

@@ -5,10 +5,39 @@
 #   block into parts, each of which must appear.
 # - the ```cpp blocks compiled from BLOCKS_DIR (readme_block_<n>.cpp, written at configure time)
 #   must be those of the README.md as it is now: an edited README needs a build before the test.
+# - the README stays a short read (fewer than 250 lines), and every figure it shows exists and is
+#   written by FIGURES_SCRIPT (scripts/figures.sh, which the README names), so the reader can
+#   regenerate each one.
 cmake_minimum_required(VERSION 3.16)  # script mode: today's policies (while, if)
-foreach(var README BLOCKS_DIR CMAKE_SOURCES)
+foreach(var README BLOCKS_DIR CMAKE_SOURCES FIGURES_SCRIPT)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "${var} not set")
+  endif()
+endforeach()
+
+file(READ "${README}" readme_text)
+string(REGEX MATCHALL "\n" newlines "${readme_text}")
+list(LENGTH newlines readme_line_count)
+if(readme_line_count GREATER_EQUAL 250)
+  message(FATAL_ERROR "README.md has ${readme_line_count} lines: keep it under 250 (details go to docs/)")
+endif()
+get_filename_component(readme_dir "${README}" DIRECTORY)
+get_filename_component(figures_name "${FIGURES_SCRIPT}" NAME)
+string(FIND "${readme_text}" "${figures_name}" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "README.md does not name ${figures_name}, the command that writes its figures")
+endif()
+file(READ "${FIGURES_SCRIPT}" figures_text)
+string(REGEX MATCHALL "!\\[[^]]*\\]\\([^)]+\\)" images "${readme_text}")
+foreach(image IN LISTS images)
+  string(REGEX REPLACE "^.*\\(([^)]+)\\)$" "\\1" path "${image}")
+  if(NOT EXISTS "${readme_dir}/${path}")
+    message(FATAL_ERROR "README.md shows ${path}, which does not exist")
+  endif()
+  get_filename_component(name "${path}" NAME)
+  string(FIND "${figures_text}" "${name}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "README.md shows ${path}, which ${figures_name} does not write")
   endif()
 endforeach()
 
@@ -123,4 +152,6 @@ foreach(line IN LISTS lines)
     list(APPEND block "${line}")
   endif()
 endforeach()
-message(STATUS "${n_fresh} README C++ blocks current; ${count} CMake blocks found verbatim in the consumer project")
+list(LENGTH images n_images)
+message(STATUS "README.md: ${readme_line_count} lines, ${n_images} figures written by ${figures_name}, "
+               "${n_fresh} C++ blocks current, ${count} CMake blocks found verbatim in the consumer project")
