@@ -77,7 +77,7 @@ void applyRowTerms(const Term* t, const Term* end, const double* M, const double
 
 template <int Dim>
 RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength,
-                          std::vector<MaterialNode> nodeKinds)
+                          std::vector<MaterialNode> nodeKinds, std::vector<NodeWrap> wraps)
     : spans_(std::move(spans)), nodeKind_(std::move(nodeKinds)), length_(unstretchedLength) {
     if (spans_.empty()) throw std::invalid_argument("RopeModel: a rope needs at least one span (got 0)");
     if (!std::isfinite(length_) || !(length_ > 0)) {
@@ -122,6 +122,40 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             drivenIndex_[k] = numDriven_++;
         if (nodeKind_[k] == MaterialNode::Fixed) ++numFixed_;
     }
+    // Node blocks of the external coordinates: a point's position, or a wrapped node's
+    // [c, T_in, T_out, (n), l] with its groove arc.
+    if (wraps.empty()) wraps.assign(N + 1, NodeWrap{});
+    if (static_cast<int>(wraps.size()) != N + 1) {
+        std::ostringstream msg;
+        msg << "RopeModel: " << wraps.size() << " node wraps given for " << N + 1 << " nodes";
+        throw std::invalid_argument(msg.str());
+    }
+    arcIndex_.assign(N + 1, -1);
+    nodeOffset_.assign(N + 2, 0);
+    for (int k = 0; k <= N; ++k) {
+        const NodeWrap& wrap = wraps[k];
+        if (!std::isfinite(wrap.radius) || wrap.radius < 0) {
+            std::ostringstream msg;
+            msg << "RopeModel: node " << k << "'s wrap radius R = " << wrap.radius << " m must be finite and >= 0";
+            throw std::invalid_argument(msg.str());
+        }
+        if (wrap.wrapSense != 1 && wrap.wrapSense != -1)
+            throw std::invalid_argument("RopeModel: node " + std::to_string(k) + "'s wrapSense = " +
+                                        std::to_string(wrap.wrapSense) + " must be +1 or -1");
+        nodeOffset_[k] = numNodeCoordinates_;
+        if (wrap.radius > 0) {
+            if (k == 0 || k == N)
+                throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
+                                            " cannot be wrapped (an end's tangent point is its position)");
+            arcIndex_[k] = static_cast<int>(arcs_.size());
+            arcs_.emplace_back(spans_.front().properties(), wrap.radius, wrap.wrapSense, spans_.front().gravity());
+            arcNode_.push_back(k);
+            numNodeCoordinates_ += wrappedBlockSize();
+        } else {
+            numNodeCoordinates_ += Dim;
+        }
+    }
+    nodeOffset_[N + 1] = numNodeCoordinates_;
     slipRatio_.assign(N + 1, 1.0);
     weightBefore_.assign(N + 1, 1.0);
     weightAfter_.assign(N + 1, 1.0);
@@ -141,8 +175,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         numMultipliers_ = numSliding_;
         for (int j = 0; j < N; ++j) kernels_.emplace_back(spans_[j]);  // throws for PaperLiteral spans
     }
-    // z = [r_0..r_N, s_driven | q_free | q_condensed, s_sliding, nu | s_fixed]
-    const int nn = Dim * (N + 1), nx = nn + numDriven_, nw = nx + numModal_, nd = numDependent();
+    // z = [node blocks 0..N, s_driven | q_free | q_condensed, s_sliding, nu | s_fixed]
+    const int nn = numNodeCoordinates_, nx = nn + numDriven_, nw = nx + numModal_, nd = numDependent();
     std::vector<int> fixedIndex(N + 1, -1);
     for (int k = 0, f = 0; k <= N; ++k)
         if (nodeKind_[k] == MaterialNode::Fixed) fixedIndex[k] = f++;
@@ -159,8 +193,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         const auto& sp = spans_[j];
         std::vector<int> map(sp.numCoordinates());
         for (int d = 0; d < Dim; ++d) {
-            map[d] = Dim * j + d;
-            map[Dim + d] = Dim * (j + 1) + d;
+            map[d] = departureOffset(j) + d;
+            map[Dim + d] = arrivalOffset(j + 1) + d;
         }
         const int na = sp.numCondensedModes();
         for (int i = 0; i < sp.numModalCoordinates(); ++i) {
@@ -172,6 +206,29 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         map[sp.s1Index()] = materialIndex(j);
         map[sp.s2Index()] = materialIndex(j + 1);
         spanToRope_.push_back(std::move(map));
+    }
+    elementToRope_ = spanToRope_;
+    elementExtra_.assign(N, -1);
+    elementExtraLocal_.assign(N, -1);
+    for (int j = 0; j < N; ++j)
+        if (isWrapped(j)) {
+            elementExtra_[j] = nodeOffset_[j] + wrappedArcLengthOffset();
+            elementExtraLocal_[j] = spans_[j].s1Index();
+        }
+    for (int k : arcNode_) {
+        using Arc = GrooveArc<Dim>;
+        std::vector<int> map(Arc::kNumCoordinates);
+        for (int d = 0; d < Dim; ++d) {
+            map[Arc::centreIndex() + d] = nodeOffset_[k] + wrappedCentreOffset() + d;
+            map[Arc::tangentPointIndex() + d] = nodeOffset_[k] + wrappedArrivalOffset() + d;
+        }
+        if constexpr (Dim == 3)
+            for (int d = 0; d < 3; ++d) map[Arc::axisIndex() + d] = nodeOffset_[k] + wrappedAxisOffset() + d;
+        map[Arc::materialIndex()] = materialIndex(k);
+        map[Arc::lengthIndex()] = nodeOffset_[k] + wrappedArcLengthOffset();
+        elementToRope_.push_back(std::move(map));
+        elementExtra_.push_back(-1);
+        elementExtraLocal_.push_back(-1);
     }
     buildChainOrder();
     stationaryColumn_.assign(numExternalCoordinates(), 0);
@@ -266,69 +323,147 @@ void RopeModel<Dim>::buildChainOrder() {
         for (int m = std::max(firstNode, 1); m <= std::min(lastNode, N - 1); ++m)
             if (numMultipliers_ > 0 && slidingIndex_[m] >= 0) touch(r, nw + nqc + nc + slidingIndex_[m]);
     }
-    for (int j = 0; j < N; ++j)
-        for (int a : spanToRope_[j])
-            for (int b : spanToRope_[j])
+    // The elements (spans, then groove arcs) and the z targets of their local coordinates: the map
+    // entry, and for a span's s1 after a wrapped node also l_k (s1 = s_k + l_k).
+    const int ne = static_cast<int>(elementToRope_.size());
+    auto targets = [&](int e, int a, int* t) {
+        t[0] = elementToRope_[e][a];
+        if (a == elementExtraLocal_[e]) {
+            t[1] = elementExtra_[e];
+            return 2;
+        }
+        return 1;
+    };
+    for (int e = 0; e < ne; ++e)
+        for (int a : elementToRope_[e])
+            for (int b : elementToRope_[e])
                 if (kktPos_[a] >= 0 && kktPos_[b] >= 0) kktBand_ = std::max(kktBand_, std::abs(kktPos_[a] - kktPos_[b]));
     jacobianSpanCoordinates_.assign(N, {});
-    kktMassTargets_.assign(N, {});
     for (int j = 0; j < N; ++j) {
         const auto& map = spanToRope_[j];
-        const int n = static_cast<int>(map.size());
-        for (int i = 0; i < n; ++i)
+        for (int i = 0; i < static_cast<int>(map.size()); ++i)
             if (map[i] < nw + nd) jacobianSpanCoordinates_[j].push_back(i);
+    }
+    // (The extra targets are external coordinates: they have no place in the KKT band.)
+    kktMassTargets_.assign(ne, {});
+    for (int e = 0; e < ne; ++e) {
+        const auto& map = elementToRope_[e];
+        const int n = static_cast<int>(map.size());
         for (int b = 0; b < n; ++b) {  // the order computeDynamics adds them in
             if (kktPos_[map[b]] < 0) continue;
             for (int a = 0; a < n; ++a)
                 if (kktPos_[map[a]] >= 0)
-                    kktMassTargets_[j].push_back(
+                    kktMassTargets_[e].push_back(
                         {a + n * b, BandedLU::offset(kktSize_, kktBand_, kktBand_, kktPos_[map[a]], kktPos_[map[b]])});
         }
     }
-    // multiplyByNodeMass's terms, span by span, in the order its loops took them (so every row sums
-    // its terms in the same order); a term's source indexes its span's massMatrix, and
-    // massTermSpanStart_ marks where each span's terms begin in the three lists.
+    // multiplyByNodeMass's terms, element by element, in the order its loops took them (so every
+    // row sums its terms in the same order); a term's source indexes its element's mass matrix, and
+    // massTermSpanStart_ marks where each element's terms begin in the three lists.
     massTimesExternalIntoKkt_.clear();
     massTimesExternalIntoExternal_.clear();
     massTimesKktIntoExternal_.clear();
-    massTermSpanStart_.assign(3 * (N + 1), 0);
-    for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const int n = static_cast<int>(map.size());
-        massTermSpanStart_[3 * j] = static_cast<int>(massTimesExternalIntoKkt_.size());
-        massTermSpanStart_[3 * j + 1] = static_cast<int>(massTimesExternalIntoExternal_.size());
-        massTermSpanStart_[3 * j + 2] = static_cast<int>(massTimesKktIntoExternal_.size());
-        for (int a = 0; a < n; ++a) {
-            if (map[a] >= nx) continue;
-            for (int b = 0; b < n; ++b) {
-                const int pb = kktPos_[map[b]];
-                if (pb >= 0)
-                    massTimesExternalIntoKkt_.push_back({b + n * a, pb, map[a]});
-                else if (map[b] < nx)
-                    massTimesExternalIntoExternal_.push_back({b + n * a, map[b], map[a]});
+    massTermSpanStart_.assign(3 * (ne + 1), 0);
+    int ta[2], tb[2];
+    for (int e = 0; e < ne; ++e) {
+        const int n = static_cast<int>(elementToRope_[e].size());
+        massTermSpanStart_[3 * e] = static_cast<int>(massTimesExternalIntoKkt_.size());
+        massTermSpanStart_[3 * e + 1] = static_cast<int>(massTimesExternalIntoExternal_.size());
+        massTermSpanStart_[3 * e + 2] = static_cast<int>(massTimesKktIntoExternal_.size());
+        for (int a = 0; a < n; ++a)
+            for (int ia = 0, na = targets(e, a, ta); ia < na; ++ia) {
+                if (ta[ia] >= nx) continue;
+                for (int b = 0; b < n; ++b)
+                    for (int ib = 0, nb = targets(e, b, tb); ib < nb; ++ib) {
+                        const int pb = kktPos_[tb[ib]];
+                        if (pb >= 0)
+                            massTimesExternalIntoKkt_.push_back({b + n * a, pb, ta[ia]});
+                        else if (tb[ib] < nx)
+                            massTimesExternalIntoExternal_.push_back({b + n * a, tb[ib], ta[ia]});
+                    }
             }
-        }
-        for (int a = 0; a < n; ++a) {
-            if (map[a] >= nx) continue;
-            for (int b = 0; b < n; ++b) {
-                const int pb = kktPos_[map[b]];
-                if (pb >= 0) massTimesKktIntoExternal_.push_back({a + n * b, map[a], pb});
+        for (int a = 0; a < n; ++a)
+            for (int ia = 0, na = targets(e, a, ta); ia < na; ++ia) {
+                if (ta[ia] >= nx) continue;
+                for (int b = 0; b < n; ++b) {
+                    const int pb = kktPos_[elementToRope_[e][b]];
+                    if (pb >= 0) massTimesKktIntoExternal_.push_back({a + n * b, ta[ia], pb});
+                }
             }
-        }
     }
-    massTermSpanStart_[3 * N] = static_cast<int>(massTimesExternalIntoKkt_.size());
-    massTermSpanStart_[3 * N + 1] = static_cast<int>(massTimesExternalIntoExternal_.size());
-    massTermSpanStart_[3 * N + 2] = static_cast<int>(massTimesKktIntoExternal_.size());
-    externalSpans_.assign(nx, {-1, -1, -1, -1});
-    for (int j = 0; j < N; ++j)
-        for (int a = 0; a < static_cast<int>(spanToRope_[j].size()); ++a) {
-            const int z = spanToRope_[j][a];
-            if (z >= nx) continue;
-            auto& e = externalSpans_[z];
-            const int slot = e[0] < 0 ? 0 : 2;
-            e[slot] = j;
-            e[slot + 1] = a;
-        }
+    massTermSpanStart_[3 * ne] = static_cast<int>(massTimesExternalIntoKkt_.size());
+    massTermSpanStart_[3 * ne + 1] = static_cast<int>(massTimesExternalIntoExternal_.size());
+    massTermSpanStart_[3 * ne + 2] = static_cast<int>(massTimesKktIntoExternal_.size());
+    externalSpans_.assign(nx, {-1, -1, -1, -1, -1, -1});
+    for (int e = 0; e < ne; ++e)
+        for (int a = 0; a < static_cast<int>(elementToRope_[e].size()); ++a)
+            for (int ia = 0, na = targets(e, a, ta); ia < na; ++ia) {
+                const int z = ta[ia];
+                if (z >= nx) continue;
+                auto& slots = externalSpans_[z];
+                int slot = 0;
+                while (slot < 6 && slots[slot] >= 0) slot += 2;
+                if (slot == 6) throw std::logic_error("RopeModel: an external coordinate in more than three elements");
+                slots[slot] = e;
+                slots[slot + 1] = a;
+            }
+}
+
+template <int Dim>
+const GrooveArc<Dim>& RopeModel<Dim>::arc(int node) const {
+    if (node < 0 || node > numSpans() || arcIndex_[node] < 0)
+        throw std::invalid_argument("RopeModel::arc: node " + std::to_string(node) + " is not a wrapped node");
+    return arcs_[arcIndex_[node]];
+}
+
+template <int Dim>
+const double* RopeModel<Dim>::elementMass(const RopeData<Dim>& data, int e, int& n) const {
+    const int N = numSpans();
+    if (e < N) {
+        n = spans_[e].numCoordinates();
+        return data.ws().spans[e].massMatrix.data();
+    }
+    n = GrooveArc<Dim>::kNumCoordinates;
+    return data.ws().arcs[e - N].massMatrix.data();
+}
+
+template <int Dim>
+void RopeModel<Dim>::arcCoordinates(int node, const Eigen::VectorXd& x, double s,
+                                    typename GrooveArc<Dim>::Coordinates& a) const {
+    using Arc = GrooveArc<Dim>;
+    const int o = nodeOffset_[node];
+    a.template segment<Dim>(Arc::centreIndex()) = x.template segment<Dim>(o + wrappedCentreOffset());
+    a.template segment<Dim>(Arc::tangentPointIndex()) = x.template segment<Dim>(o + wrappedArrivalOffset());
+    if constexpr (Dim == 3) a.template segment<3>(Arc::axisIndex()) = x.template segment<3>(o + wrappedAxisOffset());
+    a[Arc::materialIndex()] = s;
+    a[Arc::lengthIndex()] = x[o + wrappedArcLengthOffset()];
+}
+
+template <int Dim>
+const Eigen::VectorXd& RopeModel<Dim>::packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
+                                                    RopeData<Dim>& data, bool rates) const {
+    if (!arcs_.empty())
+        throw std::invalid_argument(
+            "RopeModel: a rope with wrapped nodes takes all its external coordinates (the ...FromExternal forms), "
+            "not a matrix of node positions");
+    if (nodes.cols() != numNodes()) {
+        std::ostringstream msg;
+        msg << "RopeModel: " << nodes.cols() << " node " << (rates ? "velocities" : "positions") << " given for "
+            << numNodes() << " nodes";
+        throw std::invalid_argument(msg.str());
+    }
+    if (drivenS.size() != numDriven_) {
+        std::ostringstream msg;
+        msg << "RopeModel: " << drivenS.size() << " driven material " << (rates ? "rates" : "coordinates")
+            << " given for " << numDriven_ << " Driven nodes"
+            << (drivenS.size() == 0 ? " (use the overload taking drivenS)" : "");
+        throw std::invalid_argument(msg.str());
+    }
+    Eigen::VectorXd& x = rates ? data.ws().packedXdot : data.ws().packedX;
+    x.resize(numExternalCoordinates());
+    for (int k = 0; k <= numSpans(); ++k) x.template segment<Dim>(Dim * k) = nodes.col(k);
+    x.tail(numDriven_) = drivenS;
+    return x;
 }
 
 template <int Dim>
@@ -398,7 +533,7 @@ void RopeModel<Dim>::setStationaryNodes(const std::vector<bool>& stationary) {
                                     " flags given for " + std::to_string(numNodes()) + " nodes");
     stationaryColumn_.assign(numExternalCoordinates(), 0);
     for (int k = 0; k < numNodes(); ++k)
-        for (int d = 0; d < Dim; ++d) stationaryColumn_[Dim * k + d] = stationary[k] ? 1 : 0;
+        for (int i = nodeOffset_[k]; i < nodeOffset_[k + 1]; ++i) stationaryColumn_[i] = stationary[k] ? 1 : 0;
 }
 
 template <int Dim>
@@ -412,43 +547,72 @@ double RopeModel<Dim>::storedRopeGravityEnergy(const NodeMatrix& nodes, const Ro
     return u;
 }
 
+namespace {
+// The coordinates q of span j of `model` (SpanModel layout) from its end positions r1, r2, its
+// material coordinates s1, s2 and the rope's modal state and condensed amplitudes.
+template <int Dim, class R1, class R2>
+void assembleSpanCoordinates(const RopeModel<Dim>& model, int j, const R1& r1, const R2& r2, double s1, double s2,
+                             const Eigen::VectorXd& qm, const RopeData<Dim>& data, Eigen::VectorXd& q);
+}  // namespace
+
 template <int Dim>
 void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                      const RopeData<Dim>& data, Eigen::VectorXd& q) const {
-    const auto& sp = spans_[j];
-    q.resize(sp.numCoordinates());
-    q.template segment<Dim>(0) = nodes.col(j);
-    q.template segment<Dim>(Dim) = nodes.col(j + 1);
-    const int nmSpan = sp.numModalCoordinates();
-    if (isCondensed(j)) {
-        const int na = sp.numCondensedModes();
-        q.segment(2 * Dim, na) = data.condensedAmplitudes.segment(condensedOffset_[j], na);
-        q.segment(2 * Dim + na, nmSpan - na) = qm.segment(modalOffset_[j], nmSpan - na);
-    } else {
-        q.segment(2 * Dim, nmSpan) = qm.segment(modalOffset_[j], nmSpan);
-    }
-    q[sp.s1Index()] = data.materialCoordinates[j];
-    q[sp.s2Index()] = data.materialCoordinates[j + 1];
+    if (!arcs_.empty())
+        throw std::invalid_argument("RopeModel::spanCoordinates: a rope with wrapped nodes takes all its external "
+                                    "coordinates (spanCoordinatesFromExternal)");
+    assembleSpanCoordinates(*this, j, nodes.col(j), nodes.col(j + 1), data.materialCoordinates[j],
+                            data.materialCoordinates[j + 1], qm, data, q);
 }
 
 template <int Dim>
-void RopeModel<Dim>::fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm,
+void RopeModel<Dim>::spanCoordinatesFromExternal(int j, const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
+                                                 const RopeData<Dim>& data, Eigen::VectorXd& q) const {
+    assembleSpanCoordinates(*this, j, x.template segment<Dim>(departureOffset(j)),
+                            x.template segment<Dim>(arrivalOffset(j + 1)),
+                            data.materialCoordinates[j] + arcLengthAt(x, j), data.materialCoordinates[j + 1], qm, data,
+                            q);
+}
+
+namespace {
+template <int Dim, class R1, class R2>
+void assembleSpanCoordinates(const RopeModel<Dim>& model, int j, const R1& r1, const R2& r2, double s1, double s2,
+                             const Eigen::VectorXd& qm, const RopeData<Dim>& data, Eigen::VectorXd& q) {
+    const auto& sp = model.span(j);
+    q.resize(sp.numCoordinates());
+    q.template segment<Dim>(0) = r1;
+    q.template segment<Dim>(Dim) = r2;
+    const int nmSpan = sp.numModalCoordinates();
+    if (model.isCondensed(j)) {
+        const int na = sp.numCondensedModes();
+        q.segment(2 * Dim, na) = data.condensedAmplitudes.segment(model.condensedOffset(j), na);
+        q.segment(2 * Dim + na, nmSpan - na) = qm.segment(model.modalOffset(j), nmSpan - na);
+    } else {
+        q.segment(2 * Dim, nmSpan) = qm.segment(model.modalOffset(j), nmSpan);
+    }
+    q[sp.s1Index()] = s1;
+    q[sp.s2Index()] = s2;
+}
+}  // namespace
+
+template <int Dim>
+void RopeModel<Dim>::fillSpanCoordinates(const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
                                          RopeData<Dim>& data) const {
     const int N = numSpans();
     data.ws().spanQ.resize(N);
     data.ws().spanQdot.resize(N);
     for (int j = 0; j < N; ++j) {
-        spanCoordinates(j, nodes, qm, data, data.ws().spanQ[j]);
+        spanCoordinatesFromExternal(j, x, qm, data, data.ws().spanQ[j]);
         if (data.ws().spanQdot[j].size() != data.ws().spanQ[j].size()) data.ws().spanQdot[j].setZero(data.ws().spanQ[j].size());
     }
 }
 
 template <int Dim>
-void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
+void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, RopeData<Dim>& data,
                                          bool withRates) const {
     const int N = numSpans(), nw = numExternalCoordinates() + numModal_, nd = numDependent();
     const int nqc = numCondensed_, nc = numSliding_;
-    fillSpanCoordinates(nodes, qm, data);
+    fillSpanCoordinates(x, qm, data);
     Eigen::VectorXd& C = data.ws().newtonResidual;
     data.ws().bias.setZero(nd);
     std::vector<detail::JacobianEntry>& jac = data.ws().jacobian;
@@ -547,12 +711,14 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
             const int* target = w.putTarget.data() + counter;
             for (std::size_t t = 0; t < live.size(); ++t) entries[target[t]].value += coef * gradient[live[t]];
             counter += live.size();
-            return;
+        } else {
+            for (int i = 0; i < static_cast<int>(map.size()); ++i) {
+                const int zi = map[i];
+                if (zi < nw + nd) put(row, zi, coef * gradient[i]);
+            }
         }
-        for (int i = 0; i < static_cast<int>(map.size()); ++i) {
-            const int zi = map[i];
-            if (zi < nw + nd) put(row, zi, coef * gradient[i]);
-        }
+        // A span starting at a wrapped node: s1 = s_j + l_j.
+        if (elementExtra_[j] >= 0) put(row, elementExtra_[j], coef * gradient[elementExtraLocal_[j]]);
     };
 
     if (kernels_.empty()) {
@@ -574,7 +740,7 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
                 data.ws().bias[row] =
                     wb * data.ws().secondEnd[k - 1].accelerationBias - wa * data.ws().firstEnd[k].accelerationBias;
         }
-        if (finish()) evaluateConstraints(nodes, qm, data, withRates);
+        if (finish()) evaluateConstraints(x, qm, data, withRates);
         return;
     }
 
@@ -659,19 +825,20 @@ void RopeModel<Dim>::evaluateConstraints(const NodeMatrix& nodes, const Eigen::V
         addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -weightBefore_[k + 1]);
         addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -weightAfter_[k - 1]);
     }
-    if (finish()) evaluateConstraints(nodes, qm, data, withRates);
+    if (finish()) evaluateConstraints(x, qm, data, withRates);
 }
 
 template <int Dim>
-void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
-                                                 RopeData<Dim>& data) const {
+void RopeModel<Dim>::setKnownMaterialCoordinates(const Eigen::VectorXd& x, RopeData<Dim>& data) const {
     const int N = numSpans();
-    if (drivenS.size() != numDriven_) {
-        std::ostringstream msg;
-        msg << "RopeModel: " << drivenS.size() << " driven material coordinates given for " << numDriven_
-            << " Driven nodes" << (drivenS.size() == 0 ? " (use the overload taking drivenS)" : "");
-        throw std::invalid_argument(msg.str());
-    }
+    const auto drivenS = x.tail(numDriven_);
+    // The material a stretch of spans between nodes a and b holds besides the arcs on its wrapped
+    // nodes a..b-1 (the departing span of node k starts at s_k + l_k).
+    auto arcsFrom = [&](int a, int b) {
+        double sum = 0;
+        for (int k = a; k < b; ++k) sum += arcLengthAt(x, k);
+        return sum;
+    };
     Eigen::VectorXd& s = data.materialCoordinates;
     bool warm = s.size() == N + 1 && s.allFinite();
     if (!warm) s.setZero(N + 1);
@@ -695,7 +862,7 @@ void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const 
     for (int a = 0; a < N;) {
         int b = a + 1;
         while (!known(b)) ++b;
-        if (!(s[b] > s[a])) {
+        if (!(s[b] > s[a] + arcsFrom(a, b))) {
             std::ostringstream msg;
             msg << "RopeModel: no rope material between node " << a << " (s = " << s[a] << " m) and node " << b
                 << " (s = " << s[b] << " m): the " << (b - a == 1 ? "span " + std::to_string(a) : "spans")
@@ -704,18 +871,24 @@ void RopeModel<Dim>::setKnownMaterialCoordinates(const NodeMatrix& nodes, const 
         }
         a = b;
     }
-    for (int k = 0; warm && k < N; ++k) warm = s[k + 1] > s[k];
+    for (int k = 0; warm && k < N; ++k) warm = s[k + 1] > s[k] + arcLengthAt(x, k);
     if (warm) return;
-    // Chord-proportional guess for the Sliding nodes between consecutive known nodes.
+    // Chord-proportional guess for the Sliding nodes between consecutive known nodes (the arcs'
+    // material set aside).
+    auto chord = [&](int j) {
+        return (x.template segment<Dim>(arrivalOffset(j + 1)) - x.template segment<Dim>(departureOffset(j))).norm();
+    };
     for (int a = 0; a < N;) {
         int b = a + 1;
         while (!known(b)) ++b;
         double total = 0;
-        for (int j = a; j < b; ++j) total += (nodes.col(j + 1) - nodes.col(j)).norm();
+        for (int j = a; j < b; ++j) total += chord(j);
+        const double spanMaterial = s[b] - s[a] - arcsFrom(a, b);
         double acc = 0;
         for (int j = a; j + 1 < b; ++j) {
-            acc += (nodes.col(j + 1) - nodes.col(j)).norm();
-            s[j + 1] = total > 0 ? s[a] + (s[b] - s[a]) * acc / total : s[a] + (s[b] - s[a]) * (j + 1 - a) / (b - a);
+            acc += chord(j);
+            const double start = s[a] + arcsFrom(a, j + 1);
+            s[j + 1] = total > 0 ? start + spanMaterial * acc / total : start + spanMaterial * (j + 1 - a) / (b - a);
         }
         a = b;
     }
@@ -731,11 +904,22 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
 template <int Dim>
 void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
+    solveDependentCoordinatesFromExternal(packExternal(nodes, drivenS, data, false), qm, data);
+}
+
+template <int Dim>
+void RopeModel<Dim>::solveDependentCoordinatesFromExternal(const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
+                                                           RopeData<Dim>& data) const {
     const int N = numSpans(), nqc = numCondensed_, nd = numDependent();
+    if (x.size() != numExternalCoordinates()) {
+        std::ostringstream msg;
+        msg << "RopeModel: " << x.size() << " external coordinates given for " << numExternalCoordinates();
+        throw std::invalid_argument(msg.str());
+    }
     Eigen::VectorXd& s = data.materialCoordinates;
     const bool warm = s.size() == N + 1 && s.allFinite();
     detail::RopeWorkspace<Dim>& ws = data.ws();
-    setKnownMaterialCoordinates(nodes, drivenS, data);
+    setKnownMaterialCoordinates(x, data);
     if (data.condensedAmplitudes.size() != nqc || !data.condensedAmplitudes.allFinite())
         data.condensedAmplitudes.setZero(nqc);
     if (data.multipliers.size() != numMultipliers_ || !data.multipliers.allFinite())
@@ -779,11 +963,11 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
             alphaCap = 1.0;
             previous = std::numeric_limits<double>::infinity();
             s.resize(0);
-            setKnownMaterialCoordinates(nodes, drivenS, data);
+            setKnownMaterialCoordinates(x, data);
             data.condensedAmplitudes.setZero(nqc);
             data.multipliers.setZero(numMultipliers_);
         }
-        evaluateConstraints(nodes, qm, data, false);
+        evaluateConstraints(x, qm, data, false);
         if (nd == 0) return;
         // Converged at 1e-14 in strain, or stagnating at round-off below 1e-12 (eps = 1/2(|t|^2/l^2 - 1)
         // carries about 1e-16 absolute error, the stationarity sums a few times that: a long chain's
@@ -827,7 +1011,7 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
         alpha = alphaCap;
         for (int halve = 0; halve < 30; ++halve, alpha *= 0.5) {
             bool ok = true;
-            for (int k = 1; k <= N && ok; ++k) ok = stepped(k, alpha) > stepped(k - 1, alpha);
+            for (int k = 1; k <= N && ok; ++k) ok = stepped(k, alpha) > stepped(k - 1, alpha) + arcLengthAt(x, k - 1);
             if (ok) break;
         }
         saveStart();
@@ -861,22 +1045,25 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
 }
 
 template <int Dim>
-bool RopeModel<Dim>::positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
+bool RopeModel<Dim>::positionsMatch(const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
                                     const RopeData<Dim>& data) const {
     const int N = numSpans();
     if (static_cast<int>(data.ws().spanQ.size()) != N || data.materialCoordinates.size() != N + 1 ||
         data.condensedAmplitudes.size() != numCondensed_ || data.multipliers.size() != numMultipliers_ ||
-        drivenS.size() != numDriven_)
+        x.size() != numExternalCoordinates())
         return false;
     for (int k = 0; k <= N; ++k)
-        if (nodeKind_[k] == MaterialNode::Driven && data.materialCoordinates[k] != drivenS[drivenIndex_[k]]) return false;
+        if (nodeKind_[k] == MaterialNode::Driven &&
+            data.materialCoordinates[k] != x[numNodeCoordinates_ + drivenIndex_[k]])
+            return false;
     for (int j = 0; j < N; ++j) {
         const auto& q = data.ws().spanQ[j];
         const int nmSpan = spans_[j].numModalCoordinates();
         const int na = spans_[j].numCondensedModes();
-        if (q.size() != spans_[j].numCoordinates() || q.template segment<Dim>(0) != nodes.col(j) ||
-            q.template segment<Dim>(Dim) != nodes.col(j + 1) ||
-            q.segment(2 * Dim + na, nmSpan - na) != qm.segment(modalOffset_[j], nmSpan - na))
+        if (q.size() != spans_[j].numCoordinates() || q.template segment<Dim>(0) != x.template segment<Dim>(departureOffset(j)) ||
+            q.template segment<Dim>(Dim) != x.template segment<Dim>(arrivalOffset(j + 1)) ||
+            q.segment(2 * Dim + na, nmSpan - na) != qm.segment(modalOffset_[j], nmSpan - na) ||
+            (isWrapped(j) && q[spans_[j].s1Index()] != data.materialCoordinates[j] + arcLengthAt(x, j)))
             return false;
     }
     return true;
@@ -895,15 +1082,30 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
                                      const Eigen::VectorXd& drivenS, const Eigen::VectorXd& drivenSdot,
                                      const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
                                      RopeData<Dim>& data) const {
-    const int N = numSpans(), nn = Dim * (N + 1), nx = nn + numDriven_, nm = numModal_, nw = nx + nm;
-    const int nqc = numCondensed_, nc = numSliding_, nd = numDependent(), nz = nw + nd + numFixed_;
-    // solveDependentCoordinates left the span coordinates and the constraint Jacobians (velocity
-    // independent) of this configuration in data; they are reused when they belong to these
-    // positions, and solved afresh otherwise.
     if (drivenSdot.size() != numDriven_) {
         std::ostringstream msg;
         msg << "RopeModel::computeDynamics: drivenSdot has the wrong size: " << drivenSdot.size()
             << " rates given for " << numDriven_ << " Driven nodes";
+        throw std::invalid_argument(msg.str());
+    }
+    const Eigen::VectorXd& x = packExternal(nodes, drivenS, data, false);
+    const Eigen::VectorXd& xdot = packExternal(nodeVelocities, drivenSdot, data, true);
+    computeDynamicsFromExternal(x, xdot, qm, qmdot, data);
+}
+
+template <int Dim>
+void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot,
+                                                 const Eigen::VectorXd& qm, const Eigen::VectorXd& qmdot,
+                                                 RopeData<Dim>& data) const {
+    const int N = numSpans(), nn = numNodeCoordinates_, nx = nn + numDriven_, nm = numModal_, nw = nx + nm;
+    const int nqc = numCondensed_, nc = numSliding_, nd = numDependent(), nz = nw + nd + numFixed_;
+    // solveDependentCoordinates left the span coordinates and the constraint Jacobians (velocity
+    // independent) of this configuration in data; they are reused when they belong to these
+    // positions, and solved afresh otherwise.
+    if (x.size() != nx || xdot.size() != nx) {
+        std::ostringstream msg;
+        msg << "RopeModel::computeDynamics: " << x.size() << " external coordinates and " << xdot.size()
+            << " rates given for " << nx;
         throw std::invalid_argument(msg.str());
     }
     detail::RopeWorkspace<Dim>& ws = data.ws();
@@ -913,8 +1115,8 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         y.segment(N + 1, nqc) = data.condensedAmplitudes;
         y.tail(numMultipliers_) = data.multipliers;
     };
-    if (!positionsMatch(nodes, drivenS, qm, data)) {
-        solveDependentCoordinates(nodes, drivenS, qm, data);
+    if (!positionsMatch(x, qm, data)) {
+        solveDependentCoordinatesFromExternal(x, qm, data);
     } else if (ws.dynamicsCurrent && ws.model == this && ws.nodeMassFormed == data.formNodeMass) {
         // A realization of the same positions and velocities again (Simbody invalidates
         // Stage::Velocity when u is written, even with the values it had; measured on the 12-fall
@@ -923,22 +1125,23 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
                     ws.dynamicsDependents.head(N + 1) == data.materialCoordinates &&
                     ws.dynamicsDependents.segment(N + 1, nqc) == data.condensedAmplitudes &&
                     ws.dynamicsDependents.tail(numMultipliers_) == data.multipliers && ws.w.size() == nw;
-        for (int k = 0; same && k <= N; ++k) same = ws.w.template segment<Dim>(Dim * k) == nodeVelocities.col(k);
-        same = same && ws.w.segment(nn, numDriven_) == drivenSdot && ws.w.tail(nm) == qmdot;
+        same = same && ws.w.head(nx) == xdot && ws.w.tail(nm) == qmdot;
+        // (The arcs' centres and axes are not span coordinates: compared here.)
+        same = same && (arcs_.empty() || ws.dynamicsX == x);
         if (same) return;
     }
     ws.dynamicsCurrent = false;
 
-    // Independent velocities w = [rdot; sdot_driven; qdot_m].
+    // Independent velocities w = [xdot (node blocks, sdot_driven); qdot_m].
     data.ws().w.resize(nw);
-    for (int k = 0; k <= N; ++k) data.ws().w.template segment<Dim>(Dim * k) = nodeVelocities.col(k);
-    data.ws().w.segment(nn, numDriven_) = drivenSdot;
+    data.ws().w.head(nx) = xdot;
     data.ws().w.tail(nm) = qmdot;
+    if (!arcs_.empty()) ws.dynamicsX = x;
 
     data.ws().spans.resize(N);
     data.materialRates.setZero(N + 1);
     for (int k = 0; k <= N; ++k)
-        if (nodeKind_[k] == MaterialNode::Driven) data.materialRates[k] = drivenSdot[drivenIndex_[k]];
+        if (nodeKind_[k] == MaterialNode::Driven) data.materialRates[k] = xdot[nn + drivenIndex_[k]];
     data.condensedRates.setZero(nqc);
     data.multiplierRates.setZero(numMultipliers_);
     auto fillSpanVelocities = [&] {
@@ -946,8 +1149,8 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             const auto& sp = spans_[j];
             Eigen::VectorXd& qd = data.ws().spanQdot[j];
             qd.resize(sp.numCoordinates());
-            qd.template segment<Dim>(0) = nodeVelocities.col(j);
-            qd.template segment<Dim>(Dim) = nodeVelocities.col(j + 1);
+            qd.template segment<Dim>(0) = xdot.template segment<Dim>(departureOffset(j));
+            qd.template segment<Dim>(Dim) = xdot.template segment<Dim>(arrivalOffset(j + 1));
             const int nmSpan = sp.numModalCoordinates();
             if (isCondensed(j)) {
                 const int na = sp.numCondensedModes();
@@ -956,7 +1159,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             } else {
                 qd.segment(2 * Dim, nmSpan) = qmdot.segment(modalOffset_[j], nmSpan);
             }
-            qd[sp.s1Index()] = data.materialRates[j];
+            qd[sp.s1Index()] = data.materialRates[j] + (isWrapped(j) ? xdot[nodeOffset_[j] + wrappedArcLengthOffset()] : 0.0);
             qd[sp.s2Index()] = data.materialRates[j + 1];
         }
     };
@@ -979,7 +1182,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         // Biases (second time derivatives of the constraints at wdot = 0) with the complete
         // velocities, dependent rates included.
         fillSpanVelocities();
-        evaluateConstraints(nodes, qm, data, true);
+        evaluateConstraints(x, qm, data, true);
         solveDependent(data, ws.dependentLu, ws.bias, ws.cd);
         ws.cd *= -1.0;
     } else {
@@ -1001,10 +1204,32 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             ws.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a] + d.dampingForces[a];
             if (nqc > 0) ws.velocityForcesZ[map[a]] += d.velocityForces[a];
         }
+        if (elementExtra_[j] >= 0) {  // s1 = s_j + l_j
+            const int a = elementExtraLocal_[j];
+            ws.Qz[elementExtra_[j]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a] + d.dampingForces[a];
+            if (nqc > 0) ws.velocityForcesZ[elementExtra_[j]] += d.velocityForces[a];
+        }
         data.kineticEnergy += d.kineticEnergy;
         data.strainEnergy += d.strainEnergy();
         data.gravityEnergy += d.gravityEnergy;
         data.dampingPower += d.dampingPower;
+    }
+    // The rope on the groove arcs of wrapped nodes (GrooveArc).
+    ws.arcs.resize(arcs_.size());
+    for (std::size_t i = 0; i < arcs_.size(); ++i) {
+        const int k = arcNode_[i];
+        typename GrooveArc<Dim>::Coordinates a, adot;
+        arcCoordinates(k, x, data.materialCoordinates[k], a);
+        arcCoordinates(k, xdot, data.materialRates[k], adot);
+        GrooveArcData<Dim>& d = ws.arcs[i];
+        arcs_[i].evaluate(a, adot, d);
+        const auto& map = elementToRope_[N + i];
+        for (int l = 0; l < GrooveArc<Dim>::kNumCoordinates; ++l) {
+            ws.Qz[map[l]] += d.velocityForces[l] + d.gravityForces[l];
+            if (nqc > 0) ws.velocityForcesZ[map[l]] += d.velocityForces[l];
+        }
+        data.kineticEnergy += d.kineticEnergy;
+        data.gravityEnergy += d.gravityEnergy;
     }
     // Slipping nodes: the friction force F_f = P_k - P_{k-1} on the material s_k, its reaction on
     // the sheave's surface coordinate (MaterialNode::Slipping).
@@ -1027,9 +1252,11 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     const int nk = kktSize_;
     BandedLU& kkt = ws.kktLu;
     kkt.reset(nk, kktBand_, kktBand_);
-    for (int j = 0; j < N; ++j) {  // M_yy, at the offsets buildChainOrder found
-        const double* M = ws.spans[j].massMatrix.data();
-        for (const BandTarget& t : kktMassTargets_[j]) kkt.addAt(t.offset, M[t.source]);
+    const int ne = static_cast<int>(elementToRope_.size());
+    for (int e = 0; e < ne; ++e) {  // M_yy, at the offsets buildChainOrder found
+        int n = 0;
+        const double* M = elementMass(data, e, n);
+        for (const BandTarget& t : kktMassTargets_[e]) kkt.addAt(t.offset, M[t.source]);
     }
     // C_x by column (counting sort), C_y into the band (at the offsets recorded with C_z's structure).
     ws.externalColumnStart.assign(nx + 1, 0);
@@ -1083,19 +1310,22 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     for (int c = 1; c < ncol; ++c) {
         const int i = columns[c - 1];
         const auto& spansAt = externalSpans_[i];
-        for (int slot = 0; slot < 4; slot += 2) {
-            const int j = spansAt[slot];
-            if (j < 0) continue;
+        for (int slot = 0; slot < 6; slot += 2) {
+            const int e = spansAt[slot];
+            if (e < 0) continue;
             const int a = spansAt[slot + 1];
-            const auto& map = spanToRope_[j];
-            const auto& M = ws.spans[j].massMatrix;
-            for (int b = 0; b < spans_[j].numCoordinates(); ++b) {
+            const int* map = elementToRope_[e].data();
+            int n = 0;
+            const double* M = elementMass(data, e, n) + static_cast<std::ptrdiff_t>(n) * a;
+            for (int b = 0; b < n; ++b) {
                 const int pb = kktPos_[map[b]];
                 if (pb >= 0)
-                    B[pb * ncol + c] -= M(b, a);
+                    B[pb * ncol + c] -= M[b];
                 else if (map[b] < nx)
-                    data.nodeMass(map[b], i) += M(b, a);  // M_xx e_i
+                    data.nodeMass(map[b], i) += M[b];  // M_xx e_i
             }
+            const int extraLocal = elementExtraLocal_[e];  // s1 = s_j + l_j: l_j's share
+            if (extraLocal >= 0) data.nodeMass(elementExtra_[e], i) += M[extraLocal];
         }
         for (int at = ws.externalColumnStart[i]; at < ws.externalColumnStart[i + 1]; ++at)
             B[kktRowPos_[ws.externalColumnRow[at]] * ncol + c] -= ws.externalColumnValue[at];
@@ -1104,10 +1334,11 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // F = M_xy Y + C_x^T Mu (nx x ncol, row-major) for the solutions [Y; Mu] in B.
     Eigen::VectorXd& F = ws.supportBlock;
     F.setZero(static_cast<Eigen::Index>(nx) * ncol);
-    for (int j = 0; j < N; ++j) {  // M_xy Y (the terms multiplyByNodeMass applies, in the same order)
+    for (int e = 0; e < ne; ++e) {  // M_xy Y (the terms multiplyByNodeMass applies, in the same order)
         const RowTerm* terms = massTimesKktIntoExternal_.data();
-        applyRowTerms<false>(terms + massTermSpanStart_[3 * j + 2], terms + massTermSpanStart_[3 * j + 5],
-                             ws.spans[j].massMatrix.data(), B.data(), F.data(), ncol, nullptr);
+        int n = 0;
+        applyRowTerms<false>(terms + massTermSpanStart_[3 * e + 2], terms + massTermSpanStart_[3 * e + 5],
+                             elementMass(data, e, n), B.data(), F.data(), ncol, nullptr);
     }
     for (int i = 0; i < nx; ++i) {
         double* f = F.data() + static_cast<std::ptrdiff_t>(i) * ncol;
@@ -1137,19 +1368,20 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     // external coordinates, so it adds to S and h after the modal reduction.
     const double rhoA = properties().massPerLength;
     for (const Storage& st : storage_) {
-        const int k = st.node, xs = nn + drivenIndex_[k];
+        const int k = st.node, xs = nn + drivenIndex_[k], o = nodeOffset_[k];
         const double l = st.lengthAtZero + st.slope * data.materialCoordinates[k];
         const double sdot = data.materialRates[k];
-        const Vec rdot = nodeVelocities.col(k);
+        const Vec rdot = xdot.template segment<Dim>(o);
+        const Vec r = x.template segment<Dim>(o);
         const Vec& g = spans_.front().gravity();
         for (int d = 0; d < Dim; ++d) {
-            if (data.formNodeMass) data.nodeMass(Dim * k + d, Dim * k + d) += rhoA * l;
-            data.nodeForce[Dim * k + d] += rhoA * l * g[d] - rhoA * st.slope * sdot * rdot[d];
+            if (data.formNodeMass) data.nodeMass(o + d, o + d) += rhoA * l;
+            data.nodeForce[o + d] += rhoA * l * g[d] - rhoA * st.slope * sdot * rdot[d];
         }
         if (data.formNodeMass) data.nodeMass(xs, xs) += rhoA * l;
-        data.nodeForce[xs] += rhoA * st.slope * (0.5 * rdot.squaredNorm() - 0.5 * sdot * sdot + g.dot(nodes.col(k)));
+        data.nodeForce[xs] += rhoA * st.slope * (0.5 * rdot.squaredNorm() - 0.5 * sdot * sdot + g.dot(r));
         data.kineticEnergy += 0.5 * rhoA * l * (rdot.squaredNorm() + sdot * sdot);
-        data.gravityEnergy -= rhoA * l * g.dot(nodes.col(k));
+        data.gravityEnergy -= rhoA * l * g.dot(r);
     }
     dependentsSnapshot(ws.dynamicsDependents);
     ws.dynamicsCurrent = true;
@@ -1157,7 +1389,7 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
 
 template <int Dim>
 void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X, Eigen::MatrixXd& SX) const {
-    const int N = numSpans(), nx = numExternalCoordinates();
+    const int nx = numExternalCoordinates();
     if (X.rows() != nx)
         throw std::invalid_argument("RopeModel::multiplyByNodeMass: X has " + std::to_string(X.rows()) +
                                     " rows for " + std::to_string(nx) + " external coordinates");
@@ -1187,13 +1419,15 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
     B.setZero(static_cast<Eigen::Index>(nk) * p);
     // (The span terms from the lists buildChainOrder made, in its loops' order: each row sums its
     // terms in the same order as a loop over spans, coordinates a and b would.)
-    for (int j = 0; j < N; ++j) {
-        const double* M = ws.spans[j].massMatrix.data();
+    const int ne = static_cast<int>(elementToRope_.size());
+    for (int e = 0; e < ne; ++e) {
+        int n = 0;
+        const double* M = elementMass(data, e, n);
         const RowTerm* terms = massTimesExternalIntoKkt_.data();
-        applyRowTerms<true>(terms + massTermSpanStart_[3 * j], terms + massTermSpanStart_[3 * j + 3], M, Xr.data(),
+        applyRowTerms<true>(terms + massTermSpanStart_[3 * e], terms + massTermSpanStart_[3 * e + 3], M, Xr.data(),
                             B.data(), p, live.data());
         terms = massTimesExternalIntoExternal_.data();
-        applyRowTerms<false>(terms + massTermSpanStart_[3 * j + 1], terms + massTermSpanStart_[3 * j + 4], M,
+        applyRowTerms<false>(terms + massTermSpanStart_[3 * e + 1], terms + massTermSpanStart_[3 * e + 4], M,
                              Xr.data(), SXr.data(), p, live.data());
     }
     for (int i = 0; i < nx; ++i) {
@@ -1205,10 +1439,11 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
     }
     if (nk > 0) ws.kktLu.solve(B.data(), p);
     // + M_xy Y + C_x^T Mu
-    for (int j = 0; j < N; ++j) {
+    for (int e = 0; e < ne; ++e) {
         const RowTerm* terms = massTimesKktIntoExternal_.data();
-        applyRowTerms<false>(terms + massTermSpanStart_[3 * j + 2], terms + massTermSpanStart_[3 * j + 5],
-                             ws.spans[j].massMatrix.data(), B.data(), SXr.data(), p, nullptr);
+        int n = 0;
+        applyRowTerms<false>(terms + massTermSpanStart_[3 * e + 2], terms + massTermSpanStart_[3 * e + 5],
+                             elementMass(data, e, n), B.data(), SXr.data(), p, nullptr);
     }
     for (int i = 0; i < nx; ++i) {
         double* sx = row(SXr, i);
@@ -1218,7 +1453,7 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
     }
     // Stored rope: mass rhoA l on the drum node's position and material coordinate.
     const double rhoA = properties().massPerLength;
-    const int nn = Dim * (N + 1);
+    const int nn = numNodeCoordinates_;
     for (const Storage& st : storage_) {
         const int k = st.node, xs = nn + drivenIndex_[k];
         const double l = st.lengthAtZero + st.slope * data.materialCoordinates[k];
@@ -1227,7 +1462,7 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
             const double* x = row(Xr, i);
             for (int c = 0; c < p; ++c) sx[c] += rhoA * l * x[c];
         };
-        for (int d = 0; d < Dim; ++d) addMass(Dim * k + d);
+        for (int d = 0; d < Dim; ++d) addMass(nodeOffset_[k] + d);
         addMass(xs);
     }
     for (int c = 0; c < p; ++c)
@@ -1278,7 +1513,7 @@ template <int Dim>
 void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                                            const Eigen::VectorXd& qmddot) const {
     if (numCondensed_ == 0) return;
-    const int N = numSpans(), nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
+    const int nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
     const int nqc = numCondensed_, nc = numSliding_;
     detail::RopeWorkspace<Dim>& ws = data.ws();
     Eigen::VectorXd& zdd = ws.zddot;
@@ -1295,14 +1530,16 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     // (M zddot) at the condensed amplitudes and the Sliding material coordinates, span by span.
     Eigen::VectorXd& Mzdd = ws.massTimesAcceleration;
     Mzdd.setZero(nz);
-    for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const auto& M = ws.spans[j].massMatrix;
-        const int n = spans_[j].numCoordinates();
+    for (int e = 0; e < static_cast<int>(elementToRope_.size()); ++e) {
+        const auto& map = elementToRope_[e];
+        int n = 0;
+        const double* M = elementMass(data, e, n);
         for (int a = 0; a < n; ++a) {
             if (map[a] < nw || map[a] >= nw + nqc + nc) continue;
             double sum = 0;
-            for (int b = 0; b < n; ++b) sum += M(a, b) * zdd[map[b]];
+            for (int b = 0; b < n; ++b) sum += M[a + static_cast<std::ptrdiff_t>(n) * b] * zdd[map[b]];
+            const int extraLocal = elementExtraLocal_[e];  // s1 = s_j + l_j
+            if (extraLocal >= 0) sum += M[a + static_cast<std::ptrdiff_t>(n) * extraLocal] * zdd[elementExtra_[e]];
             Mzdd[map[a]] += sum;
         }
     }
@@ -1321,6 +1558,18 @@ template <int Dim>
 void RopeModel<Dim>::recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                               const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     spanCoordinates(j, nodes, qm, data, q);
+    addInertialCorrection(j, data, q);
+}
+
+template <int Dim>
+void RopeModel<Dim>::recoveredSpanCoordinatesFromExternal(int j, const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
+                                                          const RopeData<Dim>& data, Eigen::VectorXd& q) const {
+    spanCoordinatesFromExternal(j, x, qm, data, q);
+    addInertialCorrection(j, data, q);
+}
+
+template <int Dim>
+void RopeModel<Dim>::addInertialCorrection(int j, const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     if (numCondensed_ == 0 || !data.inertialCorrectionValid) return;
     const auto& sp = spans_[j];
     if (isCondensed(j))
@@ -1368,14 +1617,25 @@ void RopeModel<Dim>::assembleReduced(RopeData<Dim>& data) const {
     // Gd = -C_d^-1 C_w, Mbar = G^T Mz G = M_ww + M_wd Gd + Gd^T M_dw + Gd^T M_dd Gd,
     // Qbar = G^T (Qz - Mz c) = Q_w - M_wd c_d + Gd^T (Q_d - M_dd c_d).
     detail::RopeWorkspace<Dim>& ws = data.ws();
-    const int N = numSpans(), nw = numExternalCoordinates() + numModal_, nd = numDependent();
+    const int nw = numExternalCoordinates() + numModal_, nd = numDependent();
     const int nz = nw + nd + numFixed_;
     ws.Mz.setZero(nz, nz);
-    for (int j = 0; j < N; ++j) {
-        const auto& map = spanToRope_[j];
-        const int n = spans_[j].numCoordinates();
+    for (int e = 0; e < static_cast<int>(elementToRope_.size()); ++e) {
+        const auto& map = elementToRope_[e];
+        int n = 0;
+        const double* M = elementMass(data, e, n);
+        int ta[2], tb[2];
+        auto targets = [&](int a, int* t) {
+            t[0] = map[a];
+            if (a != elementExtraLocal_[e]) return 1;
+            t[1] = elementExtra_[e];
+            return 2;
+        };
         for (int a = 0; a < n; ++a)
-            for (int b = 0; b < n; ++b) ws.Mz(map[a], map[b]) += ws.spans[j].massMatrix(a, b);
+            for (int b = 0; b < n; ++b)
+                for (int ia = 0, na = targets(a, ta); ia < na; ++ia)
+                    for (int ib = 0, nb = targets(b, tb); ib < nb; ++ib)
+                        ws.Mz(ta[ia], tb[ib]) += M[a + static_cast<std::ptrdiff_t>(n) * b];
     }
     ws.Mbar = ws.Mz.topLeftCorner(nw, nw);
     ws.Qbar = ws.Qz.head(nw);

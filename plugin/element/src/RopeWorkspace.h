@@ -29,15 +29,19 @@ struct RopeWorkspace {
     Eigen::VectorXd velocityForcesZ;  ///< Q_v of all spans scattered into z (for the recovery)
     Eigen::VectorXd zddot, inertialLoad, massTimesAcceleration;  ///< scratch of the recovery
     std::vector<SpanData<Dim>> spans;
+    std::vector<GrooveArcData<Dim>> arcs;  ///< per wrapped node (RopeModel::arc)
+    /// External coordinates and rates packed from the NodeMatrix forms of the API.
+    Eigen::VectorXd packedX, packedXdot;
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
     std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
-    Eigen::VectorXd w;                    ///< independent velocities [rdot; sdot_driven; qdot_m]
+    Eigen::VectorXd w;                    ///< independent velocities [xdot (node blocks, sdot_driven); qdot_m]
     /// The velocity-level results (computeDynamics) belong to the positions of the span coordinates,
     /// the velocities w and these dependent coordinates [s; q_condensed; nu]; cleared by
     /// solveDependentCoordinates, which overwrites the workspace's position-level part.
     bool dynamicsCurrent = false;
     Eigen::VectorXd dynamicsDependents;
+    Eigen::VectorXd dynamicsX;  ///< the external coordinates of the last computeDynamics (ropes with arcs)
     // ---- the chain solve (every evaluation)
     std::vector<JacobianEntry> jacobian;  ///< C_z, row by row, each (row, column) once
     std::vector<int> rowSlot;                ///< per column of z: its entry in rowPending, or -1

@@ -6,6 +6,7 @@
 
 #include "SimbodyReeving/element/AxialCondensation.h"
 #include "SimbodyReeving/element/BandedLU.h"
+#include "SimbodyReeving/element/GrooveArc.h"
 #include "SimbodyReeving/element/SpanModel.h"
 
 #include <Eigen/Core>
@@ -53,6 +54,22 @@ enum class MaterialNode {
     Slipping,
 };
 
+/// How the rope meets the sheave at an interior node: at a point (radius 0: both spans end at the
+/// node's position and share its material coordinate, the paper's eq 30) or wrapped on the groove
+/// of a sheave of radius R: the arriving span ends at its tangent point T_in, the rope lies on the
+/// groove arc of length l = R alpha (a GrooveArc, with its mass), and the departing span starts at
+/// the tangent point T_out with the material coordinate s_k + l (s_k the node's material
+/// coordinate, at T_in). The tangent points, the groove's centre (and axis in 3D) and l are
+/// external coordinates given by the caller, as a point node's position is (the wrap geometry
+/// computes them from the bodies, computeSpanTangency and wrapAngle).
+struct NodeWrap {
+    /// R [m] of the rope's centre line on the groove; 0 (the default): a point node. A wrapped
+    /// node must be interior; R finite and >= 0.
+    double radius = 0;
+    /// sigma: +1 or -1 (GrooveCircle::wrapSense).
+    int wrapSense = 1;
+};
+
 template <int Dim>
 class RopeModel;
 namespace detail {
@@ -89,7 +106,9 @@ private:
 template <int Dim>
 struct RopeData {
     // ---- position level
-    Eigen::VectorXd materialCoordinates;  ///< s_0..s_N at the nodes [m] (s_0 = 0, s_N = L)
+    /// s_0..s_N at the nodes [m] (s_0 = 0, s_N = L); at a wrapped node, where the rope arrives on
+    /// the groove (the departing span starts at s_k + l_k, NodeWrap).
+    Eigen::VectorXd materialCoordinates;
     /// Condensed amplitudes [m] (SpanModel::numCondensedModes per span: the axial amplitudes of
     /// AxialDynamics::QuasiStatic spans, then the transverse ones of TransverseDynamics::QuasiStatic
     /// spans), span by span (also the warm start of the next solve).
@@ -101,24 +120,24 @@ struct RopeData {
     // ---- dynamics (filled by RopeModel::computeDynamics)
     Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s] (Driven nodes: as given)
     Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
-    Eigen::VectorXd multiplierRates;
+    Eigen::VectorXd multiplierRates;  ///< rates of multipliers
     /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
     /// (see RopeModel::recoverInertialStrain); valid once computed for the current accelerations.
     Eigen::VectorXd inertialCorrection;
-    bool inertialCorrectionValid = false;
-    /// Effective mass of the rope at its external coordinates x = [r_0..r_N, s at the Driven nodes]
+    bool inertialCorrectionValid = false;  ///< inertialCorrection belongs to the last computeDynamics
+    /// Effective mass of the rope at its external coordinates x = [node blocks, s at the Driven nodes]
     /// (RopeModel::numExternalCoordinates), S = Mbar_xx - Mbar_xm Mbar_mm^-1 Mbar_mx, and the
     /// matching force h: the generalized force the supports must apply to the rope is
     /// f = S xddot - h (for a Driven s_k: the force [N] that holds the rope's material there).
     Eigen::MatrixXd nodeMass;
-    Eigen::VectorXd nodeForce;
+    Eigen::VectorXd nodeForce;  ///< h [N] (see nodeMass)
     /// Set false before computeDynamics to skip forming nodeMass (left empty; one solve per moving
     /// external coordinate saved): RopeModel::multiplyByNodeMass gives S X, and modalAccelerations
     /// solves for its accelerations instead. Default true.
     bool formNodeMass = true;
-    double kineticEnergy = 0;    ///< T of all spans [J]
+    double kineticEnergy = 0;    ///< T of all spans, groove arcs and stored rope [J]
     double strainEnergy = 0;     ///< [J]
-    double gravityEnergy = 0;    ///< [J]
+    double gravityEnergy = 0;    ///< of all spans, groove arcs and stored rope [J]
     /// Power dissipated by the spans' Kelvin-Voigt damping (RopeProperties::axialRetardationTime)
     /// [W], >= 0: sum of SpanData::dampingPower. The damping forces are part of nodeForce.
     double dampingPower = 0;
@@ -135,12 +154,12 @@ struct RopeData {
     /// Coordinates q of span j (SpanModel layout) at the last evaluation.
     const Eigen::VectorXd& spanCoordinates(int span) const;
 
-    RopeData();
-    ~RopeData();
-    RopeData(const RopeData& other);
-    RopeData& operator=(const RopeData& other);
-    RopeData(RopeData&& other) noexcept;
-    RopeData& operator=(RopeData&& other) noexcept;
+    RopeData();                                      ///< empty: sized by the first evaluation
+    ~RopeData();                                     ///< (the workspace's type is complete in the .cpp)
+    RopeData(const RopeData& other);                 ///< deep copy, scratch included
+    RopeData& operator=(const RopeData& other);      ///< deep copy, scratch included
+    RopeData(RopeData&& other) noexcept;             ///< move
+    RopeData& operator=(RopeData&& other) noexcept;  ///< move
 
 private:
     friend class RopeModel<Dim>;
@@ -181,28 +200,54 @@ private:
 template <int Dim>
 class RopeModel {
 public:
-    using Vec = Eigen::Matrix<double, Dim, 1>;
-    using Mat = Eigen::Matrix<double, Dim, Dim>;
-    using NodeMatrix = Eigen::Matrix<double, Dim, Eigen::Dynamic>;
+    using Vec = Eigen::Matrix<double, Dim, 1>;                      ///< a point or vector [m]
+    using Mat = Eigen::Matrix<double, Dim, Dim>;                    ///< a Dim x Dim matrix
+    using NodeMatrix = Eigen::Matrix<double, Dim, Eigen::Dynamic>;  ///< node positions or velocities, one column each
 
     /// @param spans one SpanModel per span, in path order (all with the same RopeProperties).
     /// @param unstretchedLength L [m] > 0: material coordinate of a Fixed end node.
     /// @param nodeKinds one MaterialNode per node (N + 1); empty: Fixed ends, Sliding sheaves.
+    /// @param wraps one NodeWrap per node (N + 1); empty: every node a point.
     /// @throws std::invalid_argument for no spans, spans with different rope properties, L not
-    ///         finite and > 0, nodeKinds of the wrong size, a Fixed interior node or a Sliding end.
-    RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {});
+    ///         finite and > 0, nodeKinds or wraps of the wrong size, a Fixed interior node or a
+    ///         Sliding end, a wrapped end node, a wrap radius not finite and >= 0 or a wrap sense
+    ///         other than +1 or -1.
+    RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
+              std::vector<NodeWrap> wraps = {});
 
-    int numSpans() const { return static_cast<int>(spans_.size()); }
-    int numNodes() const { return numSpans() + 1; }
-    MaterialNode nodeKind(int node) const { return nodeKind_[node]; }
+    int numSpans() const { return static_cast<int>(spans_.size()); }  ///< N
+    int numNodes() const { return numSpans() + 1; }                   ///< N + 1
+    MaterialNode nodeKind(int node) const { return nodeKind_[node]; }  ///< how node k's s_k is determined
     /// Number of Driven and Slipping nodes (each has an external coordinate: the driven material
     /// coordinate, or the slipping sheave's surface coordinate): the length of the drivenS vectors
     /// below (the entries of Slipping nodes are read only for their rates, the sheave's speed).
     int numDrivenNodes() const { return numDriven_; }
     /// Index of node k's external material coordinate among the Driven and Slipping ones (drivenS), or -1.
     int drivenIndex(int node) const { return drivenIndex_[node]; }
-    /// Number of external coordinates x = [r_0..r_N, s_driven]: Dim (N + 1) + numDrivenNodes().
-    int numExternalCoordinates() const { return Dim * numNodes() + numDriven_; }
+    /// Number of external coordinates x = [node blocks 0..N, s_driven]: numNodeCoordinates() +
+    /// numDrivenNodes() (Dim (N + 1) + numDrivenNodes() for a rope of point nodes).
+    int numExternalCoordinates() const { return numNodeCoordinates_ + numDriven_; }
+    /// Number of external coordinates of the nodes: Dim per point node (its position r_k),
+    /// wrappedBlockSize() per wrapped node.
+    int numNodeCoordinates() const { return numNodeCoordinates_; }
+    /// First external coordinate of node k's block: the position r_k of a point node; of a
+    /// wrapped node, [c, T_in, T_out, n (Dim = 3 only), l] at the offsets below.
+    int nodeCoordinateOffset(int node) const { return nodeOffset_[node]; }
+    bool isWrapped(int node) const { return arcIndex_[node] >= 0; }          ///< NodeWrap::radius > 0
+    int numWrappedNodes() const { return static_cast<int>(arcs_.size()); }  ///< nodes with a groove arc
+    /// The rope on the groove of wrapped node k (its mass, radius and sense).
+    /// @throws std::invalid_argument if node is not wrapped.
+    const GrooveArc<Dim>& arc(int node) const;
+    /// Offsets in a wrapped node's block: the groove's centre c [m], the arrival tangent point
+    /// T_in [m] (the end of span k - 1), the departure tangent point T_out [m] (the start of span
+    /// k), the groove's unit axis n [-] (Dim = 3 only; in the plane it is +z), the arc length
+    /// l = R alpha [m].
+    static constexpr int wrappedCentreOffset() { return 0; }                                ///< c
+    static constexpr int wrappedArrivalOffset() { return Dim; }                             ///< T_in
+    static constexpr int wrappedDepartureOffset() { return 2 * Dim; }                       ///< T_out
+    static constexpr int wrappedAxisOffset() { return 3 * Dim; }                            ///< n (Dim = 3)
+    static constexpr int wrappedArcLengthOffset() { return 3 * Dim + (Dim == 3 ? 3 : 0); }  ///< l
+    static constexpr int wrappedBlockSize() { return wrappedArcLengthOffset() + 1; }        ///< coordinates per wrapped node
 
     /// Declares rope stored at a Driven end node (a winch drum): its length is
     ///     l = lengthAtZero + s_0 (start node) or l = lengthAtZero - s_N (end node) [m]
@@ -220,7 +265,7 @@ public:
     /// MaterialNode::Slipping; default 1).
     /// @throws std::invalid_argument if node is not Slipping or kappa is not finite and > 0.
     void setSlipRatio(int node, double kappa);
-    double slipRatio(int node) const { return slipRatio_[node]; }
+    double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa of a Slipping node (else 1)
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
     /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
     /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
@@ -237,11 +282,13 @@ public:
     /// Number of condensed axial amplitudes (QuasiStatic spans), the length of
     /// RopeData::condensedAmplitudes.
     int numCondensedCoordinates() const { return numCondensed_; }
+    /// First entry of span j's condensed amplitudes in RopeData::condensedAmplitudes, or -1.
+    int condensedOffset(int span) const { return condensedOffset_[span]; }
     /// True if span j's axial amplitudes are condensed (AxialDynamics::QuasiStatic and n_a > 0).
     bool isCondensed(int span) const { return condensedOffset_[span] >= 0; }
-    double unstretchedLength() const { return length_; }
-    const SpanModel<Dim>& span(int j) const { return spans_[j]; }
-    const RopeProperties& properties() const { return spans_.front().properties(); }
+    double unstretchedLength() const { return length_; }                              ///< L [m]
+    const SpanModel<Dim>& span(int j) const { return spans_[j]; }                      ///< span j's element
+    const RopeProperties& properties() const { return spans_.front().properties(); }  ///< of every span
 
     /// Solves the constraints for the dependent coordinates, s_1..s_{N-1} and the condensed axial
     /// amplitudes, by Newton's method (starting from data if it holds an admissible guess, else
@@ -263,11 +310,21 @@ public:
                                    RopeData<Dim>& data) const;
     /// As above for ropes without Driven nodes.
     void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+    /// As above, with all external coordinates x (numExternalCoordinates(): the node blocks, then
+    /// the Driven material coordinates): the form ropes with wrapped nodes take. The NodeMatrix
+    /// forms are for ropes of point nodes and pack x from their arguments.
+    /// @throws std::invalid_argument if x has the wrong size, or a NodeMatrix form is called on a
+    ///         rope with wrapped nodes.
+    void solveDependentCoordinatesFromExternal(const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
+                                               RopeData<Dim>& data) const;
 
     /// The coordinates q of span j (SpanModel layout) from node positions, modal state coordinates
     /// and the dependent coordinates held by data (material coordinates, condensed amplitudes).
     void spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
                          Eigen::VectorXd& q) const;
+    /// As spanCoordinates from all external coordinates x.
+    void spanCoordinatesFromExternal(int j, const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
+                                     const RopeData<Dim>& data, Eigen::VectorXd& q) const;
 
     /// Velocity and dynamics level: material rates, span evaluations, and the rope reduced to its
     /// nodes (nodeMass, nodeForce), energies. Reuses the position-level work of the last
@@ -280,6 +337,12 @@ public:
     /// As above for ropes without Driven nodes.
     void computeDynamics(const NodeMatrix& nodes, const NodeMatrix& nodeVelocities, const Eigen::VectorXd& qm,
                          const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
+    /// As above from all external coordinates x and their rates xdot (see
+    /// solveDependentCoordinatesFromExternal). The groove arcs of wrapped nodes add their mass
+    /// matrices, quadratic-velocity and gravity forces and energies (GrooveArc).
+    /// @throws std::invalid_argument if x or xdot has the wrong size.
+    void computeDynamicsFromExternal(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, const Eigen::VectorXd& qm,
+                                     const Eigen::VectorXd& qmdot, RopeData<Dim>& data) const;
 
     /// S X for the effective mass S (RopeData::nodeMass) of the last computeDynamics on data and
     /// X (numExternalCoordinates() rows, any number of columns): one block solve of the rope's
@@ -312,7 +375,7 @@ public:
     /// the same linear system as the condensation's Newton step (the stationarity rows gain f).
     /// The result, data.inertialCorrection, feeds recoveredSpanCoordinates: strain and
     /// force queries then agree with the Dynamic model's slow response up to O((omega_slow /
-    /// omega_axial)^2) instead of O(acceleration / g) (measured in bench/RESULTS.md). The dynamics
+    /// omega_axial)^2) instead of O(acceleration / g) (measured in docs/verification.md, "Quasi-static against dynamic axial modes"). The dynamics
     /// themselves are not changed (they stay conservative). No-op without condensed spans.
     void recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                                const Eigen::VectorXd& qmddot) const;
@@ -321,6 +384,9 @@ public:
     /// and material coordinates when data holds one.
     void recoveredSpanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm, const RopeData<Dim>& data,
                                   Eigen::VectorXd& q) const;
+    /// As recoveredSpanCoordinates from all external coordinates x.
+    void recoveredSpanCoordinatesFromExternal(int j, const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
+                                              const RopeData<Dim>& data, Eigen::VectorXd& q) const;
 
     /// Axial force difference F_a - F_b at interior node k (1..N-1) [N]: the tension-equality
     /// residual at a Sliding node; at a Driven node, the force the rope's grip there carries; at a
@@ -340,21 +406,51 @@ private:
     void solveDependent(RopeData<Dim>& data, const BandedLU& lu, const Eigen::VectorXd& rows, Eigen::VectorXd& out) const;
     /// The dense Mbar, Qbar of the last computeDynamics (RopeData::reducedMass).
     void assembleReduced(RopeData<Dim>& data) const;
-    void fillSpanCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+    void fillSpanCoordinates(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
     /// Evaluates the constraint functions at data.spanQ (and data.spanQdot when withRates): values
     /// into data.newtonResidual, Jacobians into data.Cw / data.Cd, biases into data.bias.
-    void evaluateConstraints(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data,
+    void evaluateConstraints(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, RopeData<Dim>& data,
                              bool withRates) const;
-    bool positionsMatch(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, const Eigen::VectorXd& qm,
-                        const RopeData<Dim>& data) const;
+    bool positionsMatch(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, const RopeData<Dim>& data) const;
+    /// x = [node positions, drivenS] of a rope of point nodes, into data's scratch.
+    const Eigen::VectorXd& packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, RopeData<Dim>& data,
+                                        bool rates) const;
+    /// First external coordinate of where span k - 1 ends at node k (arrival) and span k starts
+    /// (departure): the node's position, or its tangent points.
+    int arrivalOffset(int node) const {
+        return nodeOffset_[node] + (arcIndex_[node] >= 0 ? wrappedArrivalOffset() : 0);
+    }
+    int departureOffset(int node) const {
+        return nodeOffset_[node] + (arcIndex_[node] >= 0 ? wrappedDepartureOffset() : 0);
+    }
+    /// The arc length l_k [m] of node k in x (0 at a point node).
+    double arcLengthAt(const Eigen::VectorXd& x, int node) const {
+        return arcIndex_[node] >= 0 ? x[nodeOffset_[node] + wrappedArcLengthOffset()] : 0.0;
+    }
+    /// The coordinates of node k's groove arc (GrooveArc layout) from x and the node's s.
+    void arcCoordinates(int node, const Eigen::VectorXd& x, double s, typename GrooveArc<Dim>::Coordinates& a) const;
+    /// Adds the mode-acceleration correction (recoverInertialStrain) to span j's coordinates q.
+    void addInertialCorrection(int j, const RopeData<Dim>& data, Eigen::VectorXd& q) const;
+    /// Element e's mass matrix storage in data (spans 0..N-1, then the arcs) and its size.
+    const double* elementMass(const RopeData<Dim>& data, int e, int& n) const;
     int numDependent() const { return numCondensed_ + numSliding_ + numMultipliers_; }
     /// Writes the Fixed and Driven material coordinates into data.materialCoordinates (keeping the
     /// Sliding ones as a warm start when they stay ordered, else a chord-proportional guess).
-    void setKnownMaterialCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, RopeData<Dim>& data) const;
+    void setKnownMaterialCoordinates(const Eigen::VectorXd& x, RopeData<Dim>& data) const;
 
     std::vector<SpanModel<Dim>> spans_;
     std::vector<AxialCondensation<Dim>> kernels_;  // one per span when some span is condensed
     std::vector<std::vector<int>> spanToRope_;  // span-local coordinate -> index in z
+    // The rope's elements: the spans, then the groove arcs (element N + i: arc i). elementToRope_[e]
+    // maps element e's local coordinates into z (spanToRope_ for the spans); a span that starts at
+    // a wrapped node also moves with that node's arc length (s1 = s_k + l_k): elementExtra_[e] is
+    // the z index of l_k (the second target of its local s1), or -1.
+    std::vector<std::vector<int>> elementToRope_;
+    std::vector<int> elementExtra_, elementExtraLocal_;
+    std::vector<GrooveArc<Dim>> arcs_;
+    std::vector<int> arcIndex_, arcNode_;  // node -> arc index or -1; arc -> node
+    std::vector<int> nodeOffset_;          // node -> first external coordinate of its block
+    int numNodeCoordinates_ = 0;
     std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
     std::vector<MaterialNode> nodeKind_;
@@ -377,8 +473,10 @@ private:
     // or Fixed) and of the constraint rows; positions in C_d of its rows and of the dependents.
     std::vector<int> kktPos_, kktRowPos_, dependentRowPos_, dependentColPos_;
     int kktSize_ = 0, kktBand_ = 0, dependentKl_ = 0, dependentKu_ = 0;
-    // External coordinate i -> the (span, local coordinate) pairs it is, up to 2 (-1: none).
-    std::vector<std::array<int, 4>> externalSpans_;
+    // External coordinate i -> the (element, local coordinate) pairs it is, up to 3 (-1: none): a
+    // point's position is in two spans, a wrapped node's T_in and l in a span and its arc, a Driven
+    // s at a wrapped node in two spans and the arc.
+    std::vector<std::array<int, 6>> externalSpans_;
     // Per span: its local coordinates that are columns of the constraint Jacobian (z < nw + nd),
     // in order; and where each entry (a, b) of its mass matrix lands in the KKT band (M's storage
     // index a + n b, band offset; entries on external or Fixed coordinates left out), in the order
