@@ -12,9 +12,10 @@ namespace SimbodyReeving {
 /// Results of a GrooveArc evaluation, in the arc's coordinate layout (GrooveArc::Coordinates).
 template <int Dim>
 struct GrooveArcData {
+    /// Number of the arc's coordinates: [c, T, (n), s, l] (GrooveArc).
     static constexpr int kNumCoordinates = 2 * Dim + (Dim == 3 ? 3 : 0) + 2;
-    using Vector = Eigen::Matrix<double, kNumCoordinates, 1>;
-    using Matrix = Eigen::Matrix<double, kNumCoordinates, kNumCoordinates>;
+    using Vector = Eigen::Matrix<double, kNumCoordinates, 1>;                ///< a coordinate vector
+    using Matrix = Eigen::Matrix<double, kNumCoordinates, kNumCoordinates>;  ///< a coordinate matrix
 
     /// M(x) with T = 1/2 xdot^T M xdot; symmetric, positive semi-definite (the arc length l has a
     /// zero row: l changes which material lies on the arc, not how fast it moves) [kg, kg m].
@@ -75,16 +76,20 @@ struct GrooveArcData {
 template <int Dim>
 class GrooveArc {
 public:
-    static constexpr int kNumCoordinates = GrooveArcData<Dim>::kNumCoordinates;
-    using Vec = Eigen::Matrix<double, Dim, 1>;
-    using Coordinates = typename GrooveArcData<Dim>::Vector;
-    using Data = GrooveArcData<Dim>;
+    static constexpr int kNumCoordinates = GrooveArcData<Dim>::kNumCoordinates;  ///< 2 Dim + 2 (+ 3 in 3D)
+    using Vec = Eigen::Matrix<double, Dim, 1>;                ///< a point or vector [m]
+    using Coordinates = typename GrooveArcData<Dim>::Vector;  ///< x, or its rates
+    using Data = GrooveArcData<Dim>;                          ///< the results of evaluate
 
+    /// First of the Dim centre coordinates c.
     static constexpr int centreIndex() { return 0; }
+    /// First of the Dim arrival tangent point coordinates T.
     static constexpr int tangentPointIndex() { return Dim; }
     /// First of the 3 axis coordinates (Dim = 3 only).
     static constexpr int axisIndex() { return 2 * Dim; }
+    /// The material coordinate s at T.
     static constexpr int materialIndex() { return kNumCoordinates - 2; }
+    /// The arc length l.
     static constexpr int lengthIndex() { return kNumCoordinates - 1; }
 
     /// @param properties the rope's properties (rhoA [kg/m] is used; see RopeProperties).
@@ -95,10 +100,10 @@ public:
     ///         finite and > 0, a wrap sense other than +1 or -1, or non-finite gravity.
     GrooveArc(const RopeProperties& properties, double radius, int wrapSense, const Vec& gravity);
 
-    double radius() const { return radius_; }
-    int wrapSense() const { return wrapSense_; }
-    const Vec& gravity() const { return gravity_; }
-    double massPerLength() const { return massPerLength_; }
+    double radius() const { return radius_; }               ///< R [m]
+    int wrapSense() const { return wrapSense_; }            ///< sigma
+    const Vec& gravity() const { return gravity_; }         ///< g [m/s^2]
+    double massPerLength() const { return massPerLength_; } ///< rhoA [kg/m]
 
     /// Mass matrix, quadratic-velocity and gravity forces, energies at (x, xdot). Allocation-free.
     /// @throws std::invalid_argument if l < 0 or an entry of x or xdot is not finite.

@@ -43,9 +43,11 @@ public:
         e.onCircle_ = true;
         return e;
     }
+    /// true for a groove circle end, false for a point end.
     bool isCircle() const { return onCircle_; }
     /// The point of a point end, the centre of a circle end [m].
     const Eigen::Vector3d& position() const { return circle_.centre; }
+    /// The groove circle of a circle end (for a point end: its centre is the point).
     const GrooveCircle& groove() const { return circle_; }
 
 private:
@@ -68,11 +70,13 @@ private:
 struct SpanTangency {
     Eigen::Vector3d start = Eigen::Vector3d::Zero();  ///< T_1 [m]
     Eigen::Vector3d end = Eigen::Vector3d::Zero();    ///< T_2 [m]
-    /// Unit radial vector e (from the centre to T) at a circle end; zero at a point end.
-    Eigen::Vector3d startRadial = Eigen::Vector3d::Zero(), endRadial = Eigen::Vector3d::Zero();
+    /// Unit radial vector e (from the centre to T_1) at a circle start; zero at a point end.
+    Eigen::Vector3d startRadial = Eigen::Vector3d::Zero();
+    Eigen::Vector3d endRadial = Eigen::Vector3d::Zero();  ///< e at T_2 (as startRadial)
     Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< u [-]
     double length = 0;                                   ///< |T_2 - T_1| [m]
-    double startFleetAngle = 0, endFleetAngle = 0;       ///< gamma [rad]; 0 at a point end
+    double startFleetAngle = 0;                          ///< gamma at T_1 [rad]; 0 at a point end
+    double endFleetAngle = 0;                            ///< gamma at T_2 [rad]; 0 at a point end
     int newtonIterations = 0;                            ///< of a circle-to-circle solve
 };
 
@@ -81,21 +85,24 @@ struct SpanTangency {
 /// on a body turning at omega: n' = omega x n, n'' = omegadot x n + omega x (omega x n); only their
 /// components normal to n matter). Zero by default.
 struct EndMotion {
-    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-    Eigen::Vector3d axisRate = Eigen::Vector3d::Zero();
-    Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
-    Eigen::Vector3d axisAcceleration = Eigen::Vector3d::Zero();
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          ///< of the point or centre [m/s]
+    Eigen::Vector3d axisRate = Eigen::Vector3d::Zero();          ///< n' [1/s]
+    Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();      ///< of the point or centre [m/s^2]
+    Eigen::Vector3d axisAcceleration = Eigen::Vector3d::Zero();  ///< n'' [1/s^2]
 };
 
 /// Time derivatives of a SpanTangency. The angle rate of a circle end is the rate at which its
 /// radial vector e turns about the axis n, phidot = (n x e) . edot [rad/s] (e also tilts with the
 /// axis: edot = phidot n x e - n (e . n')); at a point end it is 0.
 struct TangencyRates {
-    Eigen::Vector3d startVelocity = Eigen::Vector3d::Zero(), endVelocity = Eigen::Vector3d::Zero();  ///< [m/s]
-    double startAngleRate = 0, endAngleRate = 0;                                                     ///< [rad/s]
-    /// Second derivatives [m/s^2], [rad/s^2] (phiddot: the time derivative of phidot).
-    Eigen::Vector3d startAcceleration = Eigen::Vector3d::Zero(), endAcceleration = Eigen::Vector3d::Zero();
-    double startAngleAcceleration = 0, endAngleAcceleration = 0;
+    Eigen::Vector3d startVelocity = Eigen::Vector3d::Zero();  ///< T_1' [m/s]
+    Eigen::Vector3d endVelocity = Eigen::Vector3d::Zero();    ///< T_2' [m/s]
+    double startAngleRate = 0;                                ///< phidot at T_1 [rad/s]
+    double endAngleRate = 0;                                  ///< phidot at T_2 [rad/s]
+    Eigen::Vector3d startAcceleration = Eigen::Vector3d::Zero();  ///< T_1'' [m/s^2]
+    Eigen::Vector3d endAcceleration = Eigen::Vector3d::Zero();    ///< T_2'' [m/s^2]
+    double startAngleAcceleration = 0;  ///< phiddot at T_1, the time derivative of phidot [rad/s^2]
+    double endAngleAcceleration = 0;    ///< phiddot at T_2 [rad/s^2]
 };
 
 /// Jacobian of a tangency: rows [T_1 (3), T_2 (3), phi_1, phi_2] with respect to the columns
@@ -143,6 +150,7 @@ void computeTangencyJacobian(const TangencyEnd& start, const TangencyEnd& end, c
 /// alphadot = sigma (phidot_out - phidot_in) from the two spans' TangencyRates.
 double wrapAngle(const GrooveCircle& circle, const Eigen::Vector3d& arrivalRadial,
                  const Eigen::Vector3d& departureRadial, double previous);
+/// As above without a previous value: alpha in [0, 2 pi).
 double wrapAngle(const GrooveCircle& circle, const Eigen::Vector3d& arrivalRadial,
                  const Eigen::Vector3d& departureRadial);
 
