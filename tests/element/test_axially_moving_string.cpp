@@ -11,7 +11,7 @@
 // Method: the rope (RopeModel, one span, Driven ends) linearised about the steady flow by central
 // differences of its modal accelerations (q_m, qdot_m), eigenvalues of the first-order system;
 // cross-checked by integrating the nonlinear rope in time from a small disturbance. The numbers of
-// the whole study: bench/moving_string (bench-moving-string) and bench/RESULTS.md.
+// the whole study: bench/moving_string (bench-moving-string) and docs/verification.md.
 //
 // Units: SI. P is the axial force EA eps (material-length measure), v and c material speeds
 // [m of unstretched rope / s]; the same ratio v / c holds in physical (stretched) measure.
@@ -235,7 +235,7 @@ TEST(AxiallyMovingString, CompleteEqualsTheGalerkinMovingString) {
 // Complete against Wickert & Mote: with n_t = 16 (the most the element allows) the first three
 // frequencies are within 6.3e-5 / 2.4e-4 / 5.4e-4 of (n pi c / L)(1 - v^2/c^2) at v/c = 0.7
 // (all lower speeds closer): the sine basis' truncation error, which falls about like n_t^-3
-// (bench/RESULTS.md, "Axially moving string"). Simplified stays at the rest frequencies, 1 / (1 -
+// (docs/verification.md, "The axially moving string"). Simplified stays at the rest frequencies, 1 / (1 -
 // v^2/c^2) too high: +1 % at v/c = 0.1, +33 % at 0.5, +96 % at 0.7.
 TEST(AxiallyMovingString, CompleteFollowsWickertMoteSimplifiedStaysAtRest) {
     for (double r : kSpeeds) {

@@ -153,8 +153,9 @@ TEST(QuasiStaticAxial, ConservativePendulumConservesEnergy) {
 //    shift for the 20 m span alone: the n_a = 0 bounce is 1.70e-6 above the exact rod's, as this
 //    formula gives.) The phase error grows as eps_w omega_b t: a bounce of force amplitude A_P
 //    differs by up to A_P eps_w omega_b t, and the payload by A_P eps_w omega_b t / K = A_P eps_w t
-//    / (M omega_b), K = M omega_b^2. Over the 20 s of bench/RESULTS.md ("Quasi-static axial modes",
-//    1 m/s push) this gives 0.059 N and 8.3e-8 m against the 0.062 N and 7.2e-8 m measured there.
+//    / (M omega_b), K = M omega_b^2. Over the 20 s of docs/verification.md ("Quasi-static against
+//    dynamic axial modes", 1 m/s push) this gives 0.059 N and 8.3e-8 m against the 0.062 N and
+//    7.2e-8 m measured there.
 // Each bound below is 1.5x the sum of these estimates for the run: the estimates are leading order
 // (the payload drift of the swing and the bounce comes out within 3 % of the measured one), and the
 // 1.5 covers what they leave out (the swing's modulation of the bounce, the filter's 1.7 % on the

@@ -1,11 +1,11 @@
 // Numerical-stability stress suite (ctest label `stress`, excluded from ./scripts/test.sh; run it with
-// `ctest --test-dir build -L stress --output-on-failure`, results in bench/STRESS.md).
+// `ctest --test-dir build -L stress --output-on-failure`, results in docs/stability.md).
 //
 // The paper's pendulum (PendulumScene, Table 1) pushed one parameter at a time: stiffer rope, a
 // short horizontal span, fast pushes, a long run, many modes, a heavy rope, a light payload. Every
 // case runs with RK-Merson and with CPodes at accuracy 1e-6, reporting every 0.1 s. A run passes if
 // every reported state is finite, the mechanical energy drift stays within 100 times the drift
-// recorded for that run in bench/STRESS.md, at most 1e-3 of the initial kinetic energy (the system
+// recorded for that run in docs/stability.md, at most 1e-3 of the initial kinetic energy (the system
 // is conservative), and the sheave tension-equality residual stays <= 1e-9 of the
 // payload weight. Otherwise it fails with a message naming the case, the integrator and the cause:
 // an exception from the simulation (Simbody's step-size underflow, the sheave Newton solver's
@@ -113,7 +113,7 @@ struct StressRun {
     std::string integrator;
 };
 
-/// The drift / KE0 each run was measured at (bench/STRESS.md; where a case was measured twice, the
+/// The drift / KE0 each run was measured at (docs/stability.md; where a case was measured twice, the
 /// larger figure): the Dynamic table at commit 80c4aec (EA x100 at cd59813; Baseline also at
 /// cd59813: 1.6e-11 and 2.4e-8, CPodes' drift moved 3.4x with a round-off change), the QS table at
 /// b83cc56, Push20TensionOnly at 814a40b and 26f4909. Returns {rk-merson, cpodes}.
@@ -290,7 +290,7 @@ TEST_P(StressSuite, RunsStably) {
     if (r.finite) {
         if (r.relDrift > driftLimit(run))
             causes.push_back("energy drift " + describe(r.relDrift) + " of KE0 > " + describe(driftLimit(run)) +
-                             " (100 x the drift recorded in bench/STRESS.md, at most " +
+                             " (100 x the drift recorded in docs/stability.md, at most " +
                              describe(kMaxRelativeDrift) + ")");
         if (r.relConstraint > kMaxRelativeConstraint)
             causes.push_back("constraint residual " + describe(r.relConstraint) + " of the payload weight > " +
@@ -340,7 +340,7 @@ INSTANTIATE_TEST_SUITE_P(Pendulum, StressSuite, ::testing::ValuesIn(allRuns()), 
 // One hour of simulated time: the conservative pendulum, n_a = 1 (quasi-static axial
 // mode, the demo default; the Dynamic model would need about 5 M steps), RK-Merson at 1e-8.
 // Energy drift and sheave residual stay bounded; both are printed every simulated 6 minutes so
-// their growth can be read (bench/STRESS.md).
+// their growth can be read (docs/stability.md).
 TEST(LongRun, OneHourConservativePendulum) {
     SpanOptions o;
     o.axialModes = 1;
@@ -374,7 +374,7 @@ TEST(LongRun, OneHourConservativePendulum) {
                         s.getTime(), drift / ke0, residual / weight, integ->getNumStepsTaken(),
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    // bench/STRESS.md (tension-only default): drift 3.7e-08 of KE0 at 3 600 s, margin
+    // docs/stability.md (tension-only default): drift 3.7e-08 of KE0 at 3 600 s, margin
     // 27x; residual 1.1e-12 of the weight (round-off floor), margin 91x.
     EXPECT_LT(drift, 1e-6 * ke0);
     EXPECT_LT(residual, 1e-10 * weight);
