@@ -1,0 +1,76 @@
+#pragma once
+/// @file
+/// A planar rope's external coordinates as functions of its node stations (pure C++/Eigen): the
+/// tangent points and arc lengths of its wrapped nodes from the anchor points and groove centres
+/// that bodies carry, with their Jacobian and bias accelerations, and the rope's effective mass
+/// and force carried over to the stations.
+
+#include "SimbodyReeving/element/RopeModel.h"
+#include "SimbodyReeving/element/WrapGeometry.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace SimbodyReeving {
+
+/// Results of a WrapStationMap evaluation.
+struct WrapStationMapData {
+    Eigen::VectorXd x;     ///< the rope's external coordinates (RopeModel layout) [m]
+    Eigen::VectorXd xdot;  ///< their rates J Ydot [m/s]
+    /// b = xddot at Yddot = 0 (the tangency's second derivatives at these rates) [m/s^2].
+    Eigen::VectorXd bias;
+    Eigen::MatrixXd jacobian;  ///< J = dx/dY (numExternalCoordinates x numStationCoordinates)
+    std::vector<SpanTangency> tangencies;  ///< per span: its tangent points, direction, length
+    /// Per node: the wrap angle alpha [rad] of a wrapped node (0 at point nodes). Also the
+    /// previous values the next evaluation keeps alpha continuous with (wrapAngle).
+    Eigen::VectorXd wrapAngles;
+};
+
+/// A planar rope's external coordinates as functions of the stations its bodies carry.
+///
+/// The rope's (RopeModel<2>) external coordinates x follow from its stations
+///     Y = [p_0, ..., p_N (2 each), s at the Driven nodes],
+/// p_k the position of an end or point node, and the groove centre c_k of a wrapped node
+/// (NodeWrap): what the bodies carry. Each span's ends follow from its two nodes by the wrap
+/// geometry (computeSpanTangency: point-to-circle and circle-to-circle, open or crossed, the groove
+/// axis the plane's normal +z, the sense the node's NodeWrap::wrapSense), and each wrapped node's
+/// arc length from its two tangent points, l = R alpha (wrapAngle, continuous from the previous
+/// evaluation's alpha). So x = Phi(Y), xdot = J Ydot and xddot = J Yddot + b, with J and b from the
+/// tangency's analytic first and second time derivatives (computeTangencyRates).
+///
+/// A coupling that moves the stations then sees the rope through
+///     S_Y = J^T S J,   h_Y = J^T (h - S b),
+/// S, h the rope's RopeData::nodeMass and nodeForce at x, xdot (the supports' force on the rope is
+/// f = S xddot - h, so on the stations J^T f = S_Y Yddot - h_Y): stationNodeMass and
+/// stationNodeForce. Lagrange's equations in Y follow by the chain rule, so the rope's T + U stays
+/// the invariant it is in x.
+class WrapStationMap {
+public:
+    /// @param rope the rope whose nodes are mapped (it must outlive the map); without wrapped nodes
+    ///        the map is the identity.
+    explicit WrapStationMap(const RopeModel<2>& rope) : rope_(&rope) {}
+
+    const RopeModel<2>& rope() const { return *rope_; }  ///< the mapped rope
+    /// Number of station coordinates: 2 (N + 1) + RopeModel::numDrivenNodes().
+    int numStationCoordinates() const { return 2 * rope_->numNodes() + rope_->numDrivenNodes(); }
+
+    /// x, xdot, J and b at the stations Y and their rates Ydot. data.wrapAngles, when it holds a
+    /// value per node, is the previous evaluation's (alpha stays continuous through full turns);
+    /// otherwise alpha is taken in [0, 2 pi).
+    /// @throws std::invalid_argument if Y or Ydot has the wrong size or is not finite.
+    /// @throws std::domain_error when a tangent does not exist (a station on or inside a groove
+    ///         circle, overlapping grooves on a crossed span), naming the span and its nodes.
+    void evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates, WrapStationMapData& data) const;
+
+    /// S_Y = J^T S J from the rope's formed nodeMass (RopeData::formNodeMass).
+    /// @throws std::invalid_argument if ropeData holds no formed nodeMass of the map's size.
+    void stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData, Eigen::MatrixXd& SY) const;
+    /// h_Y = J^T (h - S b) (S b by RopeModel::multiplyByNodeMass, S need not be formed).
+    void stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData, Eigen::VectorXd& hY) const;
+
+private:
+    const RopeModel<2>* rope_;
+};
+
+}  // namespace SimbodyReeving

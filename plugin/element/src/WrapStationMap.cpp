@@ -1,0 +1,145 @@
+#include "SimbodyReeving/element/WrapStationMap.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace SimbodyReeving {
+namespace {
+Eigen::Vector3d lift(const Eigen::Vector2d& v) { return Eigen::Vector3d(v[0], v[1], 0.0); }
+}  // namespace
+
+void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates,
+                              WrapStationMapData& data) const {
+    const RopeModel<2>& rope = *rope_;
+    const int N = rope.numSpans(), nY = numStationCoordinates(), nx = rope.numExternalCoordinates();
+    const int nodeRows = rope.numNodeCoordinates();
+    if (stations.size() != nY || stationRates.size() != nY) {
+        std::ostringstream msg;
+        msg << "WrapStationMap: " << stations.size() << " stations and " << stationRates.size() << " rates given for "
+            << nY << " station coordinates";
+        throw std::invalid_argument(msg.str());
+    }
+    if (!stations.allFinite() || !stationRates.allFinite())
+        throw std::invalid_argument("WrapStationMap: the stations and their rates must be finite");
+    const bool previous = data.wrapAngles.size() == N + 1;
+    if (!previous) data.wrapAngles.setZero(N + 1);
+    const bool warm = static_cast<int>(data.tangencies.size()) == N;
+    data.tangencies.resize(N);
+    data.x.setZero(nx);
+    data.bias.setZero(nx);
+    data.jacobian.setZero(nx, nY);
+    auto station = [&](int k) { return Eigen::Vector2d(stations.segment<2>(2 * k)); };
+    auto end = [&](int k) {
+        if (!rope.isWrapped(k)) return TangencyEnd::point(lift(station(k)));
+        GrooveCircle g;
+        g.centre = lift(station(k));
+        g.radius = rope.arc(k).radius();
+        g.wrapSense = rope.arc(k).wrapSense();
+        return TangencyEnd::circle(g);
+    };
+    // Node blocks: a point's position and a groove's centre are stations.
+    for (int k = 0; k <= N; ++k) {
+        const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? RopeModel<2>::wrappedCentreOffset() : 0);
+        data.x.segment<2>(o) = station(k);
+        data.jacobian.block<2, 2>(o, 2 * k).setIdentity();
+    }
+    for (int d = 0; d < rope.numDrivenNodes(); ++d) {
+        data.x[nodeRows + d] = stations[2 * (N + 1) + d];
+        data.jacobian(nodeRows + d, 2 * (N + 1) + d) = 1.0;
+    }
+    // Angle rates and their biases per wrapped node: phi at its arrival (end of span k - 1) and
+    // departure (start of span k), as Jacobian rows over Y.
+    Eigen::MatrixXd phiIn = Eigen::MatrixXd::Zero(N + 1, nY), phiOut = Eigen::MatrixXd::Zero(N + 1, nY);
+    Eigen::VectorXd phiInBias = Eigen::VectorXd::Zero(N + 1), phiOutBias = Eigen::VectorXd::Zero(N + 1);
+    TangencyJacobian Jt;
+    TangencyRates rates;
+    for (int j = 0; j < N; ++j) {
+        const TangencyEnd a = end(j), b = end(j + 1);
+        try {
+            const SpanTangency t = computeSpanTangency(a, b, warm ? &data.tangencies[j] : nullptr);
+            data.tangencies[j] = t;
+            computeTangencyJacobian(a, b, t, Jt);
+            EndMotion ma, mb;
+            ma.velocity = lift(stationRates.segment<2>(2 * j));
+            mb.velocity = lift(stationRates.segment<2>(2 * (j + 1)));
+            computeTangencyRates(a, b, t, ma, mb, rates);
+        } catch (const std::domain_error& e) {
+            std::ostringstream msg;
+            msg << "WrapStationMap: span " << j << " (nodes " << j << " and " << j + 1 << "): " << e.what();
+            throw std::domain_error(msg.str());
+        }
+        const SpanTangency& t = data.tangencies[j];
+        // Jt rows [T1 (3), T2 (3), phi1, phi2], columns [p1 (3), n1 (3), p2 (3), n2 (3)]: the plane's
+        // x, y of the points and the stations of nodes j (columns 0, 1) and j + 1 (6, 7).
+        auto rowsOver = [&](int row, Eigen::MatrixXd& out, int r) {
+            out.block<1, 2>(r, 2 * j) += Jt.block<1, 2>(row, 0);
+            out.block<1, 2>(r, 2 * (j + 1)) += Jt.block<1, 2>(row, 6);
+        };
+        if (rope.isWrapped(j)) {
+            const int o = rope.nodeCoordinateOffset(j) + RopeModel<2>::wrappedDepartureOffset();
+            data.x.segment<2>(o) = t.start.head<2>();
+            for (int d = 0; d < 2; ++d) {
+                rowsOver(d, data.jacobian, o + d);
+                data.bias[o + d] = rates.startAcceleration[d];
+            }
+            rowsOver(6, phiOut, j);
+            phiOutBias[j] = rates.startAngleAcceleration;
+        }
+        if (rope.isWrapped(j + 1)) {
+            const int o = rope.nodeCoordinateOffset(j + 1) + RopeModel<2>::wrappedArrivalOffset();
+            data.x.segment<2>(o) = t.end.head<2>();
+            for (int d = 0; d < 2; ++d) {
+                rowsOver(3 + d, data.jacobian, o + d);
+                data.bias[o + d] = rates.endAcceleration[d];
+            }
+            rowsOver(7, phiIn, j + 1);
+            phiInBias[j + 1] = rates.endAngleAcceleration;
+        }
+    }
+    // Arc lengths l = R alpha, alpha = sigma (phi_out - phi_in) (continuous with the previous alpha).
+    for (int k = 1; k < N; ++k) {
+        if (!rope.isWrapped(k)) continue;
+        const GrooveArc<2>& arc = rope.arc(k);
+        GrooveCircle g;
+        g.centre = lift(station(k));
+        g.radius = arc.radius();
+        g.wrapSense = arc.wrapSense();
+        const double alpha = previous ? wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial,
+                                                  data.wrapAngles[k])
+                                      : wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial);
+        data.wrapAngles[k] = alpha;
+        const int o = rope.nodeCoordinateOffset(k) + RopeModel<2>::wrappedArcLengthOffset();
+        const double Rs = arc.radius() * arc.wrapSense();
+        data.x[o] = arc.radius() * alpha;
+        data.jacobian.row(o) = Rs * (phiOut.row(k) - phiIn.row(k));
+        data.bias[o] = Rs * (phiOutBias[k] - phiInBias[k]);
+    }
+    data.xdot.noalias() = data.jacobian * stationRates;
+}
+
+void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData,
+                                     Eigen::MatrixXd& SY) const {
+    const int nx = rope_->numExternalCoordinates();
+    if (ropeData.nodeMass.rows() != nx || ropeData.nodeMass.cols() != nx)
+        throw std::invalid_argument("WrapStationMap::stationNodeMass: the rope's nodeMass is not formed (" +
+                                    std::to_string(ropeData.nodeMass.rows()) + " x " +
+                                    std::to_string(ropeData.nodeMass.cols()) + " for " + std::to_string(nx) +
+                                    " external coordinates)");
+    SY.noalias() = map.jacobian.transpose() * (ropeData.nodeMass * map.jacobian);
+}
+
+void WrapStationMap::stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData,
+                                      Eigen::VectorXd& hY) const {
+    const int nx = rope_->numExternalCoordinates();
+    Eigen::VectorXd f = ropeData.nodeForce;
+    if (ropeData.nodeMass.rows() == nx && ropeData.nodeMass.cols() == nx) {
+        f.noalias() -= ropeData.nodeMass * map.bias;
+    } else {
+        Eigen::MatrixXd Sb;
+        rope_->multiplyByNodeMass(ropeData, map.bias, Sb);
+        f -= Sb.col(0);
+    }
+    hY.noalias() = map.jacobian.transpose() * f;
+}
+
+}  // namespace SimbodyReeving
