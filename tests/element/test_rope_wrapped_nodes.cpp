@@ -290,8 +290,17 @@ TEST(RopeWrappedNodes, RejectsBadWraps) {
     Eigen::Matrix<double, 2, Eigen::Dynamic> nodes(2, 3);
     nodes << 0, 1, 2, 0, -1, 0;
     const Eigen::VectorXd qm = Eigen::VectorXd::Zero(rope.numModalCoordinates());
-    EXPECT_THROW_MESSAGE(rope.solveDependentCoordinates(nodes, qm, data), std::invalid_argument,
-                         "a rope with wrapped nodes takes all its external coordinates");
+    // A planar rope takes its stations (WrapStationMap); a spatial one all its external coordinates.
+    rope.solveDependentCoordinates(nodes, qm, data);
+    EXPECT_GT(data.materialCoordinates[1], 0.0);
+    const Eigen::Vector3d g3(0.0, -kG, 0.0);
+    std::vector<SpanModel<3>> spans3{SpanModel<3>(props, SpanOptions{}, g3), SpanModel<3>(props, SpanOptions{}, g3)};
+    const RopeModel<3> rope3(std::move(spans3), 5.0, {}, wraps);
+    RopeData<3> data3;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> nodes3 = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, 3);
+    nodes3.topRows<2>() = nodes;
+    EXPECT_THROW_MESSAGE(rope3.solveDependentCoordinates(nodes3, Eigen::VectorXd::Zero(rope3.numModalCoordinates()), data3),
+                         std::invalid_argument, "a spatial rope with wrapped nodes takes all its external coordinates");
     EXPECT_THROW_MESSAGE(rope.solveDependentCoordinatesFromExternal(Eigen::VectorXd::Zero(3), qm, data),
                          std::invalid_argument, "3 external coordinates given for 11");
     EXPECT_THROW_MESSAGE(rope.arc(0), std::invalid_argument, "node 0 is not a wrapped node");

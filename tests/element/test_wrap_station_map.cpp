@@ -275,6 +275,85 @@ TEST(WrapStationMap, RejectsBadStationsAndImpossibleTangents) {
     Eigen::VectorXd Y(6);
     Y << 0.2, 0.1, 0.0, 0.0, 3.0, 0.0;  // the start anchor inside the groove circle
     EXPECT_THROW_MESSAGE(map.evaluate(Y, Eigen::VectorXd::Zero(6), d), std::domain_error, "span 0 (nodes 0 and 1)");
+    Y << -1.0, 0.0, 0.0, -2.0, 1.0, 0.0;  // down, under and up: counter-clockwise, against the sense -1
+    const RopeModel<2> clockwise = makeRope(props, spanOptions(0, 0), 10.0, {NodeWrap{}, wrap(0.5, -1), NodeWrap{}});
+    EXPECT_THROW_MESSAGE(WrapStationMap(clockwise).evaluate(Y, Eigen::VectorXd::Zero(6), d), std::domain_error,
+                         "node 1: the rope's path turns counter-clockwise about the plane normal there (from node 0 "
+                         "past the groove's centre to node 2) but its wrap sense is -1");
     Y[0] = NAN;
     EXPECT_THROW_MESSAGE(map.evaluate(Y, Eigen::VectorXd::Zero(6), d), std::invalid_argument, "must be finite");
+}
+
+// A planar rope with wrapped nodes evaluated from its stations through RopeModel's node forms
+// (nodes = anchor points and groove centres) gives the map's S_Y, h_Y and modal accelerations,
+// with S formed or not (multiplyByNodeMass, modalAccelerationsFromLastProduct), the dense reduced
+// equations' Schur complement, and the potential energy of spans and arcs. Round-off only: bounds
+// 1e-10 relative to each quantity's size.
+TEST(WrapStationMap, RopeEvaluatedFromItsStationsMatchesTheMap) {
+    const RopeProperties props{2.0, 5e6, 0.0, false};
+    const double R = 0.3, M = 500.0;
+    FourFallBlock sys(props, spanOptions(0, 1), 4 * 3.0 * (1 - 2e-4) + 3 * kPi * R, R, M, true);
+    const RopeModel<2>& rope = sys.rope;
+    const int nm = rope.numModalCoordinates();
+    const Vector2d q(0.05, -3.0), qd(0.6, 0.05);
+    Eigen::VectorXd qm(nm), qmd(nm);
+    for (int i = 0; i < nm; ++i) {
+        qm[i] = 1e-3 * std::sin(1.0 + i);
+        qmd[i] = 0.02 * std::cos(2.0 + i);
+    }
+    const Eigen::VectorXd Y = sys.stations(q), Yd = sys.stationJacobian() * qd;
+    Eigen::VectorXd Ydd(10);
+    for (int i = 0; i < 10; ++i) Ydd[i] = 0.3 * std::sin(0.7 * i);
+    // The explicit route.
+    WrapStationMapData m;
+    sys.map.evaluate(Y, Yd, m);
+    RopeData<2> a;
+    rope.computeDynamicsFromExternal(m.x, m.xdot, qm, qmd, a);
+    Eigen::MatrixXd SY;
+    Eigen::VectorXd hY, qmddA;
+    sys.map.stationNodeMass(m, a, SY);
+    sys.map.stationNodeForce(m, a, hY);
+    rope.modalAccelerations(a, Eigen::VectorXd(m.jacobian * Ydd + m.bias), qmddA);
+    // The node forms, with S formed and not.
+    Eigen::Matrix<double, 2, Eigen::Dynamic> nodes(2, 5), vel(2, 5);
+    for (int k = 0; k < 5; ++k) {
+        nodes.col(k) = Y.segment<2>(2 * k);
+        vel.col(k) = Yd.segment<2>(2 * k);
+    }
+    auto near = [](const auto& x, const auto& y) { return (x - y).norm() <= 1e-10 * std::max(1.0, y.norm()); };
+    for (bool formed : {true, false}) {
+        RopeData<2> b;
+        b.formNodeMass = formed;
+        rope.solveDependentCoordinates(nodes, qm, b);
+        rope.computeDynamics(nodes, vel, qm, qmd, b);
+        rope.computeDynamics(nodes, vel, qm, qmd, b);  // a repeated evaluation returns the same
+        EXPECT_TRUE(near(b.nodeForce, hY)) << "formed " << formed;
+        Eigen::MatrixXd SX;
+        rope.multiplyByNodeMass(b, Eigen::MatrixXd::Identity(10, 10), SX);
+        EXPECT_TRUE(near(SX, SY)) << "formed " << formed;
+        if (formed) {
+            EXPECT_TRUE(near(b.nodeMass, SY));
+        }
+        Eigen::VectorXd qmdd;
+        rope.modalAccelerations(b, Ydd, qmdd);
+        EXPECT_TRUE(near(qmdd, qmddA)) << "formed " << formed;
+        rope.multiplyByNodeMass(b, Ydd, SX);
+        rope.modalAccelerationsFromLastProduct(b, Eigen::VectorXd::Ones(1), qmdd);
+        EXPECT_TRUE(near(qmdd, qmddA)) << "formed " << formed;
+        // Dense reduced equations at the stations: S_Y is their Schur complement on the modes.
+        const Eigen::MatrixXd& Mbar = b.reducedMass();
+        const Eigen::MatrixXd schur = Mbar.topLeftCorner(10, 10) - Mbar.topRightCorner(10, nm) *
+                                      Mbar.bottomRightCorner(nm, nm).ldlt().solve(Mbar.bottomLeftCorner(nm, 10));
+        EXPECT_TRUE(near(schur, SY)) << "formed " << formed;
+        // Potential energy from the stations: spans (spanCoordinates) and arcs.
+        double u = rope.arcGravityEnergy(nodes, b);
+        for (int j = 0; j < rope.numSpans(); ++j) {
+            Eigen::VectorXd qj;
+            rope.spanCoordinates(j, nodes, qm, b, qj);
+            SpanData<2> d;
+            rope.span(j).evaluate(qj, Eigen::VectorXd::Zero(qj.size()), d);
+            u += d.potentialEnergy();
+        }
+        EXPECT_NEAR(u, a.strainEnergy + a.gravityEnergy, 1e-10 * std::abs(a.gravityEnergy));
+    }
 }

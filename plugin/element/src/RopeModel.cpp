@@ -1,6 +1,7 @@
 #include "SimbodyReeving/element/RopeModel.h"
 
 #include "RopeWorkspace.h"
+#include "SimbodyReeving/element/WrapStationMap.h"
 
 #include <Eigen/LU>
 
@@ -442,10 +443,10 @@ void RopeModel<Dim>::arcCoordinates(int node, const Eigen::VectorXd& x, double s
 template <int Dim>
 const Eigen::VectorXd& RopeModel<Dim>::packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                     RopeData<Dim>& data, bool rates) const {
-    if (!arcs_.empty())
+    if (!arcs_.empty() && Dim != 2)
         throw std::invalid_argument(
-            "RopeModel: a rope with wrapped nodes takes all its external coordinates (the ...FromExternal forms), "
-            "not a matrix of node positions");
+            "RopeModel: a spatial rope with wrapped nodes takes all its external coordinates (the ...FromExternal "
+            "forms), not a matrix of node positions");
     if (nodes.cols() != numNodes()) {
         std::ostringstream msg;
         msg << "RopeModel: " << nodes.cols() << " node " << (rates ? "velocities" : "positions") << " given for "
@@ -460,10 +461,57 @@ const Eigen::VectorXd& RopeModel<Dim>::packExternal(const NodeMatrix& nodes, con
         throw std::invalid_argument(msg.str());
     }
     Eigen::VectorXd& x = rates ? data.ws().packedXdot : data.ws().packedX;
-    x.resize(numExternalCoordinates());
+    x.resize(Dim * numNodes() + numDriven_);
     for (int k = 0; k <= numSpans(); ++k) x.template segment<Dim>(Dim * k) = nodes.col(k);
     x.tail(numDriven_) = drivenS;
     return x;
+}
+
+template <int Dim>
+const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& nodes, const NodeMatrix* nodeVelocities,
+                                                          const Eigen::VectorXd& drivenS, const Eigen::VectorXd* drivenSdot,
+                                                          RopeData<Dim>& data) const {
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    const Eigen::VectorXd& Y = packExternal(nodes, drivenS, data, false);
+    if (arcs_.empty()) {
+        if (nodeVelocities) packExternal(*nodeVelocities, *drivenSdot, data, true);
+        return Y;
+    }
+    if constexpr (Dim == 2) {
+        // Positions alone (a solve) go to a map of their own: the dynamics' J and b stay valid.
+        WrapStationMapData& m = nodeVelocities ? ws.stationMap : ws.stationPositionMap;
+        const Eigen::VectorXd& Ydot = nodeVelocities ? packExternal(*nodeVelocities, *drivenSdot, data, true)
+                                                      : ws.packedXdot.setZero(Y.size());
+        if (m.wrapAngles.size() == 0) m.wrapAngles = (nodeVelocities ? ws.stationPositionMap : ws.stationMap).wrapAngles;
+        WrapStationMap(*this).evaluate(Y, Ydot, m);
+        return m.x;
+    }
+    return Y;  // (not reached: packExternal throws for spatial ropes with wrapped nodes)
+}
+
+template <int Dim>
+void RopeModel<Dim>::dynamicsToStations(RopeData<Dim>& data) const {
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    const Eigen::MatrixXd& J = ws.stationMap.jacobian;
+    const Eigen::VectorXd& b = ws.stationMap.bias;
+    const int nx = numExternalCoordinates();
+    if (ws.nodeMassFormed) {
+        ws.stationScratch.noalias() = data.nodeMass * b;
+        data.nodeForce -= ws.stationScratch.col(0);
+        ws.modalFree.noalias() -= ws.modalCoupling * b;
+        ws.stationScratch.noalias() = ws.modalCoupling * J;
+        ws.modalCoupling = ws.stationScratch;
+        ws.stationScratch.noalias() = data.nodeMass * J;
+        data.nodeMass.noalias() = J.transpose() * ws.stationScratch;
+    } else {
+        multiplyByExternalMass(data, b, ws.stationScratch);
+        data.nodeForce -= ws.stationScratch.col(0);
+        for (int m = 0; m < numModal_; ++m) ws.modalFree[m] += ws.productBlock[kktPos_[nx + m]];
+        ws.productColumns = -1;
+    }
+    ws.stationForce.noalias() = J.transpose() * data.nodeForce;
+    data.nodeForce = ws.stationForce;
+    ws.stationMode = true;
 }
 
 template <int Dim>
@@ -558,11 +606,47 @@ void assembleSpanCoordinates(const RopeModel<Dim>& model, int j, const R1& r1, c
 template <int Dim>
 void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                      const RopeData<Dim>& data, Eigen::VectorXd& q) const {
-    if (!arcs_.empty())
-        throw std::invalid_argument("RopeModel::spanCoordinates: a rope with wrapped nodes takes all its external "
-                                    "coordinates (spanCoordinatesFromExternal)");
+    if (!arcs_.empty()) {
+        if constexpr (Dim == 2) {
+            const WrapStationMapData m = stationMapAt(nodes, data);
+            spanCoordinatesFromExternal(j, m.x, qm, data, q);
+            return;
+        }
+        throw std::invalid_argument("RopeModel::spanCoordinates: a spatial rope with wrapped nodes takes all its "
+                                    "external coordinates (spanCoordinatesFromExternal)");
+    }
     assembleSpanCoordinates(*this, j, nodes.col(j), nodes.col(j + 1), data.materialCoordinates[j],
                             data.materialCoordinates[j + 1], qm, data, q);
+}
+
+template <int Dim>
+WrapStationMapData RopeModel<Dim>::stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
+    WrapStationMapData m;
+    if constexpr (Dim == 2) {
+        const int nY = Dim * numNodes() + numDriven_;
+        Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY);
+        for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
+        m.wrapAngles = data.ws().stationMap.wrapAngles;  // continuity with the last evaluation
+        WrapStationMap(*this).evaluate(Y, Eigen::VectorXd::Zero(nY), m);
+    }
+    return m;
+}
+
+template <int Dim>
+double RopeModel<Dim>::arcGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
+    if (arcs_.empty()) return 0.0;
+    if constexpr (Dim == 2) {
+        const WrapStationMapData m = stationMapAt(nodes, data);
+        double u = 0;
+        typename GrooveArc<Dim>::Coordinates a;
+        for (std::size_t i = 0; i < arcs_.size(); ++i) {
+            arcCoordinates(arcNode_[i], m.x, data.materialCoordinates[arcNode_[i]], a);
+            u += arcs_[i].gravityEnergy(a);
+        }
+        return u;
+    }
+    throw std::invalid_argument("RopeModel::arcGravityEnergy: a spatial rope's arcs need their axes (use the "
+                                "...FromExternal forms' energies)");
 }
 
 template <int Dim>
@@ -904,7 +988,7 @@ void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Ei
 template <int Dim>
 void RopeModel<Dim>::solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
-    solveDependentCoordinatesFromExternal(packExternal(nodes, drivenS, data, false), qm, data);
+    solveDependentCoordinatesFromExternal(stationsToExternal(nodes, nullptr, drivenS, nullptr, data), qm, data);
 }
 
 template <int Dim>
@@ -1088,9 +1172,12 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
             << " rates given for " << numDriven_ << " Driven nodes";
         throw std::invalid_argument(msg.str());
     }
-    const Eigen::VectorXd& x = packExternal(nodes, drivenS, data, false);
-    const Eigen::VectorXd& xdot = packExternal(nodeVelocities, drivenSdot, data, true);
+    const Eigen::VectorXd& x = stationsToExternal(nodes, &nodeVelocities, drivenS, &drivenSdot, data);
+    const Eigen::VectorXd& xdot = arcs_.empty() ? data.ws().packedXdot : data.ws().stationMap.xdot;
     computeDynamicsFromExternal(x, xdot, qm, qmdot, data);
+    // A rope with wrapped nodes is coupled at its stations: S, h and the modal reduction carried
+    // over (once per evaluation: a repeated one returns above with them already carried).
+    if (!arcs_.empty() && !data.ws().stationMode) dynamicsToStations(data);
 }
 
 template <int Dim>
@@ -1131,6 +1218,7 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
         if (same) return;
     }
     ws.dynamicsCurrent = false;
+    ws.stationMode = false;
 
     // Independent velocities w = [xdot (node blocks, sdot_driven); qdot_m].
     data.ws().w.resize(nw);
@@ -1389,6 +1477,25 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
 
 template <int Dim>
 void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X, Eigen::MatrixXd& SX) const {
+    const detail::RopeWorkspace<Dim>& w = data.ws();
+    if (!w.stationMode) {
+        multiplyByExternalMass(data, X, SX);
+        return;
+    }
+    // At the stations: S_Y X = J^T S (J X).
+    const Eigen::MatrixXd& J = w.stationMap.jacobian;
+    if (X.rows() != J.cols())
+        throw std::invalid_argument("RopeModel::multiplyByNodeMass: X has " + std::to_string(X.rows()) +
+                                    " rows for " + std::to_string(J.cols()) + " station coordinates");
+    detail::RopeWorkspace<Dim>& ws = data.scratch();
+    ws.stationProductX.noalias() = J * X;
+    multiplyByExternalMass(data, ws.stationProductX, ws.stationProductSX);
+    SX.noalias() = J.transpose() * ws.stationProductSX;
+}
+
+template <int Dim>
+void RopeModel<Dim>::multiplyByExternalMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                            Eigen::MatrixXd& SX) const {
     const int nx = numExternalCoordinates();
     if (X.rows() != nx)
         throw std::invalid_argument("RopeModel::multiplyByNodeMass: X has " + std::to_string(X.rows()) +
@@ -1519,7 +1626,10 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     Eigen::VectorXd& zdd = ws.zddot;
     const int nz = nw + nd + numFixed_;
     zdd.setZero(nz);
-    zdd.head(nx) = nodeAccelerations;
+    if (ws.stationMode)  // xddot = J Yddot + b
+        zdd.head(nx).noalias() = ws.stationMap.jacobian * nodeAccelerations + ws.stationMap.bias;
+    else
+        zdd.head(nx) = nodeAccelerations;
     zdd.segment(nx, numModal_) = qmddot;
     // ddot = -C_d^-1 (C_w wddot + bias)
     ws.rowScratch = ws.bias;
@@ -1658,6 +1768,20 @@ void RopeModel<Dim>::assembleReduced(RopeData<Dim>& data) const {
         ws.Qd = ws.Qz.segment(nw, nd);
         ws.Qd.noalias() -= Mdd * ws.cd;
         ws.Qbar.noalias() += ws.Gd.transpose() * ws.Qd;
+    }
+    if (ws.stationMode) {
+        // w = [x, qm] = G [Y, qm] + [b, 0] with G = diag(J, I): Mbar_Y = G^T Mbar G,
+        // Qbar_Y = G^T (Qbar - Mbar [b; 0]).
+        const Eigen::MatrixXd& J = ws.stationMap.jacobian;
+        const int nx = numExternalCoordinates(), nY = static_cast<int>(J.cols()), nm = numModal_;
+        Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nx + nm, nY + nm);
+        G.topLeftCorner(nx, nY) = J;
+        G.bottomRightCorner(nm, nm).setIdentity();
+        Eigen::VectorXd shift = Eigen::VectorXd::Zero(nx + nm);
+        shift.head(nx) = ws.stationMap.bias;
+        ws.Qbar -= ws.Mbar * shift;
+        ws.Qbar = G.transpose() * ws.Qbar;
+        ws.Mbar = G.transpose() * ws.Mbar * G;
     }
     ws.reducedValid = true;
 }

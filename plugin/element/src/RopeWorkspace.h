@@ -5,6 +5,7 @@
 
 #include "SimbodyReeving/element/BandedLU.h"
 #include "SimbodyReeving/element/RopeModel.h"
+#include "SimbodyReeving/element/WrapStationMap.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -32,6 +33,13 @@ struct RopeWorkspace {
     std::vector<GrooveArcData<Dim>> arcs;  ///< per wrapped node (RopeModel::arc)
     /// External coordinates and rates packed from the NodeMatrix forms of the API.
     Eigen::VectorXd packedX, packedXdot;
+    /// A planar rope with wrapped nodes evaluated from its stations (the NodeMatrix forms): the
+    /// map's x, xdot, J and b, and whether nodeMass, nodeForce and the modal reduction have been
+    /// carried over to the stations (RopeModel::dynamicsToStations).
+    WrapStationMapData stationMap, stationPositionMap;
+    bool stationMode = false;
+    Eigen::MatrixXd stationScratch, stationProductX, stationProductSX;
+    Eigen::VectorXd stationForce;
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
     std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)
     std::vector<Eigen::VectorXd> spanQ, spanQdot;

@@ -37,6 +37,21 @@ void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::Vect
         g.wrapSense = rope.arc(k).wrapSense();
         return TangencyEnd::circle(g);
     };
+    // The path must turn at each wrapped node the way its rope wraps the groove: a sense given
+    // the wrong way would wrap the rope around the groove's far side (a figure of eight).
+    for (int k = 1; k < N; ++k) {
+        if (!rope.isWrapped(k)) continue;
+        const Eigen::Vector2d in = station(k) - station(k - 1), out = station(k + 1) - station(k);
+        const double turn = in[0] * out[1] - in[1] * out[0];
+        const int sigma = rope.arc(k).wrapSense();
+        if (sigma * turn < -1e-9 * in.norm() * out.norm()) {
+            std::ostringstream msg;
+            msg << "WrapStationMap: node " << k << ": the rope's path turns " << (turn > 0 ? "counter-clockwise" : "clockwise")
+                << " about the plane normal there (from node " << k - 1 << " past the groove's centre to node " << k + 1
+                << ") but its wrap sense is " << (sigma > 0 ? "+1" : "-1");
+            throw std::domain_error(msg.str());
+        }
+    }
     // Node blocks: a point's position and a groove's centre are stations.
     for (int k = 0; k <= N; ++k) {
         const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? RopeModel<2>::wrappedCentreOffset() : 0);

@@ -72,6 +72,7 @@ struct NodeWrap {
 
 template <int Dim>
 class RopeModel;
+struct WrapStationMapData;
 namespace detail {
 template <int Dim>
 struct RopeWorkspace;  // the scratch of an evaluation (plugin/element/src/RopeWorkspace.h)
@@ -274,6 +275,11 @@ public:
     void setStationaryNodes(const std::vector<bool>& stationary);
     /// Gravity energy of the stored rope at these node positions and material coordinates [J].
     double storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
+    /// Gravity energy of the rope on the groove arcs [J] at these stations (a planar rope with
+    /// wrapped nodes; see the class comment on stations) and data's material coordinates; 0
+    /// without wrapped nodes.
+    /// @throws std::invalid_argument for a spatial rope with wrapped nodes.
+    double arcGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
     /// QuasiStatic spans): the length of the qm vectors below.
     int numModalCoordinates() const { return numModal_; }
@@ -412,9 +418,23 @@ private:
     void evaluateConstraints(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, RopeData<Dim>& data,
                              bool withRates) const;
     bool positionsMatch(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, const RopeData<Dim>& data) const;
-    /// x = [node positions, drivenS] of a rope of point nodes, into data's scratch.
+    /// [node positions or stations, drivenS] into data's scratch.
     const Eigen::VectorXd& packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, RopeData<Dim>& data,
                                         bool rates) const;
+    /// The external coordinates from the NodeMatrix forms' arguments: packed as they are for a
+    /// rope of point nodes; for a planar rope with wrapped nodes, mapped from the stations
+    /// (WrapStationMap, rates optional) into data's scratch.
+    const Eigen::VectorXd& stationsToExternal(const NodeMatrix& nodes, const NodeMatrix* nodeVelocities,
+                                              const Eigen::VectorXd& drivenS, const Eigen::VectorXd* drivenSdot,
+                                              RopeData<Dim>& data) const;
+    /// Carries nodeMass, nodeForce and the modal reduction of the last computeDynamics over to the
+    /// stations (S_Y = J^T S J, h_Y = J^T (h - S b); the modal accelerations' share of b).
+    void dynamicsToStations(RopeData<Dim>& data) const;
+    /// S X at the external coordinates (multiplyByNodeMass without the stations).
+    void multiplyByExternalMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                Eigen::MatrixXd& SX) const;
+    /// The station map at these stations (zero rates), its wrap angles continued from data's.
+    WrapStationMapData stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// First external coordinate of where span k - 1 ends at node k (arrival) and span k starts
     /// (departure): the node's position, or its tangent points.
     int arrivalOffset(int node) const {

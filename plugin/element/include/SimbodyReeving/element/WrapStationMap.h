@@ -60,7 +60,9 @@ public:
     /// otherwise alpha is taken in [0, 2 pi).
     /// @throws std::invalid_argument if Y or Ydot has the wrong size or is not finite.
     /// @throws std::domain_error when a tangent does not exist (a station on or inside a groove
-    ///         circle, overlapping grooves on a crossed span), naming the span and its nodes.
+    ///         circle, overlapping grooves on a crossed span), naming the span and its nodes; or
+    ///         when the path through a wrapped node's neighbours and centre turns against its wrap
+    ///         sense (the sense given the wrong way).
     void evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates, WrapStationMapData& data) const;
 
     /// S_Y = J^T S J from the rope's formed nodeMass (RopeData::formNodeMass).
