@@ -24,7 +24,15 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
         const Eigen::VectorXd& sv =
             r.planar ? pc.ropes[i].planar.materialCoordinates : pc.ropes[i].spatial.materialCoordinates;
         for (int j = 0; j < r.numSpans(); ++j) {
-            const double m = sv[j + 1] - sv[j] - r.spec.minimumSpanLength;
+            // The span's material: s_{j+1} - s_j less the arc on a wrapped node j (its start is
+            // s_j + l_j).
+            double length = sv[j + 1] - sv[j];
+            if (r.planar && r.wraps[j].radius > 0) {
+                const Eigen::VectorXd& q = pc.ropes[i].planar.spanCoordinates(j);
+                const SpanModel<2>& span = r.planarModel->span(j);
+                length = q[span.s2Index()] - q[span.s1Index()];
+            }
+            const double m = length - r.spec.minimumSpanLength;
             if (m < margin) {
                 margin = m;
                 if (which) {

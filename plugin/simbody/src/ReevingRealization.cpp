@@ -71,7 +71,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         std::vector<SpanModel<2>> spans;
         const Eigen::Vector2d g2(r.e1.dot(gravity), r.e2.dot(gravity));
         for (int j = 0; j < r.numSpans(); ++j) spans.emplace_back(r.spec.properties, r.spanOptions[j], g2);
-        auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
+        auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds, r.wraps);
         r.addStoredRope(*model);
         model->setStationaryNodes(r.stationaryNodes());
         r.planarModel = std::move(model);
@@ -394,7 +394,7 @@ double ReevingSubsystem::Guts::potential(const RopeModel<Dim>& model, const Rope
         model.span(j).evaluate(q, Eigen::VectorXd::Zero(q.size()), d);
         u += d.potentialEnergy();
     }
-    return u + model.storedRopeGravityEnergy(nodes, data);
+    return u + model.storedRopeGravityEnergy(nodes, data) + model.arcGravityEnergy(nodes, data);
 }
 
 Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {

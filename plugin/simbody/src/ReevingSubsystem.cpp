@@ -233,6 +233,21 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     }
     if (!finite(spec.planeNormal)) invalid(who + "planeNormal = " + str(spec.planeNormal) + " must be finite");
     r.planar = spec.planeNormal.norm() > 0;
+    // Wrapped deviation sheaves: the groove's radius and the rope's wrap sense about the plane normal.
+    r.wraps.assign(r.numNodes(), NodeWrap{});
+    if (spec.sheaveModel == SheaveModel::Wrapped) {
+        if (!r.planar)
+            invalid(who + "SheaveModel::Wrapped is implemented for planar ropes only (give RopeSpec::planeNormal)");
+        for (int k = 1; k + 1 < r.numNodes(); ++k) {
+            const RopeNode& n = r.nodeSpec(k);
+            if (n.kind != RopeNodeKind::DeviationSheave) continue;
+            if (n.sense != 1 && n.sense != -1)
+                invalid(who + "sheave " + std::to_string(k) + " wrap sense = " + std::to_string(n.sense) +
+                        " must be +1 or -1");
+            r.wraps[k].radius = n.radius;
+            r.wraps[k].wrapSense = n.sense;
+        }
+    }
     const Eigen::Vector3d gravity = toEigen(g.gravity());
     try {
         if (r.planar) {
@@ -254,7 +269,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             std::vector<SpanModel<2>> spans;
             for (int j = 0; j < r.numSpans(); ++j)
                 spans.emplace_back(spec.properties, r.spanOptions[j], Eigen::Vector2d::Zero());
-            const RopeModel<2> probeRope(std::move(spans), spec.unstretchedLength, r.materialKinds);
+            const RopeModel<2> probeRope(std::move(spans), spec.unstretchedLength, r.materialKinds, r.wraps);
             if (probeRope.numModalCoordinates() != r.numModal)
                 throw std::logic_error("ReevingSubsystem: modal coordinate count mismatch (internal)");
         } else {

@@ -79,6 +79,7 @@ struct RopeRecord {
     mutable std::vector<std::pair<std::vector<double>, std::shared_ptr<const RopeModel<2>>>> tractionModels;
     std::vector<DrivenNode> driven;
     std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
+    std::vector<NodeWrap> wraps;              // per node: a wrapped deviation sheave's groove (RopeModel)
     std::vector<int> nodeSlot;  // per node: its body's slot in ReevingSubsystem::Guts::bodySlots (realizeTopology)
 
     int numSpans() const { return static_cast<int>(spec.sheaves.size()) + 1; }

@@ -57,7 +57,7 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
         if (d.traction && key[d.tractionIndex] > 0) kinds[d.node] = MaterialNode::Slipping;
     std::vector<SpanModel<2>> spans;
     for (int j = 0; j < r.numSpans(); ++j) spans.push_back(r.planarModel->span(j));
-    auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, kinds);
+    auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, kinds, r.wraps);
     for (const RopeRecord::DrivenNode& d : r.driven)
         if (d.traction && key[d.tractionIndex] > 0) model->setSlipRatio(d.node, key[d.tractionIndex]);
     r.addStoredRope(*model);

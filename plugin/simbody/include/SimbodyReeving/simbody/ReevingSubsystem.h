@@ -52,6 +52,21 @@ namespace SimbodyReeving {
 ///     stick when the slip rate returns to zero; s_k is continuous through both. See TractionSheave.
 enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave, TractionSheave };
 
+/// How a rope meets its deviation sheaves (RopeSpec::sheaveModel).
+enum class SheaveModel {
+    /// The paper's point sheave (eq 30): both spans end at the sheave's centre and share its
+    /// material coordinate; the rope on the groove has no length and no mass.
+    Point,
+    /// The rope wraps the groove: the spans end at the tangent points of the groove circle (radius
+    /// RopeNode::radius, in the rope's plane) and the rope on the arc between them, of length
+    /// R alpha, carries its mass (RopeModel's NodeWrap, GrooveArc; WrapStationMap maps the bodies'
+    /// motion to the tangent points and arc lengths). The wrap sense is RopeNode::sense: +1 when
+    /// the rope, running from its start to its end, turns counter-clockwise about the plane normal
+    /// on the groove, -1 clockwise. Applies to the DeviationSheave nodes of planar ropes;
+    /// TurningSheave, TractionSheave and WinchDrum nodes keep the point model.
+    Wrapped,
+};
+
 /// The phase of a TractionSheave (ReevingSubsystem::getTractionMode).
 enum class TractionMode {
     Stick,            ///< the rope moves with the groove
@@ -68,7 +83,9 @@ struct RopeNode {
     SimTK::MobilizedBody body;  ///< Ground allowed for Anchor and DeviationSheave; a Pin for the others
     SimTK::Vec3 point{0};       ///< station (Anchor) or centre, in the body frame [m]
     double radius = 0;          ///< sheaves and drums [m], > 0
-    int sense = 1;              ///< WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind)
+    /// WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind); DeviationSheave of a rope with
+    /// SheaveModel::Wrapped: its wrap sense, +1 or -1.
+    int sense = 1;
     double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
     double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave, TractionSheave: s_ref [m]
     double frictionCoefficient = 0;  ///< TractionSheave: mu [-], >= 0
@@ -99,7 +116,15 @@ struct DeviationSheave {
     SimTK::MobilizedBody body;  ///< the body carrying the sheave (Ground allowed)
     SimTK::Vec3 centre{0};      ///< the sheave's centre in the body's frame [m]
     double radius = 0;          ///< [m], > 0
-    operator RopeNode() const { return RopeNode(body, centre, radius); }  ///< the RopeNode of kind DeviationSheave
+    /// With SheaveModel::Wrapped: +1 if the rope turns counter-clockwise about the plane normal on
+    /// the groove (running from the rope's start to its end), -1 clockwise.
+    int wrapSense = 1;
+    /// The RopeNode of kind DeviationSheave.
+    operator RopeNode() const {
+        RopeNode n(body, centre, radius);
+        n.sense = wrapSense;
+        return n;
+    }
 };
 
 /// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
@@ -222,6 +247,9 @@ struct RopeSpec {
     /// this normal (gravity must lie in it); spans are then planar (no out-of-plane modes or work).
     /// Zero: spatial spans.
     SimTK::Vec3 planeNormal{0};
+    /// The deviation sheaves' model: SheaveModel::Point (the paper's) or SheaveModel::Wrapped
+    /// (planar ropes only).
+    SheaveModel sheaveModel = SheaveModel::Point;
 };
 
 /// A SimTK::ForceSubsystem holding every rope of a MultibodySystem.
