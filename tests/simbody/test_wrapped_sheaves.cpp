@@ -203,7 +203,9 @@ TEST(WrappedSheaves, PendulumConvergesToThePointSheaveAtFirstOrderInR) {
         const Vec3 point = pendulumAfterTwoSeconds(SheaveModel::Point, R);
         const double d = (wrapped - point).norm();
         std::printf("[ pendulum R = %g ] |p_wrapped - p_point| = %.4e m, / R = %.4f\n", R, d, d / R);
-        if (previous > 0) EXPECT_NEAR(previous / d, 10.0, 0.5) << "R = " << R;
+        if (previous > 0) {
+            EXPECT_NEAR(previous / d, 10.0, 0.5) << "R = " << R;
+        }
         previous = d;
     }
 }
