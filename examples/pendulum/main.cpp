@@ -187,6 +187,7 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
     js["axial_dynamics"] = axialDynamicsName(o.axialDynamics);
     js["quasi_static_transverse"] = quasiStaticTransverseName(o.quasiStaticTransverse);
     js["axial_law"] = o.parameters.tensionOnly ? "tension-only" : "linear";
+    js["sheaves"] = o.parameters.sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? "wrapped" : "point";
     js["t_end"] = jsonNumber(o.tEnd);
     js["vx0"] = jsonNumber(o.vx0);
     js["vy0"] = jsonNumber(o.vy0);

@@ -580,8 +580,23 @@ void RopeModel<Dim>::setStationaryNodes(const std::vector<bool>& stationary) {
         throw std::invalid_argument("RopeModel::setStationaryNodes: " + std::to_string(stationary.size()) +
                                     " flags given for " + std::to_string(numNodes()) + " nodes");
     stationaryColumn_.assign(numExternalCoordinates(), 0);
-    for (int k = 0; k < numNodes(); ++k)
-        for (int i = nodeOffset_[k]; i < nodeOffset_[k + 1]; ++i) stationaryColumn_[i] = stationary[k] ? 1 : 0;
+    for (int k = 0; k < numNodes(); ++k) {
+        if (!isWrapped(k)) {
+            for (int d = 0; d < Dim; ++d) stationaryColumn_[nodeOffset_[k] + d] = stationary[k] ? 1 : 0;
+            continue;
+        }
+        // A wrapped node's tangent points and arc length move with its neighbours too: only what
+        // depends on stationary nodes alone is.
+        const bool in = stationary[k] && stationary[k - 1], out = stationary[k] && stationary[k + 1];
+        const int o = nodeOffset_[k];
+        for (int i = 0; i < wrappedBlockSize(); ++i) {
+            bool fixed = stationary[k];  // the centre and the axis
+            if (i >= wrappedArrivalOffset() && i < wrappedArrivalOffset() + Dim) fixed = in;
+            if (i >= wrappedDepartureOffset() && i < wrappedDepartureOffset() + Dim) fixed = out;
+            if (i == wrappedArcLengthOffset()) fixed = in && out;
+            stationaryColumn_[o + i] = fixed ? 1 : 0;
+        }
+    }
 }
 
 template <int Dim>

@@ -50,7 +50,10 @@ PendulumScene::PendulumScene(const PendulumParameters& p, const SpanOptions& spa
     RopeSpec rope;
     rope.name = "pendulum rope";
     rope.start = RopeAnchor{matter_->Ground(), Vec3(0)};
-    rope.sheaves = {DeviationSheave{matter_->Ground(), Vec3(p.a, 0, 0), p.r}};
+    DeviationSheave sheave{matter_->Ground(), Vec3(p.a, 0, 0), p.r};
+    sheave.wrapSense = -1;  // from the anchor along the top and down the far side: clockwise about +z
+    rope.sheaves = {sheave};
+    rope.sheaveModel = p.sheaveModel;
     rope.end = RopeAnchor{*payload_, Vec3(0, p.d, 0)};
     rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     rope.unstretchedLength = p.a + p.L;
@@ -70,7 +73,9 @@ SimTK::State PendulumScene::makeInitialState(double vx, double vy) const {
     // Straight hanging guess: both spans at the tension of the hanging weight.
     const double P = (p.M + p.rhoA * p.L) * p.g;
     const double stretch = std::sqrt(1.0 + 2.0 * P / p.EA);
-    payload_->setQToFitTranslation(s, Vec3(p.a, -p.L * stretch - p.d, 0));
+    // (A wrapped sheave lets the vertical span go at its groove's far side, r from its centre.)
+    const double x = p.sheaveModel == SheaveModel::Wrapped ? p.a + p.r : p.a;
+    payload_->setQToFitTranslation(s, Vec3(x, -p.L * stretch - p.d, 0));
     reeving_->findStaticEquilibrium(s, 1e-9);
     payload_->setUToFitLinearVelocity(s, Vec3(vx, vy, 0));
     system_->realize(s, Stage::Velocity);

@@ -54,6 +54,10 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
         invalid("span index = " + std::to_string(span) + " is outside 0.." + std::to_string(r.numSpans() - 1));
     const RopeCache& c = g.positionCache(s).ropes[rope];
     const Eigen::VectorXd& sv = r.planar ? c.planar.materialCoordinates : c.spatial.materialCoordinates;
+    if (r.planar && r.wraps[span].radius > 0) {  // a span leaving a wrapped sheave starts past its arc
+        const Eigen::VectorXd& q = c.planar.spanCoordinates(span);
+        return {q[r.planarModel->span(span).s1Index()], sv[span + 1]};
+    }
     return {sv[span], sv[span + 1]};
 }
 

@@ -24,6 +24,9 @@ struct PendulumParameters {
     double M = 1000.0;      ///< payload mass [kg], > 0
     double J = 36.0;        ///< payload moment of inertia about every axis through its centre [kg m^2], > 0
     bool tensionOnly = true;  ///< RopeProperties::tensionOnly of the rope (the paper's linear law: false)
+    /// The deviation sheave: the paper's point sheave (default, reproduces its Table 1 and figures)
+    /// or SheaveModel::Wrapped (the rope over the top of a groove of radius r; planar rope only).
+    SheaveModel sheaveModel = SheaveModel::Point;
     /// @throws std::invalid_argument naming the first parameter out of range or not finite.
     void validate() const;
 };

@@ -426,9 +426,11 @@ public:
     /// Cleared when a state is realized to Stage::Instance afresh (an integrator's initialize).
     const std::string& getLimitReached() const;
 
-    /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m].
+    /// Material coordinate s at node k (0 = start anchor, N = end anchor) [m]; at a wrapped sheave,
+    /// where the rope arrives on the groove.
     double getMaterialCoordinate(const SimTK::State& state, int rope, int node) const;
-    /// Material coordinate range [s1, s2] of a span [m].
+    /// Material coordinate range [s1, s2] of a span [m] (a span leaving a wrapped sheave starts at
+    /// the sheave's s plus the arc's length R alpha).
     std::pair<double, double> getSpanMaterialRange(const SimTK::State& state, int rope, int span) const;
     /// F_a - F_b at sheave k (1..N-1) [N]: the tension-equality residual at a DeviationSheave; at a
     /// TurningSheave the force its grip carries (not a residual).
