@@ -106,9 +106,9 @@ TEST(StudyRuns, SixCasesGiveExactlyTheDemoRunsNumbers) {
 }
 
 // Acceptance: a case forced to fail (a value that passes --check but fails the run: a rope too
-// soft for the static equilibrium) and a case past a small wall limit (2 s: the other case takes
-// 0.2 s) are recorded with their messages; the other case completes; the study ends with exit
-// status 1.
+// soft for the static equilibrium) is recorded with its message, the other case completes, and the
+// study ends with exit status 1. No wall limit here: how long the failing case takes depends on the
+// machine (and on sanitizers), its status must not.
 TEST(StudyRuns, FailingCasesAreRecordedAndTheOthersComplete) {
     const fs::path dir = scratch("failing");
     writeFile(dir / "fail.yaml",
@@ -116,9 +116,8 @@ TEST(StudyRuns, FailingCasesAreRecordedAndTheOthersComplete) {
               "fixed: {axial-modes: 0, t-end: 1}\n"
               "vary:\n"
               "  set.EA: [16.5e6, 10]\n"
-              "  vx0: [1, 1000]\n"
-              "metrics: [steps, max_energy_drift_J]\n"
-              "limits: {wall_seconds: 2}\n");
+              "  vx0: [1, 2]\n"
+              "metrics: [steps, max_energy_drift_J]\n");
     const ProgramRun r = run(kStudy + " " + quote(dir / "fail.yaml") + " --out " + quote(dir / "out") + " --quiet", dir);
     EXPECT_EQ(r.status, 1) << r.out << r.err;
     const auto rows = csvRows(dir / "out" / "results.csv");
@@ -127,12 +126,10 @@ TEST(StudyRuns, FailingCasesAreRecordedAndTheOthersComplete) {
         const auto& h = rows[0];
         return rows[row][static_cast<std::size_t>(std::find(h.begin(), h.end(), column) - h.begin())];
     };
-    EXPECT_EQ(field(1, "status"), "ok");  // EA 16.5 MN, vx0 1 m/s
-    EXPECT_GT(std::stol(field(1, "steps")), 0);
-    EXPECT_EQ(field(2, "status"), "timeout");  // vx0 1000 m/s: ~30 000 steps per simulated second, ~10 s of wall
-    EXPECT_EQ(field(2, "message"), "passed the wall-clock limit of 2 s: stopped");
-    EXPECT_GE(std::stod(field(2, "wall_seconds")), 2.0);
-    EXPECT_LT(std::stod(field(2, "wall_seconds")), 6.0);
+    for (std::size_t row : {1u, 2u}) {  // EA 16.5 MN
+        EXPECT_EQ(field(row, "status"), "ok");
+        EXPECT_GT(std::stol(field(row, "steps")), 0);
+    }
     for (std::size_t row : {3u, 4u}) {  // EA 10 N
         EXPECT_EQ(field(row, "status"), "failed");
         EXPECT_NE(field(row, "message").find("exit status 1: reeving-pendulum: simulation failed: "
@@ -141,12 +138,50 @@ TEST(StudyRuns, FailingCasesAreRecordedAndTheOthersComplete) {
             << field(row, "message");
         EXPECT_EQ(field(row, "steps"), "");
     }
-    EXPECT_NE(r.out.find("4 cases: 1 ok, 2 failed, 1 timeout"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("4 cases: 2 ok, 2 failed"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("case 2 (set.EA=10, vx0=1) failed: exit status 1"), std::string::npos) << r.out;
     const nlohmann::json s = readJson(dir / "out" / "summary.json");
     EXPECT_EQ(s.at("failed"), 2);
+    EXPECT_EQ(s.at("timeout"), 0);
+    ASSERT_EQ(s.at("failures").size(), 2u);
+    EXPECT_EQ(s.at("failures")[0].at("case"), 2);
+    EXPECT_EQ(s.at("failures")[0].at("parameters").at("set.EA"), "10");
+}
+
+// Acceptance: a case past the wall limit is stopped and recorded as a timeout, the other case
+// completes. Measured on an idle 2-core machine with t-end 5 s: the quick case (vx0 1 m/s) takes
+// 0.19 s of wall, the slow one (vx0 1000 m/s, ~100 000 steps per simulated second) 27.7 s. The
+// limit, 4 s, is 20x the quick case's wall (which sanitizers slow about 3-5x) and a seventh of the
+// slow case's.
+TEST(StudyRuns, CasesPastTheWallLimitAreStoppedAndRecorded) {
+    const fs::path dir = scratch("timeout");
+    writeFile(dir / "timeout.yaml",
+              "scene: pendulum\n"
+              "fixed: {axial-modes: 0, t-end: 5}\n"
+              "vary:\n"
+              "  vx0: [1, 1000]\n"
+              "metrics: [steps, max_energy_drift_J]\n"
+              "limits: {wall_seconds: 4}\n");
+    const ProgramRun r = run(kStudy + " " + quote(dir / "timeout.yaml") + " --out " + quote(dir / "out") + " --quiet",
+                             dir);
+    EXPECT_EQ(r.status, 1) << r.out << r.err;
+    const auto rows = csvRows(dir / "out" / "results.csv");
+    ASSERT_EQ(rows.size(), 3u);
+    auto field = [&](std::size_t row, const std::string& column) {
+        const auto& h = rows[0];
+        return rows[row][static_cast<std::size_t>(std::find(h.begin(), h.end(), column) - h.begin())];
+    };
+    EXPECT_EQ(field(1, "status"), "ok");  // vx0 1 m/s
+    EXPECT_GT(std::stol(field(1, "steps")), 0);
+    EXPECT_EQ(field(2, "status"), "timeout");
+    EXPECT_EQ(field(2, "message"), "passed the wall-clock limit of 4 s: stopped");
+    EXPECT_GE(std::stod(field(2, "wall_seconds")), 4.0);
+    EXPECT_LT(std::stod(field(2, "wall_seconds")), 8.0);
+    EXPECT_NE(r.out.find("2 cases: 1 ok, 0 failed, 1 timeout"), std::string::npos) << r.out;
+    const nlohmann::json s = readJson(dir / "out" / "summary.json");
+    EXPECT_EQ(s.at("failed"), 0);
     EXPECT_EQ(s.at("timeout"), 1);
-    ASSERT_EQ(s.at("failures").size(), 3u);
+    ASSERT_EQ(s.at("failures").size(), 1u);
     EXPECT_EQ(s.at("failures")[0].at("case"), 1);
     EXPECT_EQ(s.at("failures")[0].at("parameters").at("vx0"), "1000");
 }
