@@ -47,6 +47,9 @@ struct Row {
     std::vector<double> falls;
     double drumSpeed, motorTorque, motorPower, ropeOnDrum, trolleyForce, trolleyPower, work, residual;
     double ropeForce;  // sum of the falls' top forces [N]
+    double largestLean;               // largest angle of a fall's chord from the vertical [rad]
+    std::vector<double> wrapAngles;   // per sheave 1..n-1 [rad] (0 with point sheaves)
+    double ropeLengthError;           // spans + arcs + rope on the drum - (rope length + ropeOnDrum) [m]
     double floorForce = 0, slingForce = 0, contactDissipation = 0;  // lift-off
 };
 
@@ -81,6 +84,9 @@ Row observe(const CraneScene& scene, const State& s, double energy0) {
     r.residual = scene.reeving().calcMechanicalEnergy(s) - energy0 - r.work;
     r.ropeForce = 0;
     for (double f : r.falls) r.ropeForce += f;
+    r.largestLean = scene.largestFallLean(s);
+    for (int k = 1; k < scene.falls(); ++k) r.wrapAngles.push_back(scene.sheaveWrapAngle(s, k));
+    r.ropeLengthError = scene.ropeLengthError(s);
     if (scene.parameters().scenario == CraneScenario::LiftOff) {
         r.floorForce = scene.floorForce(s);
         r.slingForce = scene.slingForce(s);
@@ -184,6 +190,8 @@ RunResult run(const Options& o, CraneScene& scene) {
 
 struct Figures {
     std::vector<double> maxFall;
+    double maxLean = 0, maxRopeLengthError = 0;
+    std::vector<double> minWrap, maxWrap;  // per sheave 1..n-1 [rad]
     double maxSway = 0, maxPayloadAngle = 0, maxTorque = 0, maxPower = 0, maxTrolleyForce = 0;
     double maxResidual = 0, maxWork = 0;
     double peakRopeForce = 0, peakRopeForceTime = 0;
@@ -196,6 +204,13 @@ Figures summarize(const RunResult& r, int falls) {
     for (const Row& w : r.rows) {
         for (int k = 0; k < falls; ++k) f.maxFall[k] = std::max(f.maxFall[k], w.falls[k]);
         f.maxSway = std::max(f.maxSway, std::abs(w.sway));
+        f.maxLean = std::max(f.maxLean, w.largestLean);
+        f.maxRopeLengthError = std::max(f.maxRopeLengthError, std::abs(w.ropeLengthError));
+        if (f.minWrap.empty()) f.minWrap = f.maxWrap = w.wrapAngles;
+        for (size_t k = 0; k < w.wrapAngles.size(); ++k) {
+            f.minWrap[k] = std::min(f.minWrap[k], w.wrapAngles[k]);
+            f.maxWrap[k] = std::max(f.maxWrap[k], w.wrapAngles[k]);
+        }
         f.maxPayloadAngle = std::max(f.maxPayloadAngle, std::abs(w.payloadAngle));
         f.maxTorque = std::max(f.maxTorque, std::abs(w.motorTorque));
         f.maxPower = std::max(f.maxPower, std::abs(w.motorPower));
@@ -258,6 +273,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     js["program"] = "reeving-crane";
     js["scenario"] = toString(p.scenario);
     js["falls"] = n;
+    js["sheaves"] = p.sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? "wrapped" : "point";
     js["axial_modes"] = o.axialModes;
     js["transverse_modes"] = o.transverseModes;
     js["axial_dynamics"] = axialDynamicsName(o.axialDynamics);
@@ -292,6 +308,20 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
         js["final_contact_dissipation_J"] = jsonNumber(last.contactDissipation);
     }
     js["max_abs_sway_rad"] = jsonNumber(f.maxSway);
+    // Falls' lean: the largest angle of a fall's chord from the vertical, at rest (t = 0) and over
+    // the reports [deg]. Wrap angles: per sheave 1..n-1, their range over the reports [rad] (0 with
+    // point sheaves); fleet angles are 0 (planar rope). Rope length: the largest |spans + arcs +
+    // rope on the drum - their initial sum| over the reports [m].
+    js["initial_largest_fall_lean_deg"] = jsonNumber(r.rows.front().largestLean * 180.0 / SimTK::Pi);
+    js["max_largest_fall_lean_deg"] = jsonNumber(f.maxLean * 180.0 / SimTK::Pi);
+    {
+        demo_common::Json w = demo_common::Json::array();
+        for (size_t k = 0; k < f.minWrap.size(); ++k)
+            w.push_back({{"sheave", k + 1}, {"min_rad", jsonNumber(f.minWrap[k])}, {"max_rad", jsonNumber(f.maxWrap[k])}});
+        js["sheave_wrap_angles"] = w;
+    }
+    js["max_fleet_angle_rad"] = jsonNumber(0.0);
+    js["max_abs_rope_length_error_m"] = jsonNumber(f.maxRopeLengthError);
     js["max_abs_payload_angle_rad"] = jsonNumber(f.maxPayloadAngle);
     js["initial_hook_height_m"] = jsonNumber(r.rows.front().hookY);
     js["final_hook_height_m"] = jsonNumber(last.hookY);

@@ -46,6 +46,8 @@ void CraneParameters::validate() const {
         throw std::invalid_argument("CraneParameters: initialHookDepth must exceed minimumSpanLength");
     if (scenario != CraneScenario::Cycle && scenario != CraneScenario::LiftOff)
         throw std::invalid_argument("CraneParameters: scenario is not a CraneScenario");
+    if (sheaveModel != SheaveModel::Point && sheaveModel != SheaveModel::Wrapped)
+        throw std::invalid_argument("CraneParameters: sheaveModel is not a SheaveModel");
     check("hoistSpeed", hoistSpeed, hoistSpeed > 0, "> 0");
     check("hoistRamp", hoistRamp, hoistRamp > 0, "> 0");
     check("slackTime", slackTime, slackTime >= 0, ">= 0");
@@ -67,14 +69,37 @@ struct CraneLayout {
     double hookRestOffset = 0;           // hook block below the trolley at rest, along x [m]
 };
 
+bool wrapped(const CraneParameters& p) { return p.sheaveModel == SheaveModel::Wrapped; }
+
+// Wrapped sheaves: where the rope leaves sheave k = 1..n-1 (+1 counter-clockwise about +z: under
+// the hook sheaves from fall k - 1 on the left to fall k on the right; -1 over the trolley's).
+int wrapSenseOf(int k) { return isHookNode(k) ? 1 : -1; }
+
+// Length of rope on the sheaves at rest, every sheave wrapped half a turn: the rope on the hook
+// block's floor(n / 2) sheaves (hookOnly) or on all n - 1 [m]; 0 with point sheaves.
+double arcsLength(const CraneParameters& p, bool hookOnly) {
+    if (!wrapped(p)) return 0.0;
+    const int sheaves = hookOnly ? p.falls / 2 : p.falls - 1;
+    return sheaves * SimTK::Pi * p.sheaveRadius;
+}
+
 CraneLayout craneLayout(const CraneParameters& p) {
     using SimTK::Vec3;
     const int n = p.falls;
     CraneLayout c;
-    // Rope node offsets (k - n/2) pitch; the hook block's shifted to their load centroid.
+    // Rope node offsets: point sheaves (k - n/2) pitch; wrapped sheaves between the vertical falls
+    // at X_j = (j - (n - 1)/2) 2R, the drum above fall 0, the dead end on fall n - 1. The hook
+    // block's shifted to their load centroid.
     std::vector<double>& x = c.x;
     x.resize(n + 1);
-    for (int k = 0; k <= n; ++k) x[k] = (k - 0.5 * n) * p.sheavePitch;
+    if (wrapped(p)) {
+        auto fallX = [&](int j) { return (j - 0.5 * (n - 1)) * 2.0 * p.sheaveRadius; };
+        x[0] = fallX(0);
+        for (int k = 1; k < n; ++k) x[k] = 0.5 * (fallX(k - 1) + fallX(k));
+        x[n] = fallX(n - 1);
+    } else {
+        for (int k = 0; k <= n; ++k) x[k] = (k - 0.5 * n) * p.sheavePitch;
+    }
     double sumW = 0, sumWx = 0;
     for (int k = 1; k <= n; k += 2) {
         const double w = k < n ? 2.0 : 1.0;
@@ -87,6 +112,8 @@ CraneLayout craneLayout(const CraneParameters& p) {
     stations[0] = Vec3(0);  // drum axis, drum frame
     for (int k = 1; k <= n; ++k) stations[k] = Vec3(isHookNode(k) ? x[k] - hookCentroid : x[k], 0, 0);
 
+    // Wrapped sheaves: the falls hang vertical, the hook block right under the trolley.
+    if (wrapped(p)) return c;
     // Hook block's rest offset below the trolley: horizontal balance of n equal tensions,
     // sum_k (top_x - bottom_x - X) / length_k = 0 with nearly vertical falls.
     const double h = p.initialHookDepth;
@@ -106,6 +133,8 @@ CraneLayout craneLayout(const CraneParameters& p) {
 // offset [m].
 double fallsLengthAt(const CraneParameters& p, const CraneLayout& c, double depth) {
     using SimTK::Vec3;
+    // Wrapped: vertical falls between tangent points level with the sheave centres.
+    if (wrapped(p)) return p.falls * depth + p.drumHeight;
     double geometric = 0;
     for (int k = 0; k < p.falls; ++k) {
         auto position = [&](int node) {
@@ -283,7 +312,7 @@ CraneCycle CraneCycle::liftOff(const CraneParameters& p) {
     p.validate();
     CraneParameters q = p;
     q.scenario = CraneScenario::LiftOff;
-    const double k = hookStiffnessOf(q, fallsLengthAt(q, craneLayout(q), loadDepth(q)));
+    const double k = hookStiffnessOf(q, fallsLengthAt(q, craneLayout(q), loadDepth(q)) + arcsLength(q, false));
     // The sling is taut at t_taut; the rope's force then grows from the hook block's weight by
     // k v_h per second until it carries the payload too.
     const double taut = p.hoistRamp + p.slackTime;
@@ -327,6 +356,7 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     stations_ = layout.stations;
     hookRestOffset_ = layout.hookRestOffset;
     fallsLength_ = fallsLengthAt(p, layout, loadDepth(p));
+    loadedRopeLength_ = fallsLength_ + arcsLength(p, false);
 
     system_ = std::make_unique<MultibodySystem>();
     matter_ = std::make_unique<SimbodyMatterSubsystem>(*system_);
@@ -393,6 +423,7 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
         sheave.body = nodeOnHook(k) ? static_cast<const MobilizedBody&>(*hook_) : static_cast<const MobilizedBody&>(*trolley_);
         sheave.centre = stations_[k];
         sheave.radius = p.sheaveRadius;
+        sheave.wrapSense = wrapSenseOf(k);
         rope.sheaves.push_back(sheave);
     }
     RopeAnchor deadEnd;
@@ -402,12 +433,13 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     // Unstretched length: the falls' lengths with the hook at its initial depth, shortened by the
     // stretch of the static tension (M g / n per fall; lift-off: the hook block's weight alone).
-    const double geometric = fallsLengthAt(p, layout, p.initialHookDepth);
+    const double geometric = fallsLengthAt(p, layout, p.initialHookDepth) + arcsLength(p, false);
     const double tension = (p.payloadMass + p.hookMass) * p.g / n;
     const double hanging = liftOff ? p.hookMass * p.g / n : tension;
     rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * hanging / p.EA);
     rope.spanDefaults = spans;
     rope.planeNormal = Vec3(0, 0, 1);
+    rope.sheaveModel = p.sheaveModel;
     rope.minimumSpanLength = p.minimumSpanLength;
     reeving_->addRope(rope);
     // Rope colours (drawing only): red at twice the static load of a fall, (M + m_hook) g / n.
@@ -550,11 +582,43 @@ double CraneScene::ropeForce(const SimTK::State& s) const {
     return f;
 }
 
-double CraneScene::hookStiffness() const { return hookStiffnessOf(parameters_, fallsLength_); }
+double CraneScene::hookStiffness() const { return hookStiffnessOf(parameters_, loadedRopeLength_); }
 
 double CraneScene::staticRopeForce() const {
     const CraneParameters& p = parameters_;
-    return liftedMass() * p.g + p.rhoA * p.g * fallsLength_;
+    return liftedMass() * p.g + p.rhoA * p.g * (fallsLength_ + arcsLength(p, true));
+}
+
+double CraneScene::largestFallLean(const SimTK::State& s) const {
+    double lean = 0;
+    for (int k = 0; k < parameters_.falls; ++k) {
+        const std::vector<SimTK::Vec3> ends = reeving_->sampleSpan(s, 0, k, 2);
+        const SimTK::Vec3 d = ends[1] - ends[0];
+        lean = std::max(lean, std::atan2(std::abs(d[0]), std::abs(d[1])));
+    }
+    return lean;
+}
+
+double CraneScene::sheaveWrapAngle(const SimTK::State& s, int k) const {
+    if (k < 1 || k >= parameters_.falls)
+        throw std::invalid_argument("CraneScene::sheaveWrapAngle: sheave " + std::to_string(k) + " is outside 1.." +
+                                    std::to_string(parameters_.falls - 1));
+    return wrapped(parameters_) ? reeving_->getWrapAngle(s, 0, k) : 0.0;
+}
+
+double CraneScene::ropeLengthError(const SimTK::State& s) const {
+    double l = ropeOnSheaves(s) + ropeOnDrum(s);
+    for (int k = 0; k < parameters_.falls; ++k) {
+        const auto range = reeving_->getSpanMaterialRange(s, 0, k);
+        l += range.second - range.first;
+    }
+    return l - (reeving_->getRopeSpec(0).unstretchedLength + parameters_.ropeOnDrum);
+}
+
+double CraneScene::ropeOnSheaves(const SimTK::State& s) const {
+    double l = 0;
+    for (int k = 1; k < parameters_.falls; ++k) l += reeving_->getArcLength(s, 0, k);
+    return l;
 }
 
 double CraneScene::springMassDynamicFactor() const {

@@ -61,6 +61,16 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
     return {sv[span], sv[span + 1]};
 }
 
+double ReevingSubsystem::getArcLength(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    if (!r.planar || !(r.wraps[node].radius > 0)) return 0.0;
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    return getSpanMaterialRange(s, rope, node).first - c.planar.materialCoordinates[node];
+}
+
 namespace {
 // The span's axial law (the tension-only law of quasi-static spans is rounded near eps = 0).
 const AxialLaw& lawOf(const ReevingSubsystem::Guts& g, const State& s, const detail::RopeRecord& r, int span) {

@@ -231,6 +231,11 @@ double ReevingSubsystem::getTractionLimit(const State& s, int rope, int node) co
 
 double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
+    if (node >= 0 && node < r.numNodes() && r.planar && r.wraps[node].radius > 0)
+        return getArcLength(s, rope, node) / r.wraps[node].radius;
+    if (node >= 0 && node < r.numNodes() && (r.drivenIndex(node) < 0 || !r.driven[r.drivenIndex(node)].traction))
+        invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
+                " is neither a TractionSheave nor a wrapped DeviationSheave: it has no wrap angle");
     const RopeRecord::DrivenNode& d = tractionAt(r, node);
     getGuts().positionCache(s);
     return getGuts().tractionStates(s).ropes[rope][d.tractionIndex].wrapAngle;

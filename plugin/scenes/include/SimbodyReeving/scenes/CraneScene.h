@@ -44,8 +44,16 @@ struct CraneParameters {
     double railHeight = 15.0;      ///< height of the trolley's sheave centres above the ground (y = 0) [m], > 0
     double trolleyX0 = 0.0;        ///< trolley position at t = 0 [m], finite
     double trolleyMass = 2000.0;   ///< [kg], > 0 (prescribed: enters the traverse force only)
-    double sheavePitch = 0.2;      ///< horizontal distance between neighbouring rope nodes [m], > 0
-    double sheaveRadius = 0.09;    ///< radius of every sheave (validation and drawing) [m], > 0
+    /// Horizontal distance between neighbouring rope nodes [m], > 0 (SheaveModel::Point only: with
+    /// wrapped sheaves the falls hang a sheave diameter apart).
+    double sheavePitch = 0.2;
+    /// Radius of every sheave's groove (the rope's centre line on it) [m], > 0; with
+    /// SheaveModel::Point it serves validation and drawing only.
+    double sheaveRadius = 0.09;
+    /// How the rope meets the trolley and hook sheaves: SheaveModel::Wrapped (the rope leaves at
+    /// tangent points and lies on the grooves, the falls parallel) or SheaveModel::Point (the
+    /// paper's point sheave: every fall ends at sheave centres sheavePitch apart).
+    SheaveModel sheaveModel = SheaveModel::Point;
     // ---- winch drum (a Pin on the trolley, axis z)
     double drumRadius = 0.3;       ///< [m], > 0
     double drumHeight = 0.8;       ///< drum axis above the trolley's sheave centres [m], finite
@@ -135,8 +143,13 @@ struct CraneCycle {
 /// MobilizedBody::Planar from Ground (x, y, rotation about z), frame origin at its sheave centres;
 /// the payload, a MobilizedBody::Pin (axis z) hanging slingLength below the hook block's sling pin.
 ///
-/// Reeving: one planar rope of n = falls spans (falls). Rope nodes k = 0..n sit at horizontal
-/// offsets (k - n/2) sheavePitch: node 0 is the WinchDrum (start), odd nodes are DeviationSheaves
+/// Reeving: one planar rope of n = falls spans (falls). With SheaveModel::Point, rope nodes
+/// k = 0..n sit at horizontal offsets (k - n/2) sheavePitch. With SheaveModel::Wrapped the falls
+/// hang vertical at X_j = (j - (n - 1)/2) 2 R (R = sheaveRadius), a diameter apart as in a real
+/// block: sheave k sits between falls k - 1 and k (the rope passes under the hook sheaves,
+/// counter-clockwise about +z, and over the trolley sheaves, clockwise), the drum's node above
+/// fall 0 and the dead end on fall n - 1. The drum is a point node in both models (the rope leaves
+/// it from its axis; its lever arm is the drum radius). Node 0 is the WinchDrum (start), odd nodes are DeviationSheaves
 /// on the hook block, even ones on the trolley, and node n is the dead end (RopeAnchor) on the
 /// trolley for even n, on the hook block for odd n. Span k (fall k + 1) joins nodes k and k + 1;
 /// its top is node k for even k, node k + 1 for odd k. The hook block's nodes are shifted so that
@@ -208,6 +221,21 @@ public:
     // ---- observables (Stage::Position unless said otherwise)
     double trolleyX(const SimTK::State& s) const;        ///< trolley position [m]
     SimTK::Vec3 hookPosition(const SimTK::State& s) const;  ///< hook block frame origin (its sheave centres) [m]
+    /// The largest angle of a fall from the vertical [rad], >= 0: over the falls, of the chord
+    /// between the fall's two ends (tangent points with wrapped sheaves, sheave centres with point
+    /// sheaves). Vertical falls give 0; point sheaves lean by up to atan(sheavePitch / depth).
+    double largestFallLean(const SimTK::State& s) const;
+    /// Wrap angle of the rope on sheave k = 1..n-1 [rad] (ReevingSubsystem::getWrapAngle):
+    /// pi at rest with wrapped sheaves, 0 with point sheaves (no rope on the groove).
+    /// @throws std::invalid_argument if k is outside 1..n-1.
+    double sheaveWrapAngle(const SimTK::State& s, int k) const;
+    /// Length of rope on the sheaves' grooves [m]: the sum of R alpha over the sheaves (0 with
+    /// point sheaves).
+    double ropeOnSheaves(const SimTK::State& s) const;
+    /// Rope conservation residual [m]: the spans' material lengths s2 - s1 plus the rope on the
+    /// sheaves' grooves and on the drum, less the rope's length plus ropeOnDrum (what they sum to
+    /// at drum angle 0). Zero up to round-off in either sheave model.
+    double ropeLengthError(const SimTK::State& s) const;
     /// Angle of the falls from the vertical [rad]: of the line from the trolley to the hook block,
     /// measured from the hook's rest offset below the trolley; positive when the hook is on the +x
     /// side (0 at rest up to O(sheavePitch^2 / depth)).
@@ -243,12 +271,16 @@ public:
     /// The falls' length with the hook where the rope takes the load [m]: at initialHookDepth
     /// (Cycle) or ropeSlack() above it (LiftOff), the drum's fall drumHeight longer than the others.
     double fallsLength() const { return fallsLength_; }
-    /// k: the hook's vertical stiffness through its falls there [N/m], n^2 EA / fallsLength() (a hook
-    /// displacement x stretches the rope by n x, at uniform force over frictionless sheaves): n EA / h
-    /// for n falls of equal length h.
+    /// The loaded rope's length there [m]: fallsLength() plus, with wrapped sheaves, the half turns
+    /// on the n - 1 sheaves, (n - 1) pi R.
+    double loadedRopeLength() const { return loadedRopeLength_; }
+    /// k: the hook's vertical stiffness through its falls there [N/m], n^2 EA / loadedRopeLength()
+    /// (a hook displacement x stretches the rope by n x, at uniform force over frictionless
+    /// sheaves): n EA / h for n falls of equal length h on point sheaves.
     double hookStiffness() const;
     /// The rope force that holds the lifted mass at rest [N]: the total over the falls at their
-    /// tops, (payloadMass + hookMass) g + rhoA g fallsLength() (the load and the falls' own weight).
+    /// tops, (payloadMass + hookMass) g + rhoA g (fallsLength() + the rope on the hook block's
+    /// sheaves, floor(n / 2) pi R when wrapped): the load and the weight of the rope it hangs from.
     /// The reference of the dynamic factor, peak ropeForce / staticRopeForce.
     double staticRopeForce() const;
     /// The dynamic factor of a mass M = liftedMass() picked up by a massless spring k =
@@ -282,6 +314,7 @@ private:
     std::vector<SimTK::Vec3> stations_;
     double hookRestOffset_ = 0;
     double fallsLength_ = 0;
+    double loadedRopeLength_ = 0;
     double floorHeight_ = SimTK::NaN;
     std::unique_ptr<SimTK::MultibodySystem> system_;
     std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter_;

@@ -395,8 +395,16 @@ public:
     /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position: alpha may come from the
     /// geometry of the state's first realization).
     double getTractionLimit(const SimTK::State& state, int rope, int node) const;
-    /// The wrap angle alpha in use [rad] (Stage::Position).
+    /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
+    /// uses; at a wrapped DeviationSheave (SheaveModel::Wrapped) the geometry's, l / R with l =
+    /// getArcLength.
+    /// @throws std::invalid_argument if rope or node is out of range or the node is neither.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
+    /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
+    /// DeviationSheave, 0 at every point node. The rope's length is the sum over its spans of
+    /// s2 - s1 (getSpanMaterialRange) and over its nodes of l.
+    /// @throws std::invalid_argument if rope or node is out of range.
+    double getArcLength(const SimTK::State& state, int rope, int node) const;
     /// Friction power dissipated in the groove, (P_a - P_b) v >= 0 [W] (Stage::Velocity; 0 in stick).
     double getFrictionPower(const SimTK::State& state, int rope, int node) const;
     /// Work dissipated by friction in the groove since the start [J]: the integral of
