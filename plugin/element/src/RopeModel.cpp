@@ -480,10 +480,11 @@ const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& node
     if constexpr (Dim == 2) {
         // Positions alone (a solve) go to a map of their own: the dynamics' J and b stay valid.
         WrapStationMapData& m = nodeVelocities ? ws.stationMap : ws.stationPositionMap;
-        const Eigen::VectorXd& Ydot = nodeVelocities ? packExternal(*nodeVelocities, *drivenSdot, data, true)
-                                                      : ws.packedXdot.setZero(Y.size());
         if (m.wrapAngles.size() == 0) m.wrapAngles = (nodeVelocities ? ws.stationPositionMap : ws.stationMap).wrapAngles;
-        WrapStationMap(*this).evaluate(Y, Ydot, m);
+        if (nodeVelocities)
+            WrapStationMap(*this).evaluate(Y, packExternal(*nodeVelocities, *drivenSdot, data, true), m);
+        else
+            WrapStationMap(*this).evaluatePositions(Y, m);
         return m.x;
     }
     return Y;  // (not reached: packExternal throws for spatial ropes with wrapped nodes)
@@ -642,7 +643,7 @@ WrapStationMapData RopeModel<Dim>::stationMapAt(const NodeMatrix& nodes, const R
         Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY);
         for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
         m.wrapAngles = data.ws().stationMap.wrapAngles;  // continuity with the last evaluation
-        WrapStationMap(*this).evaluate(Y, Eigen::VectorXd::Zero(nY), m);
+        WrapStationMap(*this).evaluatePositions(Y, m);
     }
     return m;
 }

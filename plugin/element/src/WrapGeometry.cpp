@@ -274,22 +274,33 @@ void computeTangencyRates(const TangencyEnd& start, const TangencyEnd& end, cons
 }
 
 void computeTangencyJacobian(const TangencyEnd& start, const TangencyEnd& end, const SpanTangency& tangency,
-                             TangencyJacobian& jacobian) {
-    // The rates are linear in the ends' velocities and axis rates: one column per unit rate.
+                             TangencyJacobian& jacobian, bool axisColumns) {
+    // The rates are linear in the ends' velocities and axis rates: one column per unit rate, each
+    // the first-order part of computeTangencyRates (one 2 x 2 solve on the shared K).
     jacobian.setZero();
-    TangencyRates r;
+    EndState a, b;
+    restoreEnds(start, end, tangency, a, b);
+    const Tangency2x2 K = tangencyMatrix(a, b);
+    const Vec3 D = b.T - a.T;
     for (int col = 0; col < 12; ++col) {
-        EndMotion ms, me;
         const int block = col / 3, k = col % 3;
-        if (block == 1 && !start.isCircle()) continue;
-        if (block == 3 && !end.isCircle()) continue;
-        Vec3& target = block == 0 ? ms.velocity : block == 1 ? ms.axisRate : block == 2 ? me.velocity : me.axisRate;
-        target[k] = 1;
-        computeTangencyRates(start, end, tangency, ms, me, r);
-        jacobian.block<3, 1>(0, col) = r.startVelocity;
-        jacobian.block<3, 1>(3, col) = r.endVelocity;
-        jacobian(6, col) = r.startAngleRate;
-        jacobian(7, col) = r.endAngleRate;
+        if ((block == 1 || block == 3) && !axisColumns) continue;
+        if (block == 1 && !a.circle) continue;
+        if (block == 3 && !b.circle) continue;
+        Vec3 va = Vec3::Zero(), vb = Vec3::Zero(), ea0 = Vec3::Zero(), eb0 = Vec3::Zero();
+        if (block == 0) va[k] = 1;
+        if (block == 2) vb[k] = 1;
+        if (block == 1) ea0 = -a.n * a.e[k];  // edot at phidot = 0 for the axis rate n' = unit k
+        if (block == 3) eb0 = -b.n * b.e[k];
+        const Vec3 Dd0 = (vb + b.R * eb0) - (va + a.R * ea0);
+        const double ra = a.circle ? -(Dd0.dot(a.e) + D.dot(ea0)) : 0.0;
+        const double rb = b.circle ? -(Dd0.dot(b.e) + D.dot(eb0)) : 0.0;
+        double pa = 0, pb = 0;
+        solveTangency(a, b, K, ra, rb, pa, pb);
+        jacobian.block<3, 1>(0, col) = va + a.R * (ea0 + pa * a.w);
+        jacobian.block<3, 1>(3, col) = vb + b.R * (eb0 + pb * b.w);
+        jacobian(6, col) = pa;
+        jacobian(7, col) = pb;
     }
 }
 

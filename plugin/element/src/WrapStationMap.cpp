@@ -10,7 +10,18 @@ Eigen::Vector3d lift(const Eigen::Vector2d& v) { return Eigen::Vector3d(v[0], v[
 
 void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates,
                               WrapStationMapData& data) const {
+    evaluateMap(stations, &stationRates, data);
+}
+
+void WrapStationMap::evaluatePositions(const Eigen::VectorXd& stations, WrapStationMapData& data) const {
+    evaluateMap(stations, nullptr, data);
+}
+
+void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::VectorXd* ratesOrNull,
+                                 WrapStationMapData& data) const {
     const RopeModel<2>& rope = *rope_;
+    const bool withRates = ratesOrNull != nullptr;
+    const Eigen::VectorXd& stationRates = withRates ? *ratesOrNull : stations;
     const int N = rope.numSpans(), nY = numStationCoordinates(), nx = rope.numExternalCoordinates();
     const int nodeRows = rope.numNodeCoordinates();
     if (stations.size() != nY || stationRates.size() != nY) {
@@ -19,15 +30,21 @@ void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::Vect
             << nY << " station coordinates";
         throw std::invalid_argument(msg.str());
     }
-    if (!stations.allFinite() || !stationRates.allFinite())
+    if (!stations.allFinite() || (withRates && !stationRates.allFinite()))
         throw std::invalid_argument("WrapStationMap: the stations and their rates must be finite");
     const bool previous = data.wrapAngles.size() == N + 1;
     if (!previous) data.wrapAngles.setZero(N + 1);
     const bool warm = static_cast<int>(data.tangencies.size()) == N;
     data.tangencies.resize(N);
     data.x.setZero(nx);
-    data.bias.setZero(nx);
-    data.jacobian.setZero(nx, nY);
+    if (withRates) {
+        data.bias.setZero(nx);
+        data.jacobian.setZero(nx, nY);
+    } else {  // positions only: no J, b or xdot (sized 0, so that no stale ones are used)
+        data.bias.resize(0);
+        data.jacobian.resize(0, 0);
+        data.xdot.resize(0);
+    }
     auto station = [&](int k) { return Eigen::Vector2d(stations.segment<2>(2 * k)); };
     auto end = [&](int k) {
         if (!rope.isWrapped(k)) return TangencyEnd::point(lift(station(k)));
@@ -56,16 +73,17 @@ void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::Vect
     for (int k = 0; k <= N; ++k) {
         const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? RopeModel<2>::wrappedCentreOffset() : 0);
         data.x.segment<2>(o) = station(k);
-        data.jacobian.block<2, 2>(o, 2 * k).setIdentity();
+        if (withRates) data.jacobian.block<2, 2>(o, 2 * k).setIdentity();
     }
     for (int d = 0; d < rope.numDrivenNodes(); ++d) {
         data.x[nodeRows + d] = stations[2 * (N + 1) + d];
-        data.jacobian(nodeRows + d, 2 * (N + 1) + d) = 1.0;
+        if (withRates) data.jacobian(nodeRows + d, 2 * (N + 1) + d) = 1.0;
     }
-    // Angle rates and their biases per wrapped node: phi at its arrival (end of span k - 1) and
-    // departure (start of span k), as Jacobian rows over Y.
-    Eigen::MatrixXd phiIn = Eigen::MatrixXd::Zero(N + 1, nY), phiOut = Eigen::MatrixXd::Zero(N + 1, nY);
-    Eigen::VectorXd phiInBias = Eigen::VectorXd::Zero(N + 1), phiOutBias = Eigen::VectorXd::Zero(N + 1);
+    // A wrapped node's arc length l = R alpha, alpha = sigma (phi_out - phi_in): its Jacobian row
+    // and bias gather R sigma phi_out's from the span it starts (k) and -R sigma phi_in's from the
+    // span it ends (k - 1).
+    auto arcRow = [&](int k) { return rope.nodeCoordinateOffset(k) + RopeModel<2>::wrappedArcLengthOffset(); };
+    auto arcScale = [&](int k) { return rope.arc(k).radius() * rope.arc(k).wrapSense(); };
     TangencyJacobian Jt;
     TangencyRates rates;
     for (int j = 0; j < N; ++j) {
@@ -73,11 +91,13 @@ void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::Vect
         try {
             const SpanTangency t = computeSpanTangency(a, b, warm ? &data.tangencies[j] : nullptr);
             data.tangencies[j] = t;
-            computeTangencyJacobian(a, b, t, Jt);
-            EndMotion ma, mb;
-            ma.velocity = lift(stationRates.segment<2>(2 * j));
-            mb.velocity = lift(stationRates.segment<2>(2 * (j + 1)));
-            computeTangencyRates(a, b, t, ma, mb, rates);
+            if (withRates) {
+                computeTangencyJacobian(a, b, t, Jt, false);  // planar: the grooves' axes stay +z
+                EndMotion ma, mb;
+                ma.velocity = lift(stationRates.segment<2>(2 * j));
+                mb.velocity = lift(stationRates.segment<2>(2 * (j + 1)));
+                computeTangencyRates(a, b, t, ma, mb, rates);
+            }
         } catch (const std::domain_error& e) {
             std::ostringstream msg;
             msg << "WrapStationMap: span " << j << " (nodes " << j << " and " << j + 1 << "): " << e.what();
@@ -86,29 +106,33 @@ void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::Vect
         const SpanTangency& t = data.tangencies[j];
         // Jt rows [T1 (3), T2 (3), phi1, phi2], columns [p1 (3), n1 (3), p2 (3), n2 (3)]: the plane's
         // x, y of the points and the stations of nodes j (columns 0, 1) and j + 1 (6, 7).
-        auto rowsOver = [&](int row, Eigen::MatrixXd& out, int r) {
-            out.block<1, 2>(r, 2 * j) += Jt.block<1, 2>(row, 0);
-            out.block<1, 2>(r, 2 * (j + 1)) += Jt.block<1, 2>(row, 6);
+        auto rowsOver = [&](int row, double scale, int r) {
+            data.jacobian.block<1, 2>(r, 2 * j) += scale * Jt.block<1, 2>(row, 0);
+            data.jacobian.block<1, 2>(r, 2 * (j + 1)) += scale * Jt.block<1, 2>(row, 6);
         };
         if (rope.isWrapped(j)) {
             const int o = rope.nodeCoordinateOffset(j) + RopeModel<2>::wrappedDepartureOffset();
             data.x.segment<2>(o) = t.start.head<2>();
-            for (int d = 0; d < 2; ++d) {
-                rowsOver(d, data.jacobian, o + d);
-                data.bias[o + d] = rates.startAcceleration[d];
+            if (withRates) {
+                for (int d = 0; d < 2; ++d) {
+                    rowsOver(d, 1.0, o + d);
+                    data.bias[o + d] = rates.startAcceleration[d];
+                }
+                rowsOver(6, arcScale(j), arcRow(j));
+                data.bias[arcRow(j)] += arcScale(j) * rates.startAngleAcceleration;
             }
-            rowsOver(6, phiOut, j);
-            phiOutBias[j] = rates.startAngleAcceleration;
         }
         if (rope.isWrapped(j + 1)) {
             const int o = rope.nodeCoordinateOffset(j + 1) + RopeModel<2>::wrappedArrivalOffset();
             data.x.segment<2>(o) = t.end.head<2>();
-            for (int d = 0; d < 2; ++d) {
-                rowsOver(3 + d, data.jacobian, o + d);
-                data.bias[o + d] = rates.endAcceleration[d];
+            if (withRates) {
+                for (int d = 0; d < 2; ++d) {
+                    rowsOver(3 + d, 1.0, o + d);
+                    data.bias[o + d] = rates.endAcceleration[d];
+                }
+                rowsOver(7, -arcScale(j + 1), arcRow(j + 1));
+                data.bias[arcRow(j + 1)] -= arcScale(j + 1) * rates.endAngleAcceleration;
             }
-            rowsOver(7, phiIn, j + 1);
-            phiInBias[j + 1] = rates.endAngleAcceleration;
         }
     }
     // Arc lengths l = R alpha, alpha = sigma (phi_out - phi_in) (continuous with the previous alpha).
@@ -123,13 +147,9 @@ void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::Vect
                                                   data.wrapAngles[k])
                                       : wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial);
         data.wrapAngles[k] = alpha;
-        const int o = rope.nodeCoordinateOffset(k) + RopeModel<2>::wrappedArcLengthOffset();
-        const double Rs = arc.radius() * arc.wrapSense();
-        data.x[o] = arc.radius() * alpha;
-        data.jacobian.row(o) = Rs * (phiOut.row(k) - phiIn.row(k));
-        data.bias[o] = Rs * (phiOutBias[k] - phiInBias[k]);
+        data.x[arcRow(k)] = arc.radius() * alpha;
     }
-    data.xdot.noalias() = data.jacobian * stationRates;
+    if (withRates) data.xdot.noalias() = data.jacobian * stationRates;
 }
 
 void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData,

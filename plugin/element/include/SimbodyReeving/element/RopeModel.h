@@ -433,7 +433,8 @@ private:
     /// S X at the external coordinates (multiplyByNodeMass without the stations).
     void multiplyByExternalMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X,
                                 Eigen::MatrixXd& SX) const;
-    /// The station map at these stations (zero rates), its wrap angles continued from data's.
+    /// The station map's positions at these stations (WrapStationMap::evaluatePositions: no J, b),
+    /// its wrap angles continued from data's.
     WrapStationMapData stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// First external coordinate of where span k - 1 ends at node k (arrival) and span k starts
     /// (departure): the node's position, or its tangent points.

@@ -137,10 +137,11 @@ SpanTangency computeSpanTangency(const TangencyEnd& start, const TangencyEnd& en
 void computeTangencyRates(const TangencyEnd& start, const TangencyEnd& end, const SpanTangency& tangency,
                           const EndMotion& startMotion, const EndMotion& endMotion, TangencyRates& rates);
 
-/// The Jacobian J of the tangency (see TangencyJacobian).
+/// The Jacobian J of the tangency (see TangencyJacobian). With axisColumns false the axis columns
+/// (n_1, n_2) are left zero: for ends whose axes do not move (a planar rope's grooves).
 /// @throws std::domain_error as computeTangencyRates.
 void computeTangencyJacobian(const TangencyEnd& start, const TangencyEnd& end, const SpanTangency& tangency,
-                             TangencyJacobian& jacobian);
+                             TangencyJacobian& jacobian, bool axisColumns = true);
 
 /// Wrap angle alpha [rad] of the rope on a groove, from the radial vector where it arrives (the end
 /// of the span before the groove) to where it leaves (the start of the span after it), measured in

@@ -64,6 +64,10 @@ public:
     ///         when the path through a wrapped node's neighbours and centre turns against its wrap
     ///         sense (the sense given the wrong way).
     void evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates, WrapStationMapData& data) const;
+    /// x (and the tangencies and wrap angles) alone, at the stations Y: what a solve of the
+    /// positions or a query needs. data.jacobian, data.bias and data.xdot are left empty.
+    /// @throws as evaluate.
+    void evaluatePositions(const Eigen::VectorXd& stations, WrapStationMapData& data) const;
 
     /// S_Y = J^T S J from the rope's formed nodeMass (RopeData::formNodeMass).
     /// @throws std::invalid_argument if ropeData holds no formed nodeMass of the map's size.
@@ -72,6 +76,8 @@ public:
     void stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData, Eigen::VectorXd& hY) const;
 
 private:
+    void evaluateMap(const Eigen::VectorXd& stations, const Eigen::VectorXd* stationRates,
+                     WrapStationMapData& data) const;
     const RopeModel<2>* rope_;
 };
 
