@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Instructions per right-hand side of the paper's pendulum (reeving-pendulum --axial-modes 3, the
-# demo's default case) with the point sheave and with the wrapped sheave (--sheaves wrapped), and
-# their ratio: callgrind totals of two runs of different length (t-end 1 s and 2 s), so start-up,
-# static equilibrium and output cancel, divided by the difference of their rhs counts
-# (summary.json "rhs_evaluations"). Deterministic; about 1 minute under callgrind.
+# Instructions per right-hand side with wrapped sheaves against point sheaves, for the paper's
+# pendulum (reeving-pendulum --axial-modes 3, the demo's default case) and the 12-fall crane
+# (reeving-crane --falls 12, n_a = 1 quasi-static): callgrind totals of two runs of different length
+# (pendulum t-end 1 s and 2 s, crane 2 s and 4 s: rest, then the lift starting), so start-up,
+# static equilibrium and output cancel, divided by the difference of their rhs counts (summary.json
+# "rhs_evaluations"). Deterministic; about 4 minutes under callgrind.
 #
-# usage: bench/wrapped_cost.sh [BUILD_DIR]     (default build; the demo must be built)
+# usage: bench/wrapped_cost.sh [BUILD_DIR]     (default build; the demos must be built)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -13,23 +14,34 @@ command -v valgrind >/dev/null || { echo "wrapped_cost.sh: valgrind not found" >
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 declare -A cost
-for model in point wrapped; do
-    for t in 1 2; do
-        valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.$model.$t" \
-            "$build/examples/reeving-pendulum" --axial-modes 3 --sheaves "$model" --no-plots --quiet \
-            --t-end "$t" --out "$tmp/$model-$t" >/dev/null 2>&1
-    done
-    cost[$model]=$(python3 - "$tmp" "$model" <<'PY'
+run() {  # scene model t: one callgrind run
+    local scene=$1 model=$2 t=$3
+    case $scene in
+        pendulum) set -- "$build/examples/reeving-pendulum" --axial-modes 3 ;;
+        crane) set -- "$build/examples/reeving-crane" --falls 12 ;;
+    esac
+    valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.$scene.$model.$t" "$@" --sheaves "$model" --no-plots \
+        --quiet --t-end "$t" --out "$tmp/$scene-$model-$t" >/dev/null 2>&1
+}
+for scene in pendulum crane; do
+    if [ "$scene" = pendulum ]; then short=1 long=2; else short=2 long=4; fi
+    for model in point wrapped; do
+        run "$scene" "$model" "$short"
+        run "$scene" "$model" "$long"
+        cost[$scene.$model]=$(python3 - "$tmp" "$scene" "$model" "$short" "$long" <<'PY'
 import json, re, sys
-tmp, m = sys.argv[1], sys.argv[2]
-tot = lambda f: int(re.search(r'^summary: (\d+)', open(f).read(), re.M).group(1))
-rhs = lambda d: json.load(open(d + '/summary.json'))['rhs_evaluations']
-print((tot(f'{tmp}/cg.{m}.2') - tot(f'{tmp}/cg.{m}.1')) / (rhs(f'{tmp}/{m}-2') - rhs(f'{tmp}/{m}-1')))
+tmp, scene, m, a, b = sys.argv[1:]
+tot = lambda t: int(re.search(r'^summary: (\d+)', open(f'{tmp}/cg.{scene}.{m}.{t}').read(), re.M).group(1))
+rhs = lambda t: json.load(open(f'{tmp}/{scene}-{m}-{t}/summary.json'))['rhs_evaluations']
+print((tot(b) - tot(a)) / (rhs(b) - rhs(a)))
 PY
 )
+    done
 done
-echo "| sheave model | instructions / rhs | ratio to point |"
-echo "|---|---:|---:|"
-for model in point wrapped; do
-    python3 -c "print('| $model | %d k | %.2f |' % (round(${cost[$model]} / 1000), ${cost[$model]} / ${cost[point]}))"
+echo "| scene | sheave model | instructions / rhs | ratio to point |"
+echo "|---|---|---:|---:|"
+for scene in pendulum crane; do
+    for model in point wrapped; do
+        python3 -c "print('| $scene | $model | %d k | %.2f |' % (round(${cost[$scene.$model]} / 1000), ${cost[$scene.$model]} / ${cost[$scene.point]}))"
+    done
 done
