@@ -3,7 +3,8 @@
 # run, as one Markdown table:
 #   pendulum: reeving-pendulum --axial-modes 3 (the demo's default case: quasi-static axial modes,
 #             n_t = 1, RK-Merson 1e-6, reports every 0.01 s) against bench-floor-pendulum;
-#   crane:    reeving-crane --falls 12 --axial-modes 1 (RK-Merson 1e-6, reports every 0.02 s)
+#   crane:    reeving-crane --falls 12 --axial-modes 1 --sheaves point (the floor's geometry: falls
+#             between sheave centres; RK-Merson 1e-6, reports every 0.02 s)
 #             against bench-floor-crane (12 falls);
 # the floors are the same scenes with massless Force::TwoPointLinearSpring's in place of the rope
 # (bench/floor/*.cpp say what is the same and what is not).
@@ -34,7 +35,7 @@ cmake --build "$build" -j2 --target reeving-pendulum reeving-crane bench-floor-p
 CASES=(
     "pendulum-plugin|$build/examples/reeving-pendulum --axial-modes 3 --no-plots --quiet|1|2|20"
     "pendulum-floor|$build/bench/bench-floor-pendulum --quiet|1|2|20"
-    "crane-plugin|$build/examples/reeving-crane --falls 12 --axial-modes 1 --no-plots --quiet|1.5|3|36"
+    "crane-plugin|$build/examples/reeving-crane --falls 12 --axial-modes 1 --sheaves point --no-plots --quiet|1.5|3|36"
     "crane-floor|$build/bench/bench-floor-crane --falls 12 --quiet|1.5|3|36"
 )
 tmp=$(mktemp -d)

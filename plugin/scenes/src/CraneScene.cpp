@@ -312,7 +312,7 @@ CraneCycle CraneCycle::liftOff(const CraneParameters& p) {
     p.validate();
     CraneParameters q = p;
     q.scenario = CraneScenario::LiftOff;
-    const double k = hookStiffnessOf(q, fallsLengthAt(q, craneLayout(q), loadDepth(q)) + arcsLength(q, false));
+    const double k = hookStiffnessOf(q, fallsLengthAt(q, craneLayout(q), loadDepth(q)));
     // The sling is taut at t_taut; the rope's force then grows from the hook block's weight by
     // k v_h per second until it carries the payload too.
     const double taut = p.hoistRamp + p.slackTime;
@@ -433,10 +433,11 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     rope.properties = {p.rhoA, p.EA, p.EI, p.tensionOnly};
     // Unstretched length: the falls' lengths with the hook at its initial depth, shortened by the
     // stretch of the static tension (M g / n per fall; lift-off: the hook block's weight alone).
-    const double geometric = fallsLengthAt(p, layout, p.initialHookDepth) + arcsLength(p, false);
+    const double geometric = fallsLengthAt(p, layout, p.initialHookDepth);
     const double tension = (p.payloadMass + p.hookMass) * p.g / n;
     const double hanging = liftOff ? p.hookMass * p.g / n : tension;
-    rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * hanging / p.EA);
+    // The rope on the grooves is inextensible (GrooveArc): it adds its geometric length.
+    rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * hanging / p.EA) + arcsLength(p, false);
     rope.spanDefaults = spans;
     rope.planeNormal = Vec3(0, 0, 1);
     rope.sheaveModel = p.sheaveModel;
@@ -582,7 +583,7 @@ double CraneScene::ropeForce(const SimTK::State& s) const {
     return f;
 }
 
-double CraneScene::hookStiffness() const { return hookStiffnessOf(parameters_, loadedRopeLength_); }
+double CraneScene::hookStiffness() const { return hookStiffnessOf(parameters_, fallsLength_); }
 
 double CraneScene::staticRopeForce() const {
     const CraneParameters& p = parameters_;

@@ -50,10 +50,10 @@ struct CraneParameters {
     /// Radius of every sheave's groove (the rope's centre line on it) [m], > 0; with
     /// SheaveModel::Point it serves validation and drawing only.
     double sheaveRadius = 0.09;
-    /// How the rope meets the trolley and hook sheaves: SheaveModel::Wrapped (the rope leaves at
-    /// tangent points and lies on the grooves, the falls parallel) or SheaveModel::Point (the
-    /// paper's point sheave: every fall ends at sheave centres sheavePitch apart).
-    SheaveModel sheaveModel = SheaveModel::Point;
+    /// How the rope meets the trolley and hook sheaves: SheaveModel::Wrapped (the default: the rope
+    /// leaves at tangent points and lies on the grooves, the falls parallel) or SheaveModel::Point
+    /// (the paper's point sheave: every fall ends at sheave centres sheavePitch apart).
+    SheaveModel sheaveModel = SheaveModel::Wrapped;
     // ---- winch drum (a Pin on the trolley, axis z)
     double drumRadius = 0.3;       ///< [m], > 0
     double drumHeight = 0.8;       ///< drum axis above the trolley's sheave centres [m], finite
@@ -274,9 +274,10 @@ public:
     /// The loaded rope's length there [m]: fallsLength() plus, with wrapped sheaves, the half turns
     /// on the n - 1 sheaves, (n - 1) pi R.
     double loadedRopeLength() const { return loadedRopeLength_; }
-    /// k: the hook's vertical stiffness through its falls there [N/m], n^2 EA / loadedRopeLength()
-    /// (a hook displacement x stretches the rope by n x, at uniform force over frictionless
-    /// sheaves): n EA / h for n falls of equal length h on point sheaves.
+    /// k: the hook's vertical stiffness through its falls there [N/m], n^2 EA / fallsLength() (a
+    /// hook displacement x stretches the falls by n x, at uniform force over frictionless sheaves;
+    /// the rope on wrapped sheaves' grooves is inextensible, GrooveArc): n EA / h for n falls of
+    /// equal length h.
     double hookStiffness() const;
     /// The rope force that holds the lifted mass at rest [N]: the total over the falls at their
     /// tops, (payloadMass + hookMass) g + rhoA g (fallsLength() + the rope on the hook block's
