@@ -45,7 +45,7 @@ const std::vector<SceneInfo>& scenes() {
          false,
          {"axial-modes"},
          {"integrator", "accuracy", "fixed_step", "axial_modes", "transverse_modes", "axial_dynamics",
-          "quasi_static_transverse", "axial_law", "sheaves", "t_end", "vx0", "vy0", "steps", "rhs_evaluations",
+          "quasi_static_transverse", "axial_law", "sheaves", "t_end", "t_reached", "termination", "limit", "vx0", "vy0", "steps", "rhs_evaluations",
           "wall_seconds", "initial_kinetic_energy_J", "max_energy_drift_J", "max_constraint_error_N", "parameters.a", "parameters.L",
           "parameters.d", "parameters.r", "parameters.g", "parameters.rhoA", "parameters.EA", "parameters.EI",
           "parameters.M", "parameters.J"}},

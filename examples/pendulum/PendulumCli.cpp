@@ -18,8 +18,10 @@ const char* kFooter =
     "Outputs: timeseries.csv, static_axial_force.csv, summary.json (in DIR, or DIR/modes-N/ for several\n"
     "n_a) and fig2..fig5 PNG figures in DIR (gnuplot).\n"
     "Exit status: 0 done (with --check: the options are valid); 2 bad command line or unusable --out\n"
-    "(nothing written); 1 the simulation failed or reached --max-steps (nothing written); 130\n"
-    "interrupted (SIGINT/SIGTERM, nothing written).";
+    "(nothing written); 3 a rope limit ended a case early (a span at minimumSpanLength; with\n"
+    "--sheaves wrapped, the wrap angle at 0: the rope leaving the groove): the outputs up to that\n"
+    "instant are written, summary.json says \"limit_reached\"; 1 the simulation failed or reached\n"
+    "--max-steps (nothing written); 130 interrupted (SIGINT/SIGTERM, nothing written).";
 
 // The --set keys: the Table 1 parameters.
 std::map<std::string, double*> parameterKeys(SimbodyReeving::PendulumParameters& p) {

@@ -59,6 +59,7 @@ struct CaseResult {
     std::vector<StaticRow> staticRows;
     long steps = 0, rhsEvaluations = 0;
     double wallSeconds = 0, initialKineticEnergy = 0, maxEnergyDrift = 0, maxConstraintError = 0;
+    std::string limit;  // "" or the rope limit that ended the run (ReevingSubsystem::getLimitReached)
 };
 
 Row observe(const PendulumScene& scene, const State& s) {
@@ -151,6 +152,13 @@ CaseResult runCase(const Options& o, int na, std::atomic<double>& progress, bool
         r.rows.push_back(observe(scene, st));
         viz.report(st);
         progress = st.getTime() / o.tEnd;
+        if (!scene.reeving().getLimitReached().empty() || integ->isSimulationOver()) {
+            // A rope limit (a span at minimumSpanLength, a wrapped sheave's wrap angle at 0)
+            // requested termination: the run ends here, its reports so far kept.
+            r.limit = scene.reeving().getLimitReached();
+            if (r.limit.empty()) r.limit = "the integrator ended the simulation at t = " + std::to_string(st.getTime()) + " s";
+            break;
+        }
     }
     viz.close();  // the window closes and its process ends with the run
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -189,6 +197,9 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
     js["axial_law"] = o.parameters.tensionOnly ? "tension-only" : "linear";
     js["sheaves"] = o.parameters.sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? "wrapped" : "point";
     js["t_end"] = jsonNumber(o.tEnd);
+    js["t_reached"] = jsonNumber(r.rows.back().t);
+    js["termination"] = r.limit.empty() ? "completed" : "limit_reached";
+    js["limit"] = r.limit;
     js["vx0"] = jsonNumber(o.vx0);
     js["vy0"] = jsonNumber(o.vy0);
     js["steps"] = r.steps;
@@ -214,7 +225,9 @@ void writeComparison(const fs::path& dir, const std::vector<CaseResult>& cases) 
     c << "t";
     for (const auto& r : cases) c << ",x_" << r.axialModes << ",axial_force_payload_" << r.axialModes;
     c << '\n' << std::setprecision(12);
-    for (size_t k = 0; k < cases.front().rows.size(); ++k) {
+    size_t rows = cases.front().rows.size();  // a case that reached a rope limit ends early
+    for (const auto& r : cases) rows = std::min(rows, r.rows.size());
+    for (size_t k = 0; k < rows; ++k) {
         c << cases.front().rows[k].t;
         for (const auto& r : cases) c << ',' << r.rows[k].x << ',' << r.rows[k].axialForcePayload;
         c << '\n';
@@ -396,12 +409,18 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     long steps = 0;
     double drift = 0;
+    bool limited = false;
     for (const CaseResult& r : cases) {
         steps += r.steps;
         drift = std::max(drift, r.maxEnergyDrift);
+        if (!r.limit.empty()) {
+            limited = true;
+            std::fprintf(stderr, "reeving-pendulum: n_a = %d: %s; outputs up to t = %.6g s written\n", r.axialModes,
+                         r.limit.c_str(), r.rows.back().t);
+        }
     }
-    std::printf("reeving-pendulum: %zu case(s), %.1f s simulated each, wall %.2f s, %ld steps, max energy drift %.3e J, "
+    std::printf("reeving-pendulum: %zu case(s), %.1f s simulated each%s, wall %.2f s, %ld steps, max energy drift %.3e J, "
                 "outputs in %s\n",
-                cases.size(), o.tEnd, wall, steps, drift, out.string().c_str());
-    return 0;
+                cases.size(), o.tEnd, limited ? " (or up to a rope limit)" : "", wall, steps, drift, out.string().c_str());
+    return limited ? 3 : 0;
 }

@@ -34,6 +34,14 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         throw std::invalid_argument("WrapStationMap: the stations and their rates must be finite");
     const bool previous = data.wrapAngles.size() == N + 1;
     if (!previous) data.wrapAngles.setZero(N + 1);
+    // An evaluation that throws leaves no wrap angles to continue from if it had none.
+    struct ForgetAnglesUnlessDone {
+        Eigen::VectorXd& angles;
+        bool keep;
+        ~ForgetAnglesUnlessDone() {
+            if (!keep) angles.resize(0);
+        }
+    } guard{data.wrapAngles, previous};
     const bool warm = static_cast<int>(data.tangencies.size()) == N;
     data.tangencies.resize(N);
     data.x.setZero(nx);
@@ -55,8 +63,10 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         return TangencyEnd::circle(g);
     };
     // The path must turn at each wrapped node the way its rope wraps the groove: a sense given
-    // the wrong way would wrap the rope around the groove's far side (a figure of eight).
-    for (int k = 1; k < N; ++k) {
+    // the wrong way would wrap the rope around the groove's far side (a figure of eight). Checked
+    // where alpha starts (no previous evaluation); from there alpha is continued, and a wrap angle
+    // falling through 0 (the rope leaving the groove) is for the caller to stop at.
+    for (int k = 1; k < N && !previous; ++k) {
         if (!rope.isWrapped(k)) continue;
         const Eigen::Vector2d in = station(k) - station(k - 1), out = station(k + 1) - station(k);
         const double turn = in[0] * out[1] - in[1] * out[0];
@@ -150,6 +160,7 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         data.x[arcRow(k)] = arc.radius() * alpha;
     }
     if (withRates) data.xdot.noalias() = data.jacobian * stationRates;
+    guard.keep = true;
 }
 
 void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData,

@@ -1,5 +1,6 @@
 // ReevingSubsystem: rope limits that end a run cleanly (a span at RopeSpec::minimumSpanLength:
-// two-blocking or a drum hauling the last span in; a drum out of rope), and the driven-node
+// two-blocking or a drum hauling the last span in; a drum out of rope; a wrapped sheave's wrap
+// angle at zero: the rope leaving the groove), and the driven-node
 // queries (torque, power, rope on drum).
 
 #include "ReevingSubsystemGuts.h"
@@ -42,6 +43,19 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
                       << " m (two-blocking, or a drum hauled the span in)";
                     *which = o.str();
                 }
+            }
+        }
+        // A wrapped sheave whose wrap angle falls to zero: the rope leaves its groove (the tangent
+        // points meet; past them the rope would wrap the groove backwards).
+        for (int k = 1; k + 1 < r.numNodes(); ++k) {
+            if (!(r.planar && r.wraps[k].radius > 0)) continue;
+            const double arc = pc.ropes[i].planar.spanCoordinates(k)[r.planarModel->span(k).s1Index()] -
+                               pc.ropes[i].planar.materialCoordinates[k];
+            if (arc < margin) {
+                margin = arc;
+                if (which)
+                    *which = "rope '" + r.spec.name + "' sheave " + std::to_string(k) +
+                             ": its wrap angle fell to 0 (the rope leaves the groove)";
             }
         }
         for (const RopeRecord::DrivenNode& d : r.driven) {

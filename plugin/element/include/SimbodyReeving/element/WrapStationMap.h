@@ -60,9 +60,11 @@ public:
     /// otherwise alpha is taken in [0, 2 pi).
     /// @throws std::invalid_argument if Y or Ydot has the wrong size or is not finite.
     /// @throws std::domain_error when a tangent does not exist (a station on or inside a groove
-    ///         circle, overlapping grooves on a crossed span), naming the span and its nodes; or
-    ///         when the path through a wrapped node's neighbours and centre turns against its wrap
-    ///         sense (the sense given the wrong way).
+    ///         circle, overlapping grooves on a crossed span), naming the span and its nodes; or,
+    ///         without previous wrap angles (where alpha starts), when the path through a wrapped
+    ///         node's neighbours and centre turns against its wrap sense (the sense given the wrong
+    ///         way). With previous ones alpha is continued and may fall below 0 (the rope leaving
+    ///         the groove: ReevingSubsystem ends a run there).
     void evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates, WrapStationMapData& data) const;
     /// x (and the tangencies and wrap angles) alone, at the stations Y: what a solve of the
     /// positions or a query needs. data.jacobian, data.bias and data.xdot are left empty.

@@ -237,9 +237,10 @@ struct RopeSpec {
     double unstretchedLength = 0;
     /// Shortest unstretched span length the run accepts [m], > 0: a span whose material length
     /// reaches it (two-blocking: the hook block at the trolley sheaves; a drum hauling the last
-    /// span in) ends the run cleanly, as does a drum running out of rope: the subsystem's event
-    /// handler requests termination (Integrator::EventHandlerRequestedTermination) and
-    /// getLimitReached() names the rope, span or drum and the time.
+    /// span in) ends the run cleanly, as does a drum running out of rope or, with
+    /// SheaveModel::Wrapped, a sheave's wrap angle falling to 0 (the rope leaving its groove): the
+    /// subsystem's event handler requests termination (Integrator::EventHandlerRequestedTermination)
+    /// and getLimitReached() names the rope, span, drum or sheave and the time.
     double minimumSpanLength = 0.2;
     SpanOptions spanDefaults;               ///< mode counts and options of every span...
     std::vector<std::pair<int, SpanOptions>> spanOverrides;  ///< ...except these (span index, options)
@@ -430,7 +431,8 @@ public:
     /// @throws std::invalid_argument if rope or node is out of range or the node is not a WinchDrum.
     double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;
     /// The rope limit that ended the last run ("" if none): a span reaching
-    /// RopeSpec::minimumSpanLength or a drum running out of rope, with rope, span or node, and time.
+    /// RopeSpec::minimumSpanLength, a drum running out of rope or a wrapped sheave's wrap angle
+    /// reaching 0, with rope, span or node, and time.
     /// Cleared when a state is realized to Stage::Instance afresh (an integrator's initialize).
     const std::string& getLimitReached() const;
 
