@@ -1,6 +1,7 @@
 // The reeving-crane executable end to end: outputs with their columns and
-// keys, the number of falls, a rope limit ending the run (exit 3, outputs written), bad input and
-// unusable output folders (exit 2, nothing written), SIGINT (exit 130, nothing written).
+// keys, the number of falls, both sheave models, a rope limit ending the run (exit 3, outputs
+// written), bad input and unusable output folders (exit 2, nothing written), SIGINT (exit 130,
+// nothing written).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -172,6 +173,53 @@ TEST(CraneDemo, FallsAndModeOptions) {
 
 // A lift beyond the two-blocking height: the shortest fall reaches minimumSpanLength, the run ends
 // there cleanly, the outputs up to that instant are written, exit status 3 with one stderr line.
+// --sheaves point|wrapped over the first 1.5 s (at rest, then the lift starts at 1 s): summary.json
+// names the model and reports the falls' lean at rest, the wrap angles' range per sheave and the
+// rope's length error (tests/scenes/test_crane_wrapped_sheaves.cpp has the physics).
+TEST(CraneDemo, SheaveModels) {
+    for (const std::string sheaves : {"point", "wrapped"}) {
+        const fs::path out = scratch("sheaves_" + sheaves);
+        const std::string log = out.string() + ".log";
+        ASSERT_EQ(run("--sheaves " + sheaves + " --t-end 1.5 --report-interval 0.1 --no-plots --quiet --out '" +
+                          out.string() + "'",
+                      log),
+                  0)
+            << slurp(log);
+        const nlohmann::json json = checkSummary(out / "summary.json");
+        EXPECT_EQ(json.value("sheaves", ""), sheaves);
+        EXPECT_EQ(json.value("termination", ""), "completed");
+        const double lean = json.value("initial_largest_fall_lean_deg", -1.0);
+        if (sheaves == "point") {
+            // The falls join nodes sheavePitch = 0.2 m apart 11 m below: measured 1.05946 deg; bound
+            // 1e-3 deg (23x over its 4.4e-5 deg from 1.0595).
+            EXPECT_NEAR(lean, 1.0595, 1e-3);
+        } else {
+            // Measured 2.05e-6 deg (the inextensible rope on the grooves, the drum's fall 0.8 m longer:
+            // FallsHangVerticalAtRest); bound 2e-5 deg, 10x, 5000x inside the required 0.1 deg.
+            EXPECT_GE(lean, 0.0);
+            EXPECT_LT(lean, 2e-5);
+        }
+        EXPECT_GE(json.value("max_largest_fall_lean_deg", -1.0), lean);
+        // One range per sheave 1..3: pi with wrapped sheaves (measured within -2.4e-9 .. +1.0e-6 rad
+        // as the lift starts; bound 1e-5 rad, 10x), 0 with point sheaves (no rope on the groove).
+        ASSERT_TRUE(json.contains("sheave_wrap_angles") && json["sheave_wrap_angles"].is_array());
+        const auto& wraps = json["sheave_wrap_angles"];
+        ASSERT_EQ(wraps.size(), 3u);
+        for (size_t k = 0; k < wraps.size(); ++k) {
+            EXPECT_EQ(wraps[k].value("sheave", 0), static_cast<int>(k) + 1);
+            const double lo = wraps[k].value("min_rad", -1.0), hi = wraps[k].value("max_rad", -1.0);
+            EXPECT_LE(lo, hi) << k;
+            const double expected = sheaves == "point" ? 0.0 : std::acos(-1.0);
+            EXPECT_NEAR(lo, expected, 1e-5) << sheaves << " " << k;
+            EXPECT_NEAR(hi, expected, 1e-5) << sheaves << " " << k;
+        }
+        EXPECT_EQ(json.value("max_fleet_angle_rad", -1.0), 0.0);  // the rope is planar
+        // Round-off of a sum of lengths up to 40 m: measured 1.4e-14 m in both; bound 1e-12 m (70x).
+        EXPECT_GE(json.value("max_abs_rope_length_error_m", -1.0), 0.0);
+        EXPECT_LT(json.value("max_abs_rope_length_error_m", 1.0), 1e-12);
+    }
+}
+
 TEST(CraneDemo, TwoBlockingEndsTheRunWithExitThree) {
     const fs::path out = scratch("two_blocking");
     const std::string log = out.string() + ".log";
@@ -203,6 +251,7 @@ TEST(CraneDemo, BadInputExitsTwoAndWritesNothing) {
         {"--transverse-modes -1", "--transverse-modes: '-1' must be in 0..16"},
         {"--axial-dynamics fast", "--axial-dynamics: 'fast' must be one of: quasi-static, dynamic"},
         {"--axial-law rigid", "--axial-law: 'rigid' must be one of: tension-only, linear"},
+        {"--sheaves bogus", "--sheaves: 'bogus' must be one of: point, wrapped"},
         {"--lift 0", "--lift: '0' must be > 0"},
         {"--traverse inf", "--traverse: 'inf' is not a finite number"},
         {"--t-end -1", "--t-end: '-1' must be > 0"},
