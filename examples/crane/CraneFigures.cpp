@@ -107,12 +107,21 @@ std::vector<Polyline> drawCrane(const CraneScene& scene, const SimTK::State& s) 
     lines.push_back({Ink::Sheave,
                      {Vec2(nodes[n][0] - m, nodes[n][1] - m), Vec2(nodes[n][0] + m, nodes[n][1] - m),
                       Vec2(nodes[n][0], nodes[n][1] + m), Vec2(nodes[n][0] - m, nodes[n][1] - m)}});
-    // Falls.
+    // The rope, one polyline in rope order: the falls and, on wrapped sheaves, the rope on their
+    // grooves between them (ReevingSubsystem::sampleArc).
+    const SimbodyReeving::ReevingSubsystem& reeving = scene.reeving();
+    const SimbodyReeving::RopeSpec& spec = reeving.getRopeSpec(0);
+    Polyline rope{Ink::Rope, {}};
+    auto append = [&](const std::vector<Vec3>& points) {  // the first point repeats the last one drawn
+        for (size_t i = rope.points.empty() ? 0 : 1; i < points.size(); ++i) rope.points.push_back(xy(points[i]));
+    };
     for (int k = 0; k < n; ++k) {
-        Polyline rope{Ink::Rope, {}};
-        for (const Vec3& q : scene.reeving().sampleSpan(s, 0, k, 24)) rope.points.push_back(xy(q));
-        lines.push_back(rope);
+        if (k > 0 && spec.sheaveModel == SimbodyReeving::SheaveModel::Wrapped &&
+            spec.sheaves[k - 1].kind == SimbodyReeving::RopeNodeKind::DeviationSheave)
+            append(reeving.sampleArc(s, 0, k, 13));
+        append(reeving.sampleSpan(s, 0, k, 24));
     }
+    lines.push_back(rope);
     // Hook block, sling, payload.
     double hl = 0, hr = 0;
     for (int k = 1; k <= n; ++k)

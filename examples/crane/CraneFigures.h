@@ -27,8 +27,9 @@ struct Snapshot {
     std::vector<Polyline> lines;
 };
 
-/// Draws trolley, drum (with a spoke showing its angle), sheaves, falls (sampled with
-/// ReevingSubsystem::sampleSpan), hook block, sling and payload at `s` (Stage::Position).
+/// Draws trolley, drum (with a spoke showing its angle), sheaves, the rope as one polyline (the
+/// falls sampled with ReevingSubsystem::sampleSpan and, on wrapped sheaves, the rope on the
+/// grooves with sampleArc), hook block, sling and payload at `s` (Stage::Position).
 std::vector<Polyline> drawCrane(const SimbodyReeving::CraneScene& scene, const SimTK::State& s);
 
 /// What the cycle is doing at time t ("at rest", "lifting", "lowering", "traversing", or two of

@@ -1,6 +1,6 @@
 // What ReevingSubsystem's decorations draw: spans coloured by axial force through the
-// documented colour map, sheaves at their radius, the drum's stored rope following getRopeOnDrum,
-// and the force scale's validation.
+// documented colour map, the rope on the grooves of wrapped sheaves, sheaves at their radius, the
+// drum's stored rope following getRopeOnDrum, and the force scale's validation.
 #include <SimbodyReeving/scenes/CraneScene.h>
 #include <SimbodyReeving/scenes/PendulumScene.h>
 #include "support/ExpectThrowMessage.h"
@@ -27,12 +27,13 @@ struct Drawn : SimTK::DecorativeGeometryImplementation {
     struct Line {
         Vec3 colour;
         double thickness;
+        Vec3 from, to;
     };
     std::vector<Line> lines;
     std::vector<double> cylinderRadii, sphereRadii;
     void implementPointGeometry(const SimTK::DecorativePoint&) override {}
     void implementLineGeometry(const SimTK::DecorativeLine& l) override {
-        lines.push_back({l.getColor(), l.getLineThickness()});
+        lines.push_back({l.getColor(), l.getLineThickness(), l.getPoint1(), l.getPoint2()});
     }
     void implementBrickGeometry(const SimTK::DecorativeBrick&) override {}
     void implementCylinderGeometry(const SimTK::DecorativeCylinder& c) override { cylinderRadii.push_back(c.getRadius()); }
@@ -99,6 +100,57 @@ TEST(VisualizerDecorations, PendulumSpansColouredByAxialForceSheaveAtItsRadius) 
     ASSERT_EQ(d.cylinderRadii.size(), 1u);
     EXPECT_DOUBLE_EQ(d.cylinderRadii[0], p.r);
     EXPECT_EQ(d.sphereRadii.size(), 2u);
+}
+
+// The pendulum over a wrapped sheave: after the two spans' 2 x 19 segments, the rope on the groove
+// as 19 more (sampleArc with the spans' 20 points) on the circle of radius r about the sheave,
+// from the end of the horizontal span to the start of the hanging one (the rope drawn without a
+// gap), in the colour of the axial force where it arrives.
+TEST(VisualizerDecorations, WrappedSheaveDrawsTheRopeOnItsGroove) {
+    PendulumParameters parameters;
+    parameters.sheaveModel = SheaveModel::Wrapped;
+    PendulumScene scene(parameters, SpanOptions{});
+    const State s = scene.makeInitialState(0.5, 0);
+    const ReevingSubsystem& rv = scene.reeving();
+    const PendulumParameters& p = scene.parameters();
+    const double reference = 2 * p.M * p.g;
+    const Drawn d = draw(rv, s);
+    std::vector<Drawn::Line> rope;
+    for (const auto& l : d.lines)
+        if (l.thickness == 4) rope.push_back(l);
+    ASSERT_EQ(rope.size(), 57u);
+    const Vec3 centre(p.a, 0, 0);
+    double radius = 0, chain = 0;
+    for (int k = 38; k < 57; ++k) {
+        radius = std::max({radius, std::abs((rope[k].from - centre).norm() - p.r),
+                           std::abs((rope[k].to - centre).norm() - p.r)});
+        if (k > 38) chain = std::max(chain, (rope[k].from - rope[k - 1].to).norm());
+    }
+    const double gapIn = (rope[38].from - rope[18].to).norm();   // end of span 0 -> the arc
+    const double gapOut = (rope[19].from - rope[56].to).norm();  // the arc -> start of span 1
+    double drawnLength = 0;
+    for (int k = 38; k < 57; ++k) drawnLength += (rope[k].to - rope[k].from).norm();
+    const double l = rv.getArcLength(s, 0, 1);
+    const double arrival = rv.getAxialForce(s, 0, 0, rv.getSpanMaterialRange(s, 0, 0).second);
+    double colour = 0;
+    for (int k = 38; k < 57; ++k) colour = std::max(colour, (rope[k].colour - mapColour(arrival / reference)).norm());
+    std::printf("wrapped pendulum: wrap angle %.4f rad; arc segments off the groove circle by %.2e m, gaps %.2e "
+                "(in) %.2e (out) %.2e (between) m; drawn %.6f of l = %.6f m (%.2e from the chords' %.6f); "
+                "colour %.2e\n",
+                rv.getWrapAngle(s, 0, 1), radius, gapIn, gapOut, chain, drawnLength, l,
+                drawnLength - 38 * p.r * std::sin(l / p.r / 38), 38 * p.r * std::sin(l / p.r / 38), colour);
+    EXPECT_LT(radius, 1e-14);  // measured 3.1e-16
+    EXPECT_LT(gapIn, 1e-14);   // measured 0
+    EXPECT_LT(gapOut, 1e-14);  // measured 5.0e-16
+    EXPECT_EQ(chain, 0.0);     // consecutive segments share their points
+    // 19 equal chords of the wrap angle alpha = l / r (1.604 rad): 2 19 r sin(alpha / 38), 2.9e-4 l
+    // short of l.
+    EXPECT_NEAR(drawnLength, 38 * p.r * std::sin(l / p.r / 38), 1e-14);  // measured 0
+    EXPECT_LT(colour, 1e-12);  // measured 0: the same formula
+    // The sheave is still a disc of radius r (the point-sheave pendulum draws no arc: 38 rope
+    // segments, the test above).
+    ASSERT_EQ(d.cylinderRadii.size(), 1u);
+    EXPECT_DOUBLE_EQ(d.cylinderRadii[0], p.r);
 }
 
 TEST(VisualizerDecorations, CraneDrumShowsItsStoredRope) {

@@ -3,6 +3,8 @@
 
 #include "ReevingSubsystemGuts.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -178,6 +180,33 @@ std::vector<Vec3> ReevingSubsystem::sampleSpan(const State& s, int rope, int spa
     getSpanMaterialRange(s, rope, span);  // validates
     if (numPoints < 2) invalid("sampleSpan: numPoints = " + std::to_string(numPoints) + " must be >= 2");
     return getGuts().sample(s, rope, span, numPoints);
+}
+
+std::vector<Vec3> ReevingSubsystem::sampleArc(const State& s, int rope, int node, int numPoints) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    if (!(r.planar && r.wraps[node].radius > 0))
+        invalid("sampleArc: rope '" + r.spec.name + "' node " + std::to_string(node) +
+                " is not a wrapped DeviationSheave (SheaveModel::Wrapped): it has no arc");
+    if (numPoints < 2) invalid("sampleArc: numPoints = " + std::to_string(numPoints) + " must be >= 2");
+    const RopeCache& c = g.positionCache(s).ropes.at(rope);
+    // The centre in the rope plane (the plane sample() draws the spans in: through the start node).
+    const Eigen::Vector3d station = c.nodes3.col(node);
+    const Eigen::Vector3d centre = station - r.normal * (r.normal.dot(station) - r.normal.dot(c.nodes3.col(0)));
+    // The arc starts where span k - 1 ends and turns about sigma n (GrooveArc's kinematics):
+    // r(theta) = c + cos(theta) d + sin(theta) (sigma n x d), theta in [0, alpha].
+    const Eigen::Vector3d d = toEigen(g.sample(s, rope, node - 1, 2).back()) - centre;
+    const Eigen::Vector3d w = (static_cast<double>(r.wraps[node].wrapSense) * r.normal).cross(d);
+    const double alpha = getArcLength(s, rope, node) / r.wraps[node].radius;
+    std::vector<Vec3> out;
+    out.reserve(numPoints);
+    for (int k = 0; k < numPoints; ++k) {
+        const double theta = alpha * k / (numPoints - 1);
+        out.push_back(toSimTK(Eigen::Vector3d(centre + std::cos(theta) * d + std::sin(theta) * w)));
+    }
+    return out;
 }
 
 double ReevingSubsystem::calcRopeKineticEnergy(const State& s) const {

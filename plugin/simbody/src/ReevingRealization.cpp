@@ -502,6 +502,16 @@ int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, 
                                        .setColor(forceColour(reference > 0 ? forces[k] / reference : 0.0))
                                        .setLineThickness(4));
         }
+        // The rope on the grooves of wrapped sheaves, in the colour of the axial force where it
+        // arrives (the end of the span before; the tension equality makes it the departing span's).
+        for (int k = 1; k + 1 < r.numNodes(); ++k) {
+            if (!(r.planar && r.wraps[k].radius > 0)) continue;
+            const std::vector<Vec3> p = rv.sampleArc(s, rope, k, decorationPoints);
+            const double arrival = rv.getAxialForce(s, rope, k - 1, rv.getSpanMaterialRange(s, rope, k - 1).second);
+            const Vec3 colour = forceColour(reference > 0 ? arrival / reference : 0.0);
+            for (size_t m = 0; m + 1 < p.size(); ++m)
+                geometry.push_back(DecorativeLine(p[m], p[m + 1]).setColor(colour).setLineThickness(4));
+        }
         // Nodes: sheaves and drums at their radius, anchors as small spheres.
         const double d = drawnRopeDiameter(r.spec.properties.massPerLength);
         for (int k = 0; k < r.numNodes(); ++k) {

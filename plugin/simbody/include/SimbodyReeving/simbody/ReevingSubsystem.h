@@ -449,6 +449,16 @@ public:
     double getMaxConstraintError(const SimTK::State& state) const;
     /// Positions in Ground of numPoints >= 2 equally spaced material points of a span [m].
     std::vector<SimTK::Vec3> sampleSpan(const SimTK::State& state, int rope, int span, int numPoints) const;
+    /// Positions in Ground of numPoints >= 2 equally spaced material points of the rope on the
+    /// groove of node k, a wrapped DeviationSheave (SheaveModel::Wrapped) [m] (Stage::Position):
+    /// from the arrival tangent point (the end of span k - 1, sampleSpan's last point) along the
+    /// groove circle (radius R about the sheave's centre, the node's station on its body, in the
+    /// rope plane) in the wrap sense (RopeNode::sense) through the wrap angle getWrapAngle, to the
+    /// departure tangent point (the start of span k, to round-off). With sampleSpan it draws the
+    /// rope without a gap at its sheaves.
+    /// @throws std::invalid_argument if rope or node is out of range, the node is not a wrapped
+    ///         DeviationSheave (a point node has no arc), or numPoints < 2.
+    std::vector<SimTK::Vec3> sampleArc(const SimTK::State& state, int rope, int node, int numPoints) const;
     /// Power dissipated by the ropes' Kelvin-Voigt damping (RopeProperties::axialRetardationTime)
     /// [W], >= 0 (Stage::Velocity).
     double getDampingPower(const SimTK::State& state) const;
@@ -534,7 +544,9 @@ public:
     /// What the decorations draw (any SimTK::Visualizer, at Stage::Position): each span as a
     /// polyline coloured by its axial force P = EA eps at each segment's midpoint, through the
     /// colour map c(x) = (1 - x) blue (0.1, 0.3, 1) + x red (1, 0.1, 0.05), x = clamp(P / P_ref, 0, 1)
-    /// (blue: slack or P = 0; red: P >= P_ref); every DeviationSheave and TurningSheave as a disc of
+    /// (blue: slack or P = 0; red: P >= P_ref); the rope on the groove of every wrapped
+    /// DeviationSheave (sampleArc, as many points as a span) in the colour of the axial force at
+    /// the end of the span arriving there; every DeviationSheave and TurningSheave as a disc of
     /// its radius in the plane of its spans (a TurningSheave with a spoke that turns with its pin);
     /// every WinchDrum as a drum of its radius with the stored rope (getRopeOnDrum) wound on it as a
     /// helix in layers (rope diameter for drawing only: that of a steel wire rope of the rope's rhoA,
