@@ -192,7 +192,8 @@ TEST(StudyFile, UnknownMetric) {
     EXPECT_THROW_MESSAGE(parse("scene: pendulum\nfixed: {axial-modes: 0}\nmetrics: [parameters.Ea]\n"), StudyError,
                          "s.yaml:3:11: unknown metric 'parameters.Ea' for scene pendulum (reeving-pendulum's "
                          "summary.json has integrator, accuracy, fixed_step, axial_modes, transverse_modes, "
-                         "axial_dynamics, quasi_static_transverse, axial_law, sheaves, t_end, vx0, vy0, steps, rhs_evaluations, "
+                         "axial_dynamics, quasi_static_transverse, axial_law, sheaves, t_end, t_reached, termination, limit, vx0, vy0, steps, "
+                         "rhs_evaluations, "
                          "wall_seconds, initial_kinetic_energy_J, max_energy_drift_J, max_constraint_error_N, "
                          "parameters.a, parameters.L, parameters.d, parameters.r, parameters.g, parameters.rhoA, "
                          "parameters.EA, parameters.EI, parameters.M, parameters.J; the runner adds wall_seconds)");
