@@ -493,24 +493,23 @@ const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& node
 template <int Dim>
 void RopeModel<Dim>::dynamicsToStations(RopeData<Dim>& data) const {
     detail::RopeWorkspace<Dim>& ws = data.ws();
-    const Eigen::MatrixXd& J = ws.stationMap.jacobian;
     const Eigen::VectorXd& b = ws.stationMap.bias;
     const int nx = numExternalCoordinates();
     if (ws.nodeMassFormed) {
         ws.stationScratch.noalias() = data.nodeMass * b;
         data.nodeForce -= ws.stationScratch.col(0);
         ws.modalFree.noalias() -= ws.modalCoupling * b;
-        ws.stationScratch.noalias() = ws.modalCoupling * J;
+        multiplyStationJacobianFromLeft(ws.modalCoupling, ws.stationMap, ws.stationScratch);
         ws.modalCoupling = ws.stationScratch;
-        ws.stationScratch.noalias() = data.nodeMass * J;
-        data.nodeMass.noalias() = J.transpose() * ws.stationScratch;
+        multiplyStationJacobianFromLeft(data.nodeMass, ws.stationMap, ws.stationScratch);
+        multiplyByStationJacobianTransposed(ws.stationMap, ws.stationScratch, data.nodeMass);
     } else {
         multiplyByExternalMass(data, b, ws.stationScratch);
         data.nodeForce -= ws.stationScratch.col(0);
         for (int m = 0; m < numModal_; ++m) ws.modalFree[m] += ws.productBlock[kktPos_[nx + m]];
         ws.productColumns = -1;
     }
-    ws.stationForce.noalias() = J.transpose() * data.nodeForce;
+    multiplyByStationJacobianTransposed(ws.stationMap, data.nodeForce, ws.stationForce);
     data.nodeForce = ws.stationForce;
     ws.stationMode = true;
 }
@@ -624,8 +623,7 @@ void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen
                                      const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     if (!arcs_.empty()) {
         if constexpr (Dim == 2) {
-            const WrapStationMapData m = stationMapAt(nodes, data);
-            spanCoordinatesFromExternal(j, m.x, qm, data, q);
+            spanCoordinatesFromExternal(j, mappedPositions(nodes, data), qm, data, q);
             return;
         }
         throw std::invalid_argument("RopeModel::spanCoordinates: a spatial rope with wrapped nodes takes all its "
@@ -633,6 +631,23 @@ void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen
     }
     assembleSpanCoordinates(*this, j, nodes.col(j), nodes.col(j + 1), data.materialCoordinates[j],
                             data.materialCoordinates[j + 1], qm, data, q);
+}
+
+template <int Dim>
+const Eigen::VectorXd& RopeModel<Dim>::mappedPositions(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
+    detail::RopeWorkspace<Dim>& ws = data.scratch();
+    if constexpr (Dim == 2) {
+        const int np = Dim * numNodes();
+        Eigen::VectorXd& Y = ws.queryStations;
+        Y.setZero(np + numDriven_);
+        for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
+        for (const WrapStationMapData* m : {&ws.stationPositionMap, &ws.stationMap})
+            if (m->stations.size() == Y.size() && m->x.size() > 0 && m->stations.head(np) == Y.head(np)) return m->x;
+        ws.queryMap.wrapAngles = ws.stationMap.wrapAngles;  // continuity with the last evaluation
+        WrapStationMap(*this).evaluatePositions(Y, ws.queryMap);
+        return ws.queryMap.x;
+    }
+    return ws.packedX;  // (not reached: spatial ropes with wrapped nodes take their x directly)
 }
 
 template <int Dim>
@@ -652,11 +667,11 @@ template <int Dim>
 double RopeModel<Dim>::arcGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     if (arcs_.empty()) return 0.0;
     if constexpr (Dim == 2) {
-        const WrapStationMapData m = stationMapAt(nodes, data);
+        const Eigen::VectorXd& x = mappedPositions(nodes, data);
         double u = 0;
         typename GrooveArc<Dim>::Coordinates a;
         for (std::size_t i = 0; i < arcs_.size(); ++i) {
-            arcCoordinates(arcNode_[i], m.x, data.materialCoordinates[arcNode_[i]], a);
+            arcCoordinates(arcNode_[i], x, data.materialCoordinates[arcNode_[i]], a);
             u += arcs_[i].gravityEnergy(a);
         }
         return u;
@@ -1504,9 +1519,9 @@ void RopeModel<Dim>::multiplyByNodeMass(const RopeData<Dim>& data, const Eigen::
         throw std::invalid_argument("RopeModel::multiplyByNodeMass: X has " + std::to_string(X.rows()) +
                                     " rows for " + std::to_string(J.cols()) + " station coordinates");
     detail::RopeWorkspace<Dim>& ws = data.scratch();
-    ws.stationProductX.noalias() = J * X;
+    multiplyByStationJacobian(w.stationMap, X, ws.stationProductX);
     multiplyByExternalMass(data, ws.stationProductX, ws.stationProductSX);
-    SX.noalias() = J.transpose() * ws.stationProductSX;
+    multiplyByStationJacobianTransposed(w.stationMap, ws.stationProductSX, SX);
 }
 
 template <int Dim>
@@ -1642,8 +1657,10 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     Eigen::VectorXd& zdd = ws.zddot;
     const int nz = nw + nd + numFixed_;
     zdd.setZero(nz);
-    if (ws.stationMode)  // xddot = J Yddot + b
-        zdd.head(nx).noalias() = ws.stationMap.jacobian * nodeAccelerations + ws.stationMap.bias;
+    if (ws.stationMode) {  // xddot = J Yddot + b
+        multiplyByStationJacobian(ws.stationMap, nodeAccelerations, ws.stationForce);
+        zdd.head(nx) = ws.stationForce + ws.stationMap.bias;
+    }
     else
         zdd.head(nx) = nodeAccelerations;
     zdd.segment(nx, numModal_) = qmddot;
@@ -1787,17 +1804,23 @@ void RopeModel<Dim>::assembleReduced(RopeData<Dim>& data) const {
     }
     if (ws.stationMode) {
         // w = [x, qm] = G [Y, qm] + [b, 0] with G = diag(J, I): Mbar_Y = G^T Mbar G,
-        // Qbar_Y = G^T (Qbar - Mbar [b; 0]).
-        const Eigen::MatrixXd& J = ws.stationMap.jacobian;
-        const int nx = numExternalCoordinates(), nY = static_cast<int>(J.cols()), nm = numModal_;
-        Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nx + nm, nY + nm);
-        G.topLeftCorner(nx, nY) = J;
-        G.bottomRightCorner(nm, nm).setIdentity();
-        Eigen::VectorXd shift = Eigen::VectorXd::Zero(nx + nm);
-        shift.head(nx) = ws.stationMap.bias;
-        ws.Qbar -= ws.Mbar * shift;
-        ws.Qbar = G.transpose() * ws.Qbar;
-        ws.Mbar = G.transpose() * ws.Mbar * G;
+        // Qbar_Y = G^T (Qbar - Mbar [b; 0]); J's products over its row bands.
+        const WrapStationMapData& map = ws.stationMap;
+        const int nx = numExternalCoordinates(), nY = static_cast<int>(map.jacobian.cols()), nm = numModal_;
+        ws.Qbar.noalias() -= ws.Mbar.leftCols(nx) * map.bias;
+        multiplyByStationJacobianTransposed(map, ws.Qbar.head(nx), ws.stationForce);
+        ws.stationReducedQ.resize(nY + nm);
+        ws.stationReducedQ << ws.stationForce, ws.Qbar.tail(nm);
+        ws.Qbar = ws.stationReducedQ;
+        // Mbar G = [Mbar_:x J, Mbar_:m], then G^T (Mbar G) = [J^T (Mbar G)_x; (Mbar G)_m].
+        multiplyStationJacobianFromLeft(ws.Mbar.leftCols(nx), map, ws.stationScratch);
+        ws.stationReducedMG.resize(nx + nm, nY + nm);
+        ws.stationReducedMG.leftCols(nY) = ws.stationScratch;
+        ws.stationReducedMG.rightCols(nm) = ws.Mbar.rightCols(nm);
+        multiplyByStationJacobianTransposed(map, ws.stationReducedMG.topRows(nx), ws.stationProductSX);
+        ws.Mbar.resize(nY + nm, nY + nm);
+        ws.Mbar.topRows(nY) = ws.stationProductSX;
+        ws.Mbar.bottomRows(nm) = ws.stationReducedMG.bottomRows(nm);
     }
     ws.reducedValid = true;
 }

@@ -38,7 +38,12 @@ struct RopeWorkspace {
     /// carried over to the stations (RopeModel::dynamicsToStations).
     WrapStationMapData stationMap, stationPositionMap;
     bool stationMode = false;
-    Eigen::MatrixXd stationScratch, stationProductX, stationProductSX;
+    Eigen::MatrixXd stationScratch, stationProductX, stationProductSX, stationReducedMG;
+    Eigen::VectorXd stationReducedQ;
+    /// A query's stations and, when they are not those of stationMap or stationPositionMap, its
+    /// own positions-only map.
+    Eigen::VectorXd queryStations;
+    WrapStationMapData queryMap;
     Eigen::VectorXd stationForce;
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
     std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)

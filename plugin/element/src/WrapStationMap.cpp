@@ -44,6 +44,7 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     } guard{data.wrapAngles, previous};
     const bool warm = static_cast<int>(data.tangencies.size()) == N;
     data.tangencies.resize(N);
+    data.stations = stations;
     data.x.setZero(nx);
     if (withRates) {
         data.bias.setZero(nx);
@@ -159,8 +160,73 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         data.wrapAngles[k] = alpha;
         data.x[arcRow(k)] = arc.radius() * alpha;
     }
-    if (withRates) data.xdot.noalias() = data.jacobian * stationRates;
+    if (withRates) {
+        // Row bands: the first and last non-zero column of each row.
+        data.jacobianRowStart.resize(static_cast<std::size_t>(nx));
+        data.jacobianRowWidth.resize(static_cast<std::size_t>(nx));
+        for (int r = 0; r < nx; ++r) {
+            int first = 0, last = -1;
+            for (int c = 0; c < nY; ++c)
+                if (data.jacobian(r, c) != 0.0) {
+                    if (last < 0) first = c;
+                    last = c;
+                }
+            data.jacobianRowStart[static_cast<std::size_t>(r)] = first;
+            data.jacobianRowWidth[static_cast<std::size_t>(r)] = last - first + 1;
+        }
+        multiplyByStationJacobian(data, stationRates, data.xdot);
+    }
     guard.keep = true;
+}
+
+namespace {
+template <class Out>
+void jacobianTimes(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X, Out& out) {
+    const Eigen::MatrixXd& J = map.jacobian;
+    out.setZero(J.rows(), X.cols());
+    for (Eigen::Index r = 0; r < J.rows(); ++r) {
+        const int s = map.jacobianRowStart[static_cast<std::size_t>(r)], w = map.jacobianRowWidth[static_cast<std::size_t>(r)];
+        if (w > 0) out.row(r).noalias() = J.row(r).segment(s, w) * X.middleRows(s, w);
+    }
+}
+
+template <class Out>
+void jacobianTransposedTimes(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X, Out& out) {
+    const Eigen::MatrixXd& J = map.jacobian;
+    out.setZero(J.cols(), X.cols());
+    for (Eigen::Index r = 0; r < J.rows(); ++r) {
+        const int s = map.jacobianRowStart[static_cast<std::size_t>(r)], w = map.jacobianRowWidth[static_cast<std::size_t>(r)];
+        if (w > 0) out.middleRows(s, w).noalias() += J.row(r).segment(s, w).transpose() * X.row(r);
+    }
+}
+
+}  // namespace
+
+void multiplyByStationJacobian(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                               Eigen::MatrixXd& out) {
+    jacobianTimes(map, X, out);
+}
+void multiplyByStationJacobian(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                               Eigen::VectorXd& out) {
+    jacobianTimes(map, X, out);
+}
+void multiplyByStationJacobianTransposed(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                         Eigen::MatrixXd& out) {
+    jacobianTransposedTimes(map, X, out);
+}
+void multiplyByStationJacobianTransposed(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                         Eigen::VectorXd& out) {
+    jacobianTransposedTimes(map, X, out);
+}
+
+void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A, const WrapStationMapData& map,
+                                     Eigen::MatrixXd& out) {
+    const Eigen::MatrixXd& J = map.jacobian;
+    out.setZero(A.rows(), J.cols());
+    for (Eigen::Index r = 0; r < J.rows(); ++r) {
+        const int s = map.jacobianRowStart[static_cast<std::size_t>(r)], w = map.jacobianRowWidth[static_cast<std::size_t>(r)];
+        if (w > 0) out.middleCols(s, w).noalias() += A.col(r) * J.row(r).segment(s, w);
+    }
 }
 
 void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData,
@@ -171,7 +237,9 @@ void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeDa
                                     std::to_string(ropeData.nodeMass.rows()) + " x " +
                                     std::to_string(ropeData.nodeMass.cols()) + " for " + std::to_string(nx) +
                                     " external coordinates)");
-    SY.noalias() = map.jacobian.transpose() * (ropeData.nodeMass * map.jacobian);
+    Eigen::MatrixXd SJ;
+    multiplyStationJacobianFromLeft(ropeData.nodeMass, map, SJ);
+    multiplyByStationJacobianTransposed(map, SJ, SY);
 }
 
 void WrapStationMap::stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData,
@@ -185,7 +253,7 @@ void WrapStationMap::stationNodeForce(const WrapStationMapData& map, const RopeD
         rope_->multiplyByNodeMass(ropeData, map.bias, Sb);
         f -= Sb.col(0);
     }
-    hY.noalias() = map.jacobian.transpose() * f;
+    multiplyByStationJacobianTransposed(map, f, hY);
 }
 
 }  // namespace SimbodyReeving

@@ -436,6 +436,10 @@ private:
     /// The station map's positions at these stations (WrapStationMap::evaluatePositions: no J, b),
     /// its wrap angles continued from data's.
     WrapStationMapData stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
+    /// The external coordinates x of a planar rope with wrapped nodes at these node stations (the
+    /// driven entries aside): the last solve's or dynamics' map when its stations are these, else
+    /// a positions-only map in data's scratch.
+    const Eigen::VectorXd& mappedPositions(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// First external coordinate of where span k - 1 ends at node k (arrival) and span k starts
     /// (departure): the node's position, or its tangent points.
     int arrivalOffset(int node) const {

@@ -16,16 +16,37 @@ namespace SimbodyReeving {
 
 /// Results of a WrapStationMap evaluation.
 struct WrapStationMapData {
+    Eigen::VectorXd stations;  ///< Y, the stations this evaluation is at [m]
     Eigen::VectorXd x;     ///< the rope's external coordinates (RopeModel layout) [m]
     Eigen::VectorXd xdot;  ///< their rates J Ydot [m/s]
     /// b = xddot at Yddot = 0 (the tangency's second derivatives at these rates) [m/s^2].
     Eigen::VectorXd bias;
     Eigen::MatrixXd jacobian;  ///< J = dx/dY (numExternalCoordinates x numStationCoordinates)
+    /// Per row of J, the first of its non-zero columns [start, start + width): a row depends on the
+    /// stations of at most three neighbouring nodes, or on one driven s (the products below skip the rest).
+    std::vector<int> jacobianRowStart;
+    std::vector<int> jacobianRowWidth;  ///< per row of J, the number of its non-zero columns
     std::vector<SpanTangency> tangencies;  ///< per span: its tangent points, direction, length
     /// Per node: the wrap angle alpha [rad] of a wrapped node (0 at point nodes). Also the
     /// previous values the next evaluation keeps alpha continuous with (wrapAngle).
     Eigen::VectorXd wrapAngles;
 };
+
+/// out = J X, over J's row bands (map.jacobianRowStart, jacobianRowWidth).
+void multiplyByStationJacobian(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                               Eigen::MatrixXd& out);
+/// out = J x for one column x.
+void multiplyByStationJacobian(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                               Eigen::VectorXd& out);
+/// out = J^T X, over J's row bands.
+void multiplyByStationJacobianTransposed(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                         Eigen::MatrixXd& out);
+/// out = J^T x for one column x.
+void multiplyByStationJacobianTransposed(const WrapStationMapData& map, const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                         Eigen::VectorXd& out);
+/// out = A J, over J's row bands.
+void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A, const WrapStationMapData& map,
+                                     Eigen::MatrixXd& out);
 
 /// A planar rope's external coordinates as functions of the stations its bodies carry.
 ///
