@@ -188,7 +188,7 @@ TEST(WrappedSheaveDrawing, BadInputIsRejected) {
     for (int anchor : {0, 3})
         EXPECT_THROW_MESSAGE(rv.sampleArc(s, 0, anchor, 10), std::invalid_argument,
                              "ReevingSubsystem: sampleArc: rope 'two sheaves' node " + std::to_string(anchor) +
-                                 " is not a wrapped DeviationSheave (SheaveModel::Wrapped): it has no arc");
+                                 " is not a wrapped sheave (SheaveModel::Wrapped): it has no arc");
     for (int n : {1, 0, -3})
         EXPECT_THROW_MESSAGE(rv.sampleArc(s, 0, 1, n), std::invalid_argument,
                              "ReevingSubsystem: sampleArc: numPoints = " + std::to_string(n) + " must be >= 2");
@@ -196,5 +196,5 @@ TEST(WrappedSheaveDrawing, BadInputIsRejected) {
     const TwoSheaves point(1, SheaveModel::Point);
     EXPECT_EQ(point.reeving.getArcLength(point.state, 0, 1), 0.0);
     EXPECT_THROW_MESSAGE(point.reeving.sampleArc(point.state, 0, 1, 10), std::invalid_argument,
-                         "ReevingSubsystem: sampleArc: rope 'two sheaves' node 1 is not a wrapped DeviationSheave");
+                         "ReevingSubsystem: sampleArc: rope 'two sheaves' node 1 is not a wrapped sheave");
 }

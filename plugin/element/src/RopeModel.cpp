@@ -480,7 +480,11 @@ const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& node
     if constexpr (Dim == 2) {
         // Positions alone (a solve) go to a map of their own: the dynamics' J and b stay valid.
         WrapStationMapData& m = nodeVelocities ? ws.stationMap : ws.stationPositionMap;
-        if (m.wrapAngles.size() == 0) m.wrapAngles = (nodeVelocities ? ws.stationPositionMap : ws.stationMap).wrapAngles;
+        if (m.wrapAngles.size() == 0) {
+            const WrapStationMapData& other = nodeVelocities ? ws.stationPositionMap : ws.stationMap;
+            m.wrapAngles = other.wrapAngles;
+            m.arrivalAngles = other.arrivalAngles;
+        }
         if (nodeVelocities)
             WrapStationMap(*this).evaluate(Y, packExternal(*nodeVelocities, *drivenSdot, data, true), m);
         else
@@ -644,6 +648,7 @@ const Eigen::VectorXd& RopeModel<Dim>::mappedPositions(const NodeMatrix& nodes, 
         for (const WrapStationMapData* m : {&ws.stationPositionMap, &ws.stationMap})
             if (m->stations.size() == Y.size() && m->x.size() > 0 && m->stations.head(np) == Y.head(np)) return m->x;
         ws.queryMap.wrapAngles = ws.stationMap.wrapAngles;  // continuity with the last evaluation
+        ws.queryMap.arrivalAngles = ws.stationMap.arrivalAngles;
         WrapStationMap(*this).evaluatePositions(Y, ws.queryMap);
         return ws.queryMap.x;
     }
@@ -658,6 +663,7 @@ WrapStationMapData RopeModel<Dim>::stationMapAt(const NodeMatrix& nodes, const R
         Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY);
         for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
         m.wrapAngles = data.ws().stationMap.wrapAngles;  // continuity with the last evaluation
+        m.arrivalAngles = data.ws().stationMap.arrivalAngles;
         WrapStationMap(*this).evaluatePositions(Y, m);
     }
     return m;

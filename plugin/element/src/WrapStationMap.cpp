@@ -1,5 +1,6 @@
 #include "SimbodyReeving/element/WrapStationMap.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -7,6 +8,11 @@ namespace SimbodyReeving {
 namespace {
 Eigen::Vector3d lift(const Eigen::Vector2d& v) { return Eigen::Vector3d(v[0], v[1], 0.0); }
 }  // namespace
+
+Eigen::Vector2d WrapStationMap::upDirection() const {
+    const Eigen::Vector2d g = rope_->span(0).gravity();
+    return g.norm() > 0 ? Eigen::Vector2d(-g / g.norm()) : Eigen::Vector2d(0.0, 1.0);
+}
 
 void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates,
                               WrapStationMapData& data) const {
@@ -32,16 +38,22 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     }
     if (!stations.allFinite() || (withRates && !stationRates.allFinite()))
         throw std::invalid_argument("WrapStationMap: the stations and their rates must be finite");
-    const bool previous = data.wrapAngles.size() == N + 1;
-    if (!previous) data.wrapAngles.setZero(N + 1);
+    const bool previous = data.wrapAngles.size() == N + 1 && data.arrivalAngles.size() == N + 1;
+    if (!previous) {
+        data.wrapAngles.setZero(N + 1);
+        data.arrivalAngles.setZero(N + 1);
+    }
     // An evaluation that throws leaves no wrap angles to continue from if it had none.
     struct ForgetAnglesUnlessDone {
         Eigen::VectorXd& angles;
+        Eigen::VectorXd& arrival;
         bool keep;
         ~ForgetAnglesUnlessDone() {
-            if (!keep) angles.resize(0);
+            if (keep) return;
+            angles.resize(0);
+            arrival.resize(0);
         }
-    } guard{data.wrapAngles, previous};
+    } guard{data.wrapAngles, data.arrivalAngles, previous};
     const bool warm = static_cast<int>(data.tangencies.size()) == N;
     data.tangencies.resize(N);
     data.stations = stations;
@@ -143,6 +155,11 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
                 }
                 rowsOver(7, -arcScale(j + 1), arcRow(j + 1));
                 data.bias[arcRow(j + 1)] -= arcScale(j + 1) * rates.endAngleAcceleration;
+                if (rope.drivenIndex(j + 1) >= 0) {  // s_in = Y_s + sigma R phi_in (below)
+                    const int row = nodeRows + rope.drivenIndex(j + 1);
+                    rowsOver(7, arcScale(j + 1), row);
+                    data.bias[row] += arcScale(j + 1) * rates.endAngleAcceleration;
+                }
             }
         }
     }
@@ -159,6 +176,22 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
                                       : wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial);
         data.wrapAngles[k] = alpha;
         data.x[arcRow(k)] = arc.radius() * alpha;
+    }
+    // A wrapped Driven node grips the rope on its groove: the material coordinate at the arriving
+    // tangent point is s_in = Y_s + sigma R phi_in, phi_in the tangent point's angle about the
+    // centre, counter-clockwise from "up" (against gravity in the plane; +y without gravity) and
+    // continuous with the previous evaluation's, so the departing span starts at
+    // Y_s + sigma R phi_out = s_in + l (the rope does not slide on the groove). Its Jacobian row and
+    // bias were gathered with the spans' (phi_in's row of the span arriving there).
+    for (int k = 1; k < N; ++k) {
+        if (rope.drivenIndex(k) < 0 || !rope.isWrapped(k)) continue;
+        const Eigen::Vector3d& radial = data.tangencies[k - 1].endRadial;
+        const Eigen::Vector2d up = upDirection();
+        const double measured = std::atan2(up[0] * radial[1] - up[1] * radial[0], up[0] * radial[0] + up[1] * radial[1]);
+        double phi = measured;
+        if (previous) phi = data.arrivalAngles[k] + std::remainder(measured - data.arrivalAngles[k], 2 * M_PI);
+        data.arrivalAngles[k] = phi;
+        data.x[nodeRows + rope.drivenIndex(k)] += arcScale(k) * phi;
     }
     if (withRates) {
         // Row bands: the first and last non-zero column of each row.

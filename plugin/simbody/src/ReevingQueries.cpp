@@ -189,7 +189,7 @@ std::vector<Vec3> ReevingSubsystem::sampleArc(const State& s, int rope, int node
         invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
     if (!(r.planar && r.wraps[node].radius > 0))
         invalid("sampleArc: rope '" + r.spec.name + "' node " + std::to_string(node) +
-                " is not a wrapped DeviationSheave (SheaveModel::Wrapped): it has no arc");
+                " is not a wrapped sheave (SheaveModel::Wrapped): it has no arc");
     if (numPoints < 2) invalid("sampleArc: numPoints = " + std::to_string(numPoints) + " must be >= 2");
     const RopeCache& c = g.positionCache(s).ropes.at(rope);
     // The centre in the rope plane (the plane sample() draws the spans in: through the start node).

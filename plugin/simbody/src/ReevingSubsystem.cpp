@@ -22,6 +22,29 @@ namespace SimbodyReeving {
 
 using namespace detail;
 
+namespace {
+
+// A TurningSheave with SheaveModel::Wrapped grips the rope on its groove: wrap sense
+// sigma = -sense (pin axis . n), so that s = s_ref + sense R theta is the material coordinate at
+// the groove's top (WrapStationMap). Its pin must turn about the plane normal, relative to Ground
+// (the tangent points' angles are measured in Ground).
+NodeWrap turningSheaveWrap(const RopeNode& n, const SimTK::UnitVec3& normal, const std::string& name) {
+    if (!n.body.getParentMobilizedBody().isGround())
+        invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground (the rope's grip on the groove "
+                       "is measured from Ground's angles)");
+    const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
+    const double alignment = SimTK::dot(axis, normal);
+    if (std::abs(std::abs(alignment) - 1) > 1e-12)
+        invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
+                " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
+    NodeWrap w;
+    w.radius = n.radius;
+    w.wrapSense = alignment > 0 ? -n.sense : n.sense;
+    return w;
+}
+
+}  // namespace
+
 // ---- ReevingSubsystem ------------------------------------------------------------------------
 
 bool ReevingSubsystem::isInstanceOf(const ForceSubsystem& s) {
@@ -238,14 +261,18 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     if (spec.sheaveModel == SheaveModel::Wrapped) {
         if (!r.planar)
             invalid(who + "SheaveModel::Wrapped is implemented for planar ropes only (give RopeSpec::planeNormal)");
+        const SimTK::UnitVec3 normal(spec.planeNormal);
         for (int k = 1; k + 1 < r.numNodes(); ++k) {
             const RopeNode& n = r.nodeSpec(k);
-            if (n.kind != RopeNodeKind::DeviationSheave) continue;
-            if (n.sense != 1 && n.sense != -1)
-                invalid(who + "sheave " + std::to_string(k) + " wrap sense = " + std::to_string(n.sense) +
-                        " must be +1 or -1");
-            r.wraps[k].radius = n.radius;
-            r.wraps[k].wrapSense = n.sense;
+            if (n.kind == RopeNodeKind::DeviationSheave) {
+                if (n.sense != 1 && n.sense != -1)
+                    invalid(who + "sheave " + std::to_string(k) + " wrap sense = " + std::to_string(n.sense) +
+                            " must be +1 or -1");
+                r.wraps[k].radius = n.radius;
+                r.wraps[k].wrapSense = n.sense;
+            } else if (n.kind == RopeNodeKind::TurningSheave) {
+                r.wraps[k] = turningSheaveWrap(n, normal, who + "TurningSheave at node " + std::to_string(k));
+            }
         }
     }
     const Eigen::Vector3d gravity = toEigen(g.gravity());

@@ -235,7 +235,7 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
         return getArcLength(s, rope, node) / r.wraps[node].radius;
     if (node >= 0 && node < r.numNodes() && (r.drivenIndex(node) < 0 || !r.driven[r.drivenIndex(node)].traction))
         invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
-                " is neither a TractionSheave nor a wrapped DeviationSheave: it has no wrap angle");
+                " is neither a TractionSheave nor a wrapped sheave: it has no wrap angle");
     const RopeRecord::DrivenNode& d = tractionAt(r, node);
     getGuts().positionCache(s);
     return getGuts().tractionStates(s).ropes[rope][d.tractionIndex].wrapAngle;

@@ -30,6 +30,10 @@ struct WrapStationMapData {
     /// Per node: the wrap angle alpha [rad] of a wrapped node (0 at point nodes). Also the
     /// previous values the next evaluation keeps alpha continuous with (wrapAngle).
     Eigen::VectorXd wrapAngles;
+    /// Per node: phi_in [rad] at a wrapped Driven node, the arriving tangent point's angle about
+    /// the groove's centre, counter-clockwise from "up" (against the rope's gravity; +y without
+    /// gravity), continuous with the previous evaluation's (0 at other nodes).
+    Eigen::VectorXd arrivalAngles;
 };
 
 /// out = J X, over J's row bands (map.jacobianRowStart, jacobianRowWidth).
@@ -59,6 +63,13 @@ void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A,
 /// arc length from its two tangent points, l = R alpha (wrapAngle, continuous from the previous
 /// evaluation's alpha). So x = Phi(Y), xdot = J Ydot and xddot = J Yddot + b, with J and b from the
 /// tangency's analytic first and second time derivatives (computeTangencyRates).
+///
+/// At a wrapped Driven node (a sheave that grips the rope: it does not slide on the groove) the
+/// station Y_s is the material coordinate at the groove's "up" point (against gravity), so the
+/// rope's material coordinate where it arrives on the groove is s_k = Y_s + sigma R phi_in, phi_in
+/// the arriving tangent point's angle from "up" (WrapStationMapData::arrivalAngles), and the
+/// departing span starts at s_k + l = Y_s + sigma R phi_out. For a sheave turning by theta about
+/// the plane normal, Y_s = s_ref - sigma R theta.
 ///
 /// A coupling that moves the stations then sees the rope through
 ///     S_Y = J^T S J,   h_Y = J^T (h - S b),
@@ -99,6 +110,7 @@ public:
     void stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData, Eigen::VectorXd& hY) const;
 
 private:
+    Eigen::Vector2d upDirection() const;  // -g / |g| in the plane, +y without gravity
     void evaluateMap(const Eigen::VectorXd& stations, const Eigen::VectorXd* stationRates,
                      WrapStationMapData& data) const;
     const RopeModel<2>* rope_;

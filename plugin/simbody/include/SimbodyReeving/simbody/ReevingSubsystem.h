@@ -62,8 +62,9 @@ enum class SheaveModel {
     /// R alpha, carries its mass (RopeModel's NodeWrap, GrooveArc; WrapStationMap maps the bodies'
     /// motion to the tangent points and arc lengths). The wrap sense is RopeNode::sense: +1 when
     /// the rope, running from its start to its end, turns counter-clockwise about the plane normal
-    /// on the groove, -1 clockwise. Applies to the DeviationSheave nodes of planar ropes;
-    /// TurningSheave, TractionSheave and WinchDrum nodes keep the point model.
+    /// on the groove, -1 clockwise. Applies to the DeviationSheave and TurningSheave nodes of
+    /// planar ropes (a TurningSheave's wrap sense follows from its sense and pin axis, see
+    /// TurningSheave); TractionSheave and WinchDrum nodes keep the point model.
     Wrapped,
 };
 
@@ -108,10 +109,11 @@ struct RopeAnchor {
 };
 
 /// A frictionless deviation sheave: its centre on a body (Ground allowed) [m] and its radius [m].
-/// Point-sheave idealisation, as in the paper (eq 30: both spans share the node at the sheave): the
-/// two spans meet at the sheave centre and share the material coordinate there; the wrap arc and
-/// the motion of the tangent points are neglected (an O(radius/span length) geometric
-/// approximation). The radius is used for validation and drawing.
+/// With SheaveModel::Point (the paper's eq 30) the two spans meet at the sheave's centre and share
+/// the material coordinate there: the wrap arc and the motion of the tangent points are neglected
+/// (an O(radius / span length) geometric approximation) and the radius is used for validation and
+/// drawing. With SheaveModel::Wrapped the spans end at the groove's tangent points and the rope on
+/// the arc between them, R alpha long, carries its mass (see SheaveModel).
 struct DeviationSheave {
     SimTK::MobilizedBody body;  ///< the body carrying the sheave (Ground allowed)
     SimTK::Vec3 centre{0};      ///< the sheave's centre in the body's frame [m]
@@ -154,6 +156,15 @@ struct WinchDrum {
 /// (s = s_ref + sense R theta: with +1 a positive pin angle moves rope from the end side of the
 /// sheave to its start side, i.e. towards the rope's start) and the point on the pin axis
 /// (body frame, default origin).
+///
+/// With SheaveModel::Wrapped the rope lies on the groove between its tangent points and moves with
+/// it: s_ref is then the material coordinate at the groove's top (the point of the groove circle
+/// against gravity, +y of the rope's plane without gravity) at pin angle 0, so the rope arrives on
+/// the groove at s = s_ref + sense R theta + sigma R phi_in and leaves it at
+/// s_ref + sense R theta + sigma R phi_out (phi the tangent points' angles from the top,
+/// counter-clockwise about the plane normal n; WrapStationMap). Its wrap sense is
+/// sigma = -sense (pin axis . n): the rope must turn on the groove that way. The pin's parent must
+/// be Ground and its axis along n (addRope throws otherwise).
 struct TurningSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
@@ -313,7 +324,9 @@ public:
     ///         radius, rope length or minimumSpanLength, bad rope properties or mode counts, a span
     ///         override index out of range, non-finite plane normal, gravity out of the rope plane
     ///         (gravity given to the constructor; with the system's gravity, realizeTopology checks
-    ///         the plane and throws std::logic_error).
+    ///         the plane and throws std::logic_error); with SheaveModel::Wrapped, a spatial rope, a
+    ///         wrap sense not +-1, or a TurningSheave whose pin's parent is not Ground or whose pin
+    ///         axis is not the plane normal.
     int addRope(const RopeSpec& spec);
 
     /// Number of ropes added.
@@ -397,12 +410,12 @@ public:
     /// geometry of the state's first realization).
     double getTractionLimit(const SimTK::State& state, int rope, int node) const;
     /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
-    /// uses; at a wrapped DeviationSheave (SheaveModel::Wrapped) the geometry's, l / R with l =
-    /// getArcLength.
+    /// uses; at a wrapped DeviationSheave or TurningSheave (SheaveModel::Wrapped) the geometry's,
+    /// l / R with l = getArcLength.
     /// @throws std::invalid_argument if rope or node is out of range or the node is neither.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
-    /// DeviationSheave, 0 at every point node. The rope's length is the sum over its spans of
+    /// DeviationSheave or TurningSheave, 0 at every point node. The rope's length is the sum over its spans of
     /// s2 - s1 (getSpanMaterialRange) and over its nodes of l.
     /// @throws std::invalid_argument if rope or node is out of range.
     double getArcLength(const SimTK::State& state, int rope, int node) const;
@@ -450,14 +463,15 @@ public:
     /// Positions in Ground of numPoints >= 2 equally spaced material points of a span [m].
     std::vector<SimTK::Vec3> sampleSpan(const SimTK::State& state, int rope, int span, int numPoints) const;
     /// Positions in Ground of numPoints >= 2 equally spaced material points of the rope on the
-    /// groove of node k, a wrapped DeviationSheave (SheaveModel::Wrapped) [m] (Stage::Position):
-    /// from the arrival tangent point (the end of span k - 1, sampleSpan's last point) along the
-    /// groove circle (radius R about the sheave's centre, the node's station on its body, in the
-    /// rope plane) in the wrap sense (RopeNode::sense) through the wrap angle getWrapAngle, to the
+    /// groove of node k, a wrapped DeviationSheave or TurningSheave (SheaveModel::Wrapped) [m]
+    /// (Stage::Position): from the arrival tangent point (the end of span k - 1, sampleSpan's last
+    /// point) along the groove circle (radius R about the sheave's centre, the node's station on its
+    /// body, in the rope plane) in the wrap sense (DeviationSheave::wrapSense; for a TurningSheave
+    /// -sense (pin axis . n)) through the wrap angle getWrapAngle, to the
     /// departure tangent point (the start of span k, to round-off). With sampleSpan it draws the
     /// rope without a gap at its sheaves.
     /// @throws std::invalid_argument if rope or node is out of range, the node is not a wrapped
-    ///         DeviationSheave (a point node has no arc), or numPoints < 2.
+    ///         sheave (a point node has no arc), or numPoints < 2.
     std::vector<SimTK::Vec3> sampleArc(const SimTK::State& state, int rope, int node, int numPoints) const;
     /// Power dissipated by the ropes' Kelvin-Voigt damping (RopeProperties::axialRetardationTime)
     /// [W], >= 0 (Stage::Velocity).
