@@ -98,10 +98,10 @@ double pointLayoutLean(const CraneScene& scene) {
 // and does not depend on the rope's weight; the hook block hangs level to 1.3e-11 rad for even n).
 // So the crane's default geometry cannot meet a lean of 1e-9 rad for 2..4 falls: 3.6e-8 rad for the
 // default 4 (2.0e-6 deg); the 12 falls' 3.9e-9 rad is the closest. With the falls equally long
-// (drumHeight = 0) the falls hang vertical to round-off for even n, far inside 1e-9 rad; for odd n
-// the hook block tilts by 1.59e-5 rad (the layout's load centroid, 2 per sheave and 1 per dead end,
-// leaves out the 4.4 N of rope on a hook sheave's groove: 0.40 N m against the 2.5e4 N m / rad of
-// the hanging weights), and the tilt's second order moves the falls' bottoms sideways by 2e-11 m.
+// (drumHeight = 0) the falls hang vertical to round-off, far inside 1e-9 rad: the layout puts the
+// hook block's nodes about the centroid of their pulls (2 T_b - rhoA g pi R per sheave, the groove
+// holding up the rope on it, and T_b at a dead end), so with odd n, too, it hangs level (tilt
+// 1.5e-12 rad for n = 3; leaving out the groove's rope would tilt it by 1.59e-5 rad).
 // Point sheaves lean by about atan(sheavePitch / depth) (1.06 deg for 4 falls), 5e5 times more.
 TEST(CraneWrappedSheaves, FallsHangVerticalAtRest) {
     for (int n : {2, 3, 4, 12}) {
@@ -120,16 +120,15 @@ TEST(CraneWrappedSheaves, FallsHangVerticalAtRest) {
         // A gross check beside the closed form: at most 1.46e-7 rad (n = 2); bound 2e-6 rad, 14x.
         EXPECT_LT(lean, 2e-6) << n;
 
-        // Falls of equal length: measured 1.3e-18 (n = 2), 5.0e-18 (4), 5.0e-17 (12) rad (the hook
-        // block's x at round-off of positions of order 10 m), bound 1e-15 rad (20x over the
-        // largest); n = 3 1.7e-12 rad (the tilt's second order, see above), bound 2e-11 rad (12x).
-        // Both far inside the required 1e-9 rad.
+        // Falls of equal length: measured 1.3e-18 (n = 2), 6.6e-17 (3), 5.0e-18 (4), 4.0e-17 (12)
+        // rad (the hook block's x at round-off of positions of order 10 m), bound 1e-15 rad (15x
+        // over the largest), far inside the required 1e-9 rad.
         CraneParameters equal = p;
         equal.drumHeight = 0;
         CraneScene equalScene(equal, CraneCycle::liftTraverseLower(), spans());
         const double equalLean = equalScene.largestFallLean(equalScene.makeInitialState());
         std::printf("[ crane ] %2d falls wrapped, drumHeight 0: largest lean %.3e rad\n", n, equalLean);
-        EXPECT_LT(equalLean, n % 2 == 0 ? 1e-15 : 2e-11) << n;
+        EXPECT_LT(equalLean, 1e-15) << n;
 
         // Point sheaves: the falls join nodes sheavePitch apart; the hook block hangs at the rest
         // offset the layout computes. Measured 1.0052 deg (n = 2), 1.3728 (3), 1.0595 (4), 1.0474 (12)

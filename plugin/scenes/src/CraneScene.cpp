@@ -89,7 +89,7 @@ CraneLayout craneLayout(const CraneParameters& p) {
     CraneLayout c;
     // Rope node offsets: point sheaves (k - n/2) pitch; wrapped sheaves between the vertical falls
     // at X_j = (j - (n - 1)/2) 2R, the drum above fall 0, the dead end on fall n - 1. The hook
-    // block's shifted to their load centroid.
+    // block's nodes shifted to their load centroid (so that it hangs level).
     std::vector<double>& x = c.x;
     x.resize(n + 1);
     if (wrapped(p)) {
@@ -100,9 +100,15 @@ CraneLayout craneLayout(const CraneParameters& p) {
     } else {
         for (int k = 0; k <= n; ++k) x[k] = (k - 0.5 * n) * p.sheavePitch;
     }
+    // The hook block's nodes' upward pulls in units of the falls' bottom tension T_b: 2 per sheave
+    // and 1 at a dead end; a wrapped sheave's groove also holds up the rope on it (the half turn
+    // under the sheave), so its pull is 2 T_b - rhoA g pi R, with n T_b = M g + the hook arcs'
+    // weight.
+    const double arcWeight = wrapped(p) ? p.rhoA * p.g * SimTK::Pi * p.sheaveRadius : 0.0;
+    const double bottomTension = ((p.payloadMass + p.hookMass) * p.g + (n / 2) * arcWeight) / n;
     double sumW = 0, sumWx = 0;
     for (int k = 1; k <= n; k += 2) {
-        const double w = k < n ? 2.0 : 1.0;
+        const double w = k < n ? 2.0 - arcWeight / bottomTension : 1.0;
         sumW += w;
         sumWx += w * x[k];
     }
