@@ -48,6 +48,7 @@ struct Row {
     // axialForcePayload, axialForceSheave: the axial force P = EA eps [N] at the two ends of the
     // vertical span (not the tension T = P |dr/ds|).
     double t, x, y, theta, axialForcePayload, axialForceSheave, sSheave, energy, constraintError;
+    double wrapAngle;  // the sheave's wrap angle [rad] (SheaveModel::Wrapped; 0 with the point sheave)
 };
 struct StaticRow {
     int span;
@@ -75,7 +76,8 @@ Row observe(const PendulumScene& scene, const State& s) {
             scene.axialForceAtSheave(s),
             scene.sheaveMaterialCoordinate(s),
             rv.calcMechanicalEnergy(s),
-            rv.getConstraintError(s, 0, 1)};
+            rv.getConstraintError(s, 0, 1),
+            rv.getRopeSpec(0).sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? rv.getWrapAngle(s, 0, 1) : 0.0};
 }
 
 // The scene of the case with n_a = na.
@@ -208,6 +210,17 @@ void writeCase(const fs::path& dir, const Options& o, const CaseResult& r) {
     js["initial_kinetic_energy_J"] = jsonNumber(r.initialKineticEnergy);
     js["max_energy_drift_J"] = jsonNumber(r.maxEnergyDrift);
     js["max_constraint_error_N"] = jsonNumber(r.maxConstraintError);
+    // The sheave's wrap angle range over the output rows [rad] (0 with the point sheave) and the
+    // largest fleet angle (0: the rope is planar).
+    {
+        double lo = r.rows.front().wrapAngle, hi = lo;
+        for (const Row& row : r.rows) {
+            lo = std::min(lo, row.wrapAngle);
+            hi = std::max(hi, row.wrapAngle);
+        }
+        js["sheave_wrap_angles"] = demo_common::Json::array({{{"sheave", 1}, {"min_rad", jsonNumber(lo)}, {"max_rad", jsonNumber(hi)}}});
+    }
+    js["max_fleet_angle_rad"] = jsonNumber(0.0);
     js["parameters"] = {{"a", jsonNumber(p.a)},   {"L", jsonNumber(p.L)},   {"d", jsonNumber(p.d)},
                         {"r", jsonNumber(p.r)},   {"g", jsonNumber(p.g)},   {"rhoA", jsonNumber(p.rhoA)},
                         {"EA", jsonNumber(p.EA)}, {"EI", jsonNumber(p.EI)}, {"M", jsonNumber(p.M)},

@@ -195,8 +195,9 @@ TEST(StudyFile, UnknownMetric) {
                          "axial_dynamics, quasi_static_transverse, axial_law, sheaves, t_end, t_reached, termination, limit, vx0, vy0, steps, "
                          "rhs_evaluations, "
                          "wall_seconds, initial_kinetic_energy_J, max_energy_drift_J, max_constraint_error_N, "
-                         "parameters.a, parameters.L, parameters.d, parameters.r, parameters.g, parameters.rhoA, "
-                         "parameters.EA, parameters.EI, parameters.M, parameters.J; the runner adds wall_seconds)");
+                         "sheave_wrap_angles.#.sheave, sheave_wrap_angles.#.min_rad, sheave_wrap_angles.#.max_rad, "
+                         "max_fleet_angle_rad, parameters.a, parameters.L, parameters.d, parameters.r, parameters.g, parameters.rhoA, "
+                         "parameters.EA, parameters.EI, parameters.M, parameters.J, where # is an index; the runner adds wall_seconds)");
     EXPECT_THROW_MESSAGE(parse("scene: pendulum\nfixed: {axial-modes: 0}\nmetrics: [EA]\n"), StudyError,
                          "s.yaml:3:11: unknown metric 'EA' for scene pendulum (did you mean parameters.EA?)");
     EXPECT_THROW_MESSAGE(parse("scene: crane\nmetrics: [parameters.payloadmass]\n"), StudyError,
