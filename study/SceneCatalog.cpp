@@ -86,6 +86,7 @@ const std::vector<SceneInfo>& scenes() {
          {"program",
           "roping",
           "compensation",
+          "sheaves",
           "friction",
           "wrap_angle_rad",
           "rated_load_kg",

@@ -1,5 +1,7 @@
 #include "Cli.h"
 
+#include "SimbodyReeving/simbody/ReevingSubsystem.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -144,6 +146,16 @@ CLI::Validator oneOf(std::vector<std::string> choices) {
             return inQuotes(text) + " must be one of: " + list;
         },
         "", "one of");
+}
+
+CLI::Option* addSheaveModelOption(CLI::App& app, SimbodyReeving::SheaveModel& model, const std::string& help) {
+    using SimbodyReeving::SheaveModel;
+    return app
+        .add_option_function<std::string>(
+            "--sheaves", [&model](const std::string& v) { model = v == "wrapped" ? SheaveModel::Wrapped : SheaveModel::Point; },
+            help)
+        ->type_name("MODEL")
+        ->check(oneOf({"point", "wrapped"}));
 }
 
 CLI::Validator nonEmpty() {

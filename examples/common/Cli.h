@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+namespace SimbodyReeving {
+enum class SheaveModel;  // SimbodyReeving/simbody/ReevingSubsystem.h
+}
+
 namespace demo_common {
 
 /// Exit status of a bad command line or an unusable --out folder.
@@ -73,5 +77,9 @@ CLI::Validator nonEmpty();
 
 /// The integers of a comma list that integerListIn accepted, in order, duplicates dropped.
 std::vector<int> parseIntegerList(const std::string& text);
+
+/// Adds `--sheaves MODEL`, "point" or "wrapped", setting `model` (SheaveModel::Point or Wrapped);
+/// `help` says what the demo's default is and which sheaves it sets.
+CLI::Option* addSheaveModelOption(CLI::App& app, SimbodyReeving::SheaveModel& model, const std::string& help);
 
 }  // namespace demo_common

@@ -103,18 +103,11 @@ void defineOptions(CLI::App& app, Options& o) {
                    "lift-off: steady hoisting speed v_h of the hook [m/s] (default 0.3)")
         ->type_name("V")
         ->check(positiveNumber());
-    app.add_option_function<std::string>(
-           "--sheaves",
-           [&o](const std::string& v) {
-               o.parameters.sheaveModel =
-                   v == "point" ? SimbodyReeving::SheaveModel::Point : SimbodyReeving::SheaveModel::Wrapped;
-           },
-           "wrapped (default: the rope leaves the sheaves at tangent points\n"
-           "and lies on their grooves; the falls hang parallel, a sheave\n"
-           "diameter apart) or point (the paper's point sheave: the falls end\n"
-           "at sheave centres sheavePitch apart)")
-        ->type_name("MODEL")
-        ->check(oneOf({"point", "wrapped"}));
+    addSheaveModelOption(app, o.parameters.sheaveModel,
+                         "wrapped (default: the rope leaves the sheaves at tangent points\n"
+                         "and lies on their grooves; the falls hang parallel, a sheave\n"
+                         "diameter apart) or point (the paper's point sheave: the falls end\n"
+                         "at sheave centres sheavePitch apart)");
     app.add_option("--falls", o.parameters.falls, "rope parts between trolley and hook block, 1..12 (default 4)")
         ->type_name("N")
         ->transform(integerIn(1, 12));

@@ -321,6 +321,10 @@ int main(int argc, char** argv) {
                    "1:1 (rope ends on car and counterweight) or 2:1 (sheaves on car and counterweight, rope ends\n"
                    "at the hoistway's top) (default 1:1)")
         ->check(oneOf({"1:1", "2:1"}));
+    addSheaveModelOption(app, o.parameters.sheaveModel,
+                         "the sheaves the ropes pass under (2:1 car and counterweight, the pit\n"
+                         "sheave): wrapped (default: the rope on their grooves, the falls vertical)\n"
+                         "or point (the paper's point sheave); the traction sheave is a point");
     app.add_flag("--compensation", o.parameters.compensation,
                  "a compensating rope under car and counterweight over a weighted pit sheave (500 kg)");
     app.add_option("--friction", o.parameters.friction, "effective groove friction coefficient mu (default 0.2)")
@@ -405,6 +409,7 @@ int main(int argc, char** argv) {
     summary["program"] = kProgram;
     summary["roping"] = o.roping;
     summary["compensation"] = o.parameters.compensation;
+    summary["sheaves"] = o.parameters.sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? "wrapped" : "point";
     summary["friction"] = jsonNumber(o.parameters.friction);
     summary["wrap_angle_rad"] = jsonNumber(o.parameters.wrapAngle);
     summary["rated_load_kg"] = jsonNumber(o.parameters.ratedLoad);

@@ -88,16 +88,9 @@ void defineOptions(CLI::App& app, Options& o) {
            "axial force) or linear (the paper's law: P = EA eps, may push)")
         ->type_name("LAW")
         ->check(oneOf({"tension-only", "linear"}));
-    app.add_option_function<std::string>(
-           "--sheaves",
-           [&o](const std::string& v) {
-               o.parameters.sheaveModel =
-                   v == "wrapped" ? SimbodyReeving::SheaveModel::Wrapped : SimbodyReeving::SheaveModel::Point;
-           },
-           "point (default: the paper's point sheave) or wrapped (the rope over\n"
-           "the groove of radius r, the vertical span leaving at its tangent point)")
-        ->type_name("MODEL")
-        ->check(oneOf({"point", "wrapped"}));
+    addSheaveModelOption(app, o.parameters.sheaveModel,
+                         "point (default: the paper's point sheave) or wrapped (the rope over\n"
+                         "the groove of radius r, the vertical span leaving at its tangent point)");
     app.add_option("--t-end", o.tEnd, "end time [s] (default 20)")->type_name("T")->check(positiveNumber());
     app.add_option("--vx0", o.vx0, "initial horizontal payload velocity [m/s] (default 1)")
         ->type_name("V")

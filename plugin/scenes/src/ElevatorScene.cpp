@@ -187,13 +187,24 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     ts.frictionCoefficient = p.friction;
     ts.wrapAngle = p.wrapAngle;
     ts.sense = 1;
+    // Car, counterweight and pit sheaves: the rope passes under them, turning counter-clockwise
+    // about +z (wrap sense +1); wrapped, the half turn pi r on each groove is rope too.
+    const bool wrapped = p.sheaveModel == SheaveModel::Wrapped;
+    auto underSheave = [](const MobilizedBody& body, double radius) {
+        DeviationSheave d{body, Vec3(0), radius};
+        d.wrapSense = 1;
+        return d;
+    };
+    rope.sheaveModel = p.sheaveModel;
     if (twoToOne) {
-        // Chords from the top hitches down to the sheaves' centres and up to the traction sheave.
+        // From the top hitches down to the car's and the counterweight's sheaves (wrapped: the falls
+        // vertical, a diameter apart; points: chords to the centres) and up to the traction sheave.
+        const double arc = wrapped ? Pi * r : 0.0;
         rope.start = RopeAnchor{matter_->Ground(), Vec3(-(R + 2 * r), 0, 0)};
-        ts.materialCoordinateAtZeroAngle = -2 * carStart_;
-        rope.sheaves = {DeviationSheave{*car_, Vec3(0), r}, ts, DeviationSheave{*counterweight_, Vec3(0), r}};
+        ts.materialCoordinateAtZeroAngle = -2 * carStart_ + arc;
+        rope.sheaves = {underSheave(*car_, r), ts, underSheave(*counterweight_, r)};
         rope.end = RopeAnchor{matter_->Ground(), Vec3(R + 2 * r, 0, 0)};
-        rope.unstretchedLength = -2 * carStart_ - 2 * cwtStart;
+        rope.unstretchedLength = -2 * carStart_ - 2 * cwtStart + 2 * arc;
     } else {
         rope.start = RopeAnchor{*car_, Vec3(0)};
         ts.materialCoordinateAtZeroAngle = -carStart_;
@@ -217,11 +228,13 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
         RopeSpec comp;
         comp.name = "compensating ropes";
         comp.start = RopeAnchor{*car_, Vec3(0, carBottom, 0)};
-        comp.sheaves = {DeviationSheave{*pitSheave_, Vec3(0), xRail}};
+        comp.sheaves = {underSheave(*pitSheave_, xRail)};
+        comp.sheaveModel = p.sheaveModel;
         comp.end = RopeAnchor{*counterweight_, Vec3(0, cwtBottom, 0)};
         comp.properties = {p.compensationRhoA > 0 ? p.compensationRhoA : p.rhoA, p.EA, 0.0, true};
         comp.properties.axialRetardationTime = p.retardationTime;
-        comp.unstretchedLength = (carStart_ + carBottom - pitStart_) + (cwtStart + cwtBottom - pitStart_);
+        comp.unstretchedLength =
+            (carStart_ + carBottom - pitStart_) + (cwtStart + cwtBottom - pitStart_) + (wrapped ? Pi * xRail : 0.0);
         comp.spanDefaults = spans;
         comp.planeNormal = Vec3(0, 0, 1);
         reeving_->addRope(comp);

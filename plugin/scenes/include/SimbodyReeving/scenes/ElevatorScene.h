@@ -63,6 +63,12 @@ struct ElevatorParameters {
     /// the rope travel and each fall carries half its weight).
     int roping = 1;
     double carSheaveRadius = 0.2;   ///< 2:1: radius of the car's and the counterweight's sheaves [m], > 0
+    /// The model of the sheaves the ropes pass under: the car's and the counterweight's (2:1) and
+    /// the compensating rope's pit sheave. SheaveModel::Wrapped (the default): the rope on their
+    /// grooves, the falls vertical; SheaveModel::Point: the paper's point sheaves, the falls chords to
+    /// their centres. The traction sheave is a point either way (TractionSheave keeps the point model:
+    /// its wrap angle is wrapAngle).
+    SheaveModel sheaveModel = SheaveModel::Wrapped;
     /// A compensating rope: from under the car (2.5 m below its hitch) down around a weighted pit
     /// sheave and up to under the counterweight (3 m below its hitch), a second rope in the same
     /// ReevingSubsystem. It balances the hoist ropes' weight moving from one side to the other.
