@@ -61,7 +61,9 @@ enum class MaterialNode {
 /// the tangent point T_out with the material coordinate s_k + l (s_k the node's material
 /// coordinate, at T_in). The tangent points, the groove's centre (and axis in 3D) and l are
 /// external coordinates given by the caller, as a point node's position is (the wrap geometry
-/// computes them from the bodies, computeSpanTangency and wrapAngle).
+/// computes them from the bodies, computeSpanTangency and wrapAngle). A wrapped node may be Sliding
+/// (a frictionless sheave: s_k solved from the tension equality) or Driven (a sheave that grips the
+/// rope: s_k given, WrapStationMap carries it around the groove with the sheave's rotation).
 struct NodeWrap {
     /// R [m] of the rope's centre line on the groove; 0 (the default): a point node. A wrapped
     /// node must be interior; R finite and >= 0.
