@@ -158,6 +158,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     }
     nodeOffset_[N + 1] = numNodeCoordinates_;
     slipRatio_.assign(N + 1, 1.0);
+    slipExponent_.assign(N + 1, 0.0);
     weightBefore_.assign(N + 1, 1.0);
     weightAfter_.assign(N + 1, 1.0);
     condensedOffset_.assign(N, -1);
@@ -576,6 +577,44 @@ void RopeModel<Dim>::setSlipRatio(int node, double kappa) {
     slipRatio_[node] = kappa;
     weightBefore_[node] = 1.0 / std::max(1.0, kappa);
     weightAfter_[node] = kappa / std::max(1.0, kappa);
+    slipExponent_[node] = 0.0;
+}
+
+template <int Dim>
+void RopeModel<Dim>::setSlipLaw(int node, double kappa0, double arcExponent) {
+    if (!std::isfinite(arcExponent)) {
+        std::ostringstream msg;
+        msg << "RopeModel::setSlipLaw: arcExponent = " << arcExponent << " 1/m must be finite";
+        throw std::invalid_argument(msg.str());
+    }
+    setSlipRatio(node, kappa0);
+    if (arcExponent != 0 && !isWrapped(node))
+        throw std::invalid_argument("RopeModel::setSlipLaw: node " + std::to_string(node) +
+                                    " is not wrapped: its law has no arc length (arcExponent must be 0)");
+    slipExponent_[node] = arcExponent;
+}
+
+template <int Dim>
+typename RopeModel<Dim>::SlipWeights RopeModel<Dim>::slipWeights(int k, const Eigen::VectorXd& x) const {
+    SlipWeights w;
+    w.before = weightBefore_[k];
+    w.after = weightAfter_[k];
+    const double c = slipExponent_[k];
+    if (c == 0) return w;
+    // kappa = kappa_0 e^(c l), scaled as weightBefore_: (1 / kappa, 1) for kappa >= 1, (1, kappa) below.
+    const double kappa = slipRatio_[k] * std::exp(c * x[nodeOffset_[k] + wrappedArcLengthOffset()]);
+    if (kappa >= 1) {
+        w.before = 1.0 / kappa;
+        w.after = 1.0;
+        w.dBefore = -c * w.before;
+        w.ddBefore = c * c * w.before;
+    } else {
+        w.before = 1.0;
+        w.after = kappa;
+        w.dAfter = c * kappa;
+        w.ddAfter = c * c * kappa;
+    }
+    return w;
 }
 
 template <int Dim>
@@ -853,13 +892,25 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
         for (int row = 0; row < nc; ++row) {
             const int k = slidingNode_[row];
             // 1, 1 but at Slipping nodes: eps_{k-1} = kappa eps_k, scaled (see weightBefore_)
-            const double wb = weightBefore_[k], wa = weightAfter_[k];
-            C[row] = wb * data.ws().secondEnd[k - 1].strain - wa * data.ws().firstEnd[k].strain;
-            scatter(row, k - 1, data.ws().secondEnd[k - 1].gradient, wb);
-            scatter(row, k, data.ws().firstEnd[k].gradient, -wa);
+            const SlipWeights sw = slipWeights(k, x);
+            const double wb = sw.before, wa = sw.after;
+            const EndStrain<Dim>& a = data.ws().secondEnd[k - 1];
+            const EndStrain<Dim>& b = data.ws().firstEnd[k];
+            C[row] = wb * a.strain - wa * b.strain;
+            scatter(row, k - 1, a.gradient, wb);
+            scatter(row, k, b.gradient, -wa);
+            if (slipExponent_[k] != 0) {
+                // kappa(l): dC/dl, and the bias's terms in ldot (ws.w holds xdot at the rates' pass).
+                const int lc = nodeOffset_[k] + wrappedArcLengthOffset();
+                put(row, lc, sw.dBefore * a.strain - sw.dAfter * b.strain);
+                if (withRates) {
+                    const double ld = data.ws().w[lc];
+                    data.ws().bias[row] += 2.0 * ld * (sw.dBefore * a.rate - sw.dAfter * b.rate) +
+                                           ld * ld * (sw.ddBefore * a.strain - sw.ddAfter * b.strain);
+                }
+            }
             if (withRates)
-                data.ws().bias[row] =
-                    wb * data.ws().secondEnd[k - 1].accelerationBias - wa * data.ws().firstEnd[k].accelerationBias;
+                data.ws().bias[row] += wb * a.accelerationBias - wa * b.accelerationBias;
         }
         if (finish()) evaluateConstraints(x, qm, data, withRates);
         return;
@@ -917,8 +968,24 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + ki;
-        addTerm(row, k - 1, kernels_[k - 1].endStrain(SpanEnd::Second), weightBefore_[k]);
-        addTerm(row, k, kernels_[k].endStrain(SpanEnd::First), -weightAfter_[k]);
+        const SlipWeights sw = slipWeights(k, x);
+        const int qa = kernels_[k - 1].endStrain(SpanEnd::Second), qb = kernels_[k].endStrain(SpanEnd::First);
+        addTerm(row, k - 1, qa, sw.before);
+        addTerm(row, k, qb, -sw.after);
+        if (slipExponent_[k] != 0) {
+            // kappa(l) (setSlipLaw): dC/dl, and the bias's terms in ldot (the values are the
+            // position pass's, still in the kernels' data at the rates' pass).
+            const auto& Ka = data.ws().condensation[k - 1];
+            const auto& Kb = data.ws().condensation[k];
+            const int lc = nodeOffset_[k] + wrappedArcLengthOffset();
+            if (withRates) {
+                const double ld = data.ws().w[lc];
+                data.ws().bias[row] += 2.0 * ld * (sw.dBefore * Ka.rate[qa] - sw.dAfter * Kb.rate[qb]) +
+                                       ld * ld * (sw.ddBefore * Ka.value[qa] - sw.ddAfter * Kb.value[qb]);
+            } else {
+                put(row, lc, sw.dBefore * Ka.value[qa] - sw.dAfter * Kb.value[qb]);
+            }
+        }
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + nc + ki;

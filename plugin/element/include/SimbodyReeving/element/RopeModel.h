@@ -265,10 +265,22 @@ public:
     /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
     void setStoredRope(int node, double lengthAtZero);
     /// Sets the tension ratio kappa = P_{k-1} / P_k [-] of the Slipping node k (see
-    /// MaterialNode::Slipping; default 1).
+    /// MaterialNode::Slipping; default 1): setSlipLaw(node, kappa, 0).
     /// @throws std::invalid_argument if node is not Slipping or kappa is not finite and > 0.
     void setSlipRatio(int node, double kappa);
-    double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa of a Slipping node (else 1)
+    /// Sets the capstan law of the Slipping node k as a function of the rope on its groove:
+    ///     kappa(l) = P_{k-1} / P_k = kappa_0 e^(c l),
+    /// l = R alpha [m] the arc length of a wrapped node (an external coordinate), so that with
+    /// kappa_0 = 1 and c = +-mu / R the law is Euler-Eytelwein's e^(+-mu alpha) with the wrap angle
+    /// of the current geometry. kappa(l) enters the constraint row's Jacobian (a column at l) and
+    /// its acceleration bias (the terms in ldot), so the coupled solve stays exact as alpha changes.
+    /// @param kappa0      kappa_0 [-], finite and > 0.
+    /// @param arcExponent c [1/m], finite; non-zero only at a wrapped node.
+    /// @throws std::invalid_argument if node is not Slipping, kappa0 is not finite and > 0,
+    ///         arcExponent is not finite, or it is non-zero at a node that is not wrapped.
+    void setSlipLaw(int node, double kappa0, double arcExponent);
+    double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa_0 of a Slipping node (else 1)
+    double slipArcExponent(int node) const { return slipExponent_[node]; }  ///< c [1/m] of a Slipping node (else 0)
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
     /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
     /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
@@ -490,6 +502,13 @@ private:
     // any kappa. Unscaled, a large kappa (e^(mu alpha) = 4e13 at mu = 10) multiplies the slack
     // side's round-off past the Newton's tolerance.
     std::vector<double> weightBefore_, weightAfter_;
+    std::vector<double> slipExponent_;  // per node: c [1/m] of kappa(l) = kappa_0 e^(c l), else 0
+    /// The row weights (w_before, w_after) of Slipping node k at the arc length of x and their
+    /// first and second derivatives in l (zero unless the law has an arc exponent).
+    struct SlipWeights {
+        double before = 1, after = 1, dBefore = 0, dAfter = 0, ddBefore = 0, ddAfter = 0;
+    };
+    SlipWeights slipWeights(int node, const Eigen::VectorXd& x) const;
     int numFixed_ = 0;
     struct Storage {
         int node = -1;
