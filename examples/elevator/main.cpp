@@ -44,7 +44,7 @@ struct Options {
 
 struct Row {
     double t, carY, carV, carA, cwtY, travel, pCar, pCwt, ratio, limit, slipRate, slipDistance, frictionWork,
-        dampingWork, machineWork, residual, pitY;
+        dampingWork, machineWork, residual, pitY, wrap;
     int mode;
 };
 
@@ -94,6 +94,7 @@ Row observe(const ElevatorScene& scene, const State& s, double e0) {
     r.ratio = r.pCar / r.pCwt;
     const int node = scene.tractionNode();
     r.limit = rv.getTractionLimit(s, 0, node);
+    r.wrap = scene.tractionWrapAngle(s);
     r.mode = static_cast<int>(rv.getTractionMode(s, 0, node));
     r.slipRate = rv.getSlipRate(s, 0, node);
     r.slipDistance = rv.getSlipDistance(s, 0, node);
@@ -158,7 +159,7 @@ void writeTimeseries(const fs::path& path, const Result& r) {
     auto& out = f.stream();
     out << "t_s,car_y_m,car_v_mps,car_a_mps2,car_jerk_mps3,counterweight_y_m,rope_travel_m,car_side_force_N,"
            "counterweight_side_force_N,force_ratio,traction_limit,mode,slip_rate_mps,slip_distance_m,"
-           "friction_work_J,damping_work_J,machine_work_J,energy_residual_J,pit_sheave_y_m\n";
+           "friction_work_J,damping_work_J,machine_work_J,energy_residual_J,pit_sheave_y_m,wrap_angle_rad\n";
     out.precision(10);
     for (size_t i = 0; i < r.rows.size(); ++i) {
         const Row& w = r.rows[i];
@@ -168,14 +169,17 @@ void writeTimeseries(const fs::path& path, const Result& r) {
         out << w.t << ',' << w.carY << ',' << w.carV << ',' << w.carA << ',' << jerk << ',' << w.cwtY << ','
             << w.travel << ',' << w.pCar << ',' << w.pCwt << ',' << w.ratio << ',' << w.limit << ',' << w.mode << ','
             << w.slipRate << ',' << w.slipDistance << ',' << w.frictionWork << ',' << w.dampingWork << ','
-            << w.machineWork << ',' << w.residual << ',' << w.pitY << '\n';
+            << w.machineWork << ',' << w.residual << ',' << w.pitY << ',' << w.wrap << '\n';
     }
     f.commit();
 }
 
 Json summarize(const Result& r) {
     double maxRatio = 0, maxA = 0, maxResidual = 0, largest = 0;
+    double minWrap = r.rows.front().wrap, maxWrap = minWrap;
     for (const Row& w : r.rows) {
+        minWrap = std::min(minWrap, w.wrap);
+        maxWrap = std::max(maxWrap, w.wrap);
         if (w.pCwt > 0) maxRatio = std::max(maxRatio, std::max(w.ratio, 1.0 / w.ratio));
         maxA = std::max(maxA, std::abs(w.carA));
         maxResidual = std::max(maxResidual, std::abs(w.residual));
@@ -187,6 +191,8 @@ Json summarize(const Result& r) {
     j["scenario"] = r.scenario;
     j["traction"] = slipped ? "slipped" : "held";
     j["traction_limit"] = jsonNumber(end.limit);
+    j["wrap_angle_min_rad"] = jsonNumber(minWrap);  // the traction sheave's, over the run
+    j["wrap_angle_max_rad"] = jsonNumber(maxWrap);
     j["largest_force_ratio"] = jsonNumber(maxRatio);
     j["traction_margin"] = jsonNumber(end.limit / maxRatio);  // > 1: held with this factor to spare
     j["car_load"] = jsonNumber(r.carLoad);
@@ -217,6 +223,8 @@ void writeSnapshots(std::ostream& g, const Result& r, const ElevatorParameters& 
     const double R = p.sheaveRadius, rc = p.carSheaveRadius;
     const bool twoToOne = p.roping == 2;
     const double xRail = twoToOne ? R + rc : R;
+    const double carX = twoToOne ? xRail : R + p.carHitchOffset;
+    const double cwtX = twoToOne ? xRail : (p.deflector ? p.counterweightRail : R);
     const double floorY = -p.hoistway - (p.compensation ? 11.0 : 4.0);  // under the pit sheave
     g << "set multiplot layout 1,5 title 'reeving-elevator: " << r.scenario << ", " << p.roping
       << ":1 roping" << (p.compensation ? ", compensated" : "") << " (rope green in stick, red in slip)'\n"
@@ -248,19 +256,34 @@ void writeSnapshots(std::ostream& g, const Result& r, const ElevatorParameters& 
             line(R + 2 * rc, 0, R + 2 * rc, w.cwtY);
             circle(-xRail, w.carY, rc);
             circle(xRail, w.cwtY, rc);
+        } else if (p.sheaveModel == SimbodyReeving::SheaveModel::Wrapped) {
+            // The car's fall to its tangent point (leaning by psi with a hitch offset e); the lead-off
+            // span to the deflector (theta from vertical) and the counterweight's fall from it.
+            const double e = p.carHitchOffset, rho = std::hypot(R + e, w.carY);
+            const double psi = std::acos(R / rho) - std::atan2(-w.carY, R + e);
+            line(-(R + e), w.carY, -R * std::cos(psi), R * std::sin(psi));
+            if (p.deflector) {
+                const double rd = p.deflectorRadius, dx = p.counterweightRail - rd, drop = p.deflectorDrop;
+                const double theta = std::atan2(dx, drop) + std::asin((rd - R) / std::hypot(dx, drop));
+                line(R * std::cos(theta), R * std::sin(theta), dx + rd * std::cos(theta), -drop + rd * std::sin(theta));
+                line(p.counterweightRail, -drop, p.counterweightRail, w.cwtY);
+                circle(dx, -drop, rd);
+            } else {
+                line(R, 0, R, w.cwtY);
+            }
         } else {
             line(-R, 0, -R, w.carY);
             line(R, 0, R, w.cwtY);
         }
         if (std::isfinite(w.pitY)) {  // the compensating rope (black) around the pit sheave
-            g << "set arrow " << id++ << " from " << -xRail << "," << w.carY - 2.5 << " to " << -xRail << "," << w.pitY
+            g << "set arrow " << id++ << " from " << -carX << "," << w.carY - 2.5 << " to " << -carX << "," << w.pitY
               << " nohead lw 1.5 lc rgb 'black'\n";
-            g << "set arrow " << id++ << " from " << xRail << "," << w.cwtY - 3.0 << " to " << xRail << "," << w.pitY
+            g << "set arrow " << id++ << " from " << cwtX << "," << w.cwtY - 3.0 << " to " << cwtX << "," << w.pitY
               << " nohead lw 1.5 lc rgb 'black'\n";
-            circle(0, w.pitY, xRail);
+            circle(0.5 * (cwtX - carX), w.pitY, 0.5 * (cwtX + carX));
         }
-        box(-xRail - 0.6, w.carY - (twoToOne ? rc : 0), 0.75, 2.4, "#9ecae1");  // car
-        box(xRail + 0.3, w.cwtY - (twoToOne ? rc : 0), 0.25, 3.0, "#969696");   // counterweight
+        box(-carX - 0.6, w.carY - (twoToOne ? rc : 0), 0.75, 2.4, "#9ecae1");  // car
+        box(cwtX + 0.3, w.cwtY - (twoToOne ? rc : 0), 0.25, 3.0, "#969696");   // counterweight
         g << "set object " << id++ << " rect from -3," << floorY << " to 3," << floorY + 1.5
           << " fc rgb '#d9d9d9' fs solid border lc rgb '#d9d9d9' behind\n";  // pit floor
         g << "plot NaN\n";
@@ -322,9 +345,17 @@ int main(int argc, char** argv) {
                    "at the hoistway's top) (default 1:1)")
         ->check(oneOf({"1:1", "2:1"}));
     addSheaveModelOption(app, o.parameters.sheaveModel,
-                         "the sheaves the ropes pass under (2:1 car and counterweight, the pit\n"
-                         "sheave): wrapped (default: the rope on their grooves, the falls vertical)\n"
-                         "or point (the paper's point sheave); the traction sheave is a point");
+                         "every sheave (traction, deflector, 2:1 car and counterweight, pit):\n"
+                         "wrapped (default: the rope on their grooves, the falls vertical, the\n"
+                         "traction sheave's wrap angle from the geometry) or point (the paper's\n"
+                         "point sheaves, wrap angle pi)");
+    app.add_flag("--deflector", o.parameters.deflector,
+                 "1:1, wrapped: a deflector sheave (r 0.2 m, 0.8 m under the traction sheave)\n"
+                 "leads the counterweight's fall off to x = 0.7 m (wrap angle 155 deg)");
+    app.add_option("--car-hitch-offset", o.parameters.carHitchOffset,
+                   "1:1: the car's hitch this far [m] outside the traction sheave's tangent,\n"
+                   "0..0.5 (default 0): its fall leans, the wrap angle changes with the car")
+        ->check(finiteNumber());
     app.add_flag("--compensation", o.parameters.compensation,
                  "a compensating rope under car and counterweight over a weighted pit sheave (500 kg)");
     app.add_option("--friction", o.parameters.friction, "effective groove friction coefficient mu (default 0.2)")
@@ -411,7 +442,6 @@ int main(int argc, char** argv) {
     summary["compensation"] = o.parameters.compensation;
     summary["sheaves"] = o.parameters.sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? "wrapped" : "point";
     summary["friction"] = jsonNumber(o.parameters.friction);
-    summary["wrap_angle_rad"] = jsonNumber(o.parameters.wrapAngle);
     summary["rated_load_kg"] = jsonNumber(o.parameters.ratedLoad);
     summary["car_mass_kg"] = jsonNumber(o.parameters.carMass);
     summary["counterweight_kg"] = jsonNumber(o.parameters.counterweight());
@@ -438,6 +468,10 @@ int main(int argc, char** argv) {
         return 1;
     }
     summary["traction_table"] = table;
+    // The traction sheave's wrap angle at the first run's start (given, pi with point sheaves, or the
+    // geometry's; each run's range is in its row of the table).
+    summary["wrap_angle_rad"] = jsonNumber(results.front().rows.front().wrap);
+    summary["deflector"] = o.parameters.deflector;
     const fs::path dir(o.outDir);
     for (const Result& r : results) writeTimeseries(dir / ("timeseries_" + r.scenario + ".csv"), r);
     {

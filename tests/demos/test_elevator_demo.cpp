@@ -123,7 +123,7 @@ void checkTrip(int roping) {
     // Measured 0.42 % (1:1) and 0.65 % (2:1) low: one sine mode (n_a = 1) represents the fall's
     // linear strain gradient under its weight with an error at its ends.
     EXPECT_NEAR(rows[0][pa] / atRest, 1.0, 0.02);
-    EXPECT_EQ(h.size(), 19u);
+    EXPECT_EQ(h.size(), 20u);
 }
 
 TEST(ElevatorDemo, TripFollowsItsProfileWithinTheRopeStretchAndHolds) { checkTrip(1); }
@@ -137,9 +137,16 @@ TEST(ElevatorDemo, TwoToOneTripMovesTheCarHalfTheRopeTravelAndHolds) { checkTrip
 // Energy: closes to 1.2e-6 of the largest term (7 transitions; at af00e15, Newton at 1e-15, the run
 // chattered for 15 ms at t = 4.25 s, 3 421 transitions, and closed to 1.3e-6: see TractionSheave);
 // with n_a = 0 (one transition) to 2.2e-7.
+// Point sheaves for n_a = 1: with wrapped ones the counterweight's fall hangs vertical from its
+// tangent point, and once it is slack its quasi-static axial amplitude has no stiffness left
+// against the fall's weight along its chord: the dependent coordinates' Newton stalls at
+// t = 1.49 s (residual 1.1e-6 in strain; docs/elevator.md). The wrapped model runs below with
+// n_a = 0.
 TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
     const fs::path out = scratch("stall_mu10");
-    ASSERT_EQ(run("--scenario stall --friction 10 --quiet --out '" + out.string() + "'", out.string() + ".log"), 0);
+    ASSERT_EQ(run("--scenario stall --friction 10 --sheaves point --quiet --out '" + out.string() + "'",
+                  out.string() + ".log"),
+              0);
     const nlohmann::json t = readJson(out / "summary.json").at("traction_table").at(0);
     EXPECT_EQ(t.at("traction"), "slipped");
     std::vector<std::string> h;
@@ -148,7 +155,7 @@ TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
     const double travel = -rows.back()[column(h, "rope_travel_m")];
     std::printf("stall at mu = 10: car rose %.4f m for %.3f m of rope driven\n", rise, travel);
     EXPECT_GT(travel, 2.0);
-    EXPECT_LT(rise, 0.1 * travel);  // measured 0.061 m of 2.5 m (0.042 m at af00e15: sensitive to round-off)
+    EXPECT_LT(rise, 0.1 * travel);  // measured 0.076 m of 2.5 m (0.042 m at af00e15: sensitive to round-off)
     EXPECT_LE(t.at("energy_residual_relative").get<double>(), 1e-5);  // measured 1.2e-6
     const bool gnuplot = std::system("command -v gnuplot > /dev/null 2>&1") == 0;
     if (gnuplot) {
@@ -162,7 +169,7 @@ TEST(ElevatorDemo, StallSlipsAtLargeFrictionToo) {
               0);
     const nlohmann::json t0 = readJson(out0 / "summary.json").at("traction_table").at(0);
     EXPECT_EQ(t0.at("traction"), "slipped");
-    EXPECT_LE(t0.at("energy_residual_relative").get<double>(), 1e-5);  // measured 2.2e-7
+    EXPECT_LE(t0.at("energy_residual_relative").get<double>(), 1e-5);  // measured 9.2e-7 (wrapped)
     if (!gnuplot) GTEST_SKIP() << "gnuplot not found: elevator_stall*.png were not checked (the other checks ran)";
 }
 

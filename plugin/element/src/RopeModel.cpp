@@ -595,6 +595,28 @@ void RopeModel<Dim>::setSlipLaw(int node, double kappa0, double arcExponent) {
 }
 
 template <int Dim>
+double RopeModel<Dim>::surfaceCoordinate(const RopeData<Dim>& data, int node) const {
+    if (node < 0 || node > numSpans() || drivenIndex_[node] < 0)
+        throw std::invalid_argument("RopeModel::surfaceCoordinate: node " + std::to_string(node) +
+                                    " is neither Driven nor Slipping");
+    const Eigen::VectorXd& x = arcs_.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
+    if (x.size() != numExternalCoordinates())
+        throw std::invalid_argument("RopeModel::surfaceCoordinate: data holds no evaluation from node positions");
+    return x[numNodeCoordinates_ + drivenIndex_[node]];
+}
+
+template <int Dim>
+double RopeModel<Dim>::surfaceRate(const RopeData<Dim>& data, int node) const {
+    if (node < 0 || node > numSpans() || drivenIndex_[node] < 0)
+        throw std::invalid_argument("RopeModel::surfaceRate: node " + std::to_string(node) +
+                                    " is neither Driven nor Slipping");
+    const Eigen::VectorXd& w = data.ws().w;  // [xdot; qdot_m] of the last computeDynamics
+    if (w.size() != numExternalCoordinates() + numModal_)
+        throw std::invalid_argument("RopeModel::surfaceRate: data holds no computeDynamics");
+    return w[numNodeCoordinates_ + drivenIndex_[node]];
+}
+
+template <int Dim>
 typename RopeModel<Dim>::SlipWeights RopeModel<Dim>::slipWeights(int k, const Eigen::VectorXd& x) const {
     SlipWeights w;
     w.before = weightBefore_[k];

@@ -39,7 +39,23 @@ void ElevatorParameters::validate() const {
     check("sheaveRadius [m]", sheaveRadius, sheaveRadius > 0, "finite and > 0");
     check("sheaveInertia [kg m^2]", sheaveInertia, sheaveInertia > 0, "finite and > 0");
     check("friction [-]", friction, friction >= 0, "finite and >= 0");
-    check("wrapAngle [rad]", wrapAngle, wrapAngle > 0, "finite and > 0");
+    if (wrapAngle) check("wrapAngle [rad]", *wrapAngle, *wrapAngle > 0, "finite and > 0");
+    check("carHitchOffset [m]", carHitchOffset, carHitchOffset >= 0 && carHitchOffset < 0.5, "in [0, 0.5)");
+    if (carHitchOffset > 0 && roping != 1)
+        throw std::invalid_argument("ElevatorParameters: carHitchOffset applies to 1:1 roping (2:1 hangs the car "
+                                    "from its own sheave)");
+    if (deflector) {
+        if (roping != 1 || sheaveModel != SheaveModel::Wrapped)
+            throw std::invalid_argument("ElevatorParameters: the deflector needs 1:1 roping and SheaveModel::Wrapped "
+                                        "(it sets the wrapped traction sheave's wrap angle)");
+        check("deflectorRadius [m]", deflectorRadius, deflectorRadius > 0, "finite and > 0");
+        check("deflectorDrop [m]", deflectorDrop, deflectorDrop > 0 && deflectorDrop <= 1, "in (0, 1]");
+        const double cx = counterweightRail - deflectorRadius;
+        check("counterweightRail [m]", counterweightRail,
+              counterweightRail > sheaveRadius &&
+                  std::hypot(cx, deflectorDrop) > sheaveRadius + deflectorRadius,
+              "> sheaveRadius, with the deflector (centre deflectorRadius left of it) clear of the traction sheave");
+    }
     check("rhoA [kg/m]", rhoA, rhoA > 0, "finite and > 0");
     check("EA [N]", EA, EA > 0, "finite and > 0");
     check("retardationTime [s]", retardationTime, retardationTime >= 0, "finite and >= 0");
@@ -139,12 +155,12 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
                                                    Transform());
     const Rotation slideUp(Pi / 2, ZAxis);  // the sliders' x axis along Ground's y: q is the height
     const bool twoToOne = p.roping == 2;
-    const double r = p.carSheaveRadius, xRail = twoToOne ? R + r : R;
-    car_ = std::make_unique<MobilizedBody::Slider>(matter_->Ground(), Transform(slideUp, Vec3(-xRail, 0, 0)),
+    const double r = p.carSheaveRadius;
+    car_ = std::make_unique<MobilizedBody::Slider>(matter_->Ground(), Transform(slideUp, Vec3(-carRail(), 0, 0)),
                                                    Body::Rigid(MassProperties(carTotalMass(), Vec3(0), Inertia(500))),
                                                    Transform(slideUp));
     counterweight_ = std::make_unique<MobilizedBody::Slider>(
-        matter_->Ground(), Transform(slideUp, Vec3(xRail, 0, 0)),
+        matter_->Ground(), Transform(slideUp, Vec3(counterweightRail(), 0, 0)),
         Body::Rigid(MassProperties(p.counterweight(), Vec3(0), Inertia(100))), Transform(slideUp));
     // Heights at t = 0: the car carPosition above the bottom landing (default: at it in Trip, Loading
     // and Stall, mid-shaft in EmergencyStop); the counterweight where the rope puts it (2 m below the
@@ -185,7 +201,8 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     ts.body = *sheave_;
     ts.radius = R;
     ts.frictionCoefficient = p.friction;
-    ts.wrapAngle = p.wrapAngle;
+    // Given, or (0) the geometry's with the wrapped model; pi for the point model's single wrap.
+    ts.wrapAngle = p.wrapAngle ? *p.wrapAngle : (p.sheaveModel == SheaveModel::Wrapped ? 0.0 : Pi);
     ts.sense = 1;
     // Car, counterweight and pit sheaves: the rope passes under them, turning counter-clockwise
     // about +z (wrap sense +1); wrapped, the half turn pi r on each groove is rope too.
@@ -196,21 +213,55 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
         return d;
     };
     rope.sheaveModel = p.sheaveModel;
+    // The rope's length at t = 0 follows the path (unstretched there; the static equilibrium then
+    // stretches it). Wrapped, the traction sheave's TractionSheave::materialCoordinateAtZeroAngle
+    // is the material coordinate at its groove's top (WrapStationMap), a quarter turn (less the car
+    // fall's lean psi) past the arriving tangent point.
     if (twoToOne) {
         // From the top hitches down to the car's and the counterweight's sheaves (wrapped: the falls
         // vertical, a diameter apart; points: chords to the centres) and up to the traction sheave.
-        const double arc = wrapped ? Pi * r : 0.0;
+        const double arc = wrapped ? Pi * r : 0.0, tractionArc = wrapped ? Pi * R : 0.0;
         rope.start = RopeAnchor{matter_->Ground(), Vec3(-(R + 2 * r), 0, 0)};
-        ts.materialCoordinateAtZeroAngle = -2 * carStart_ + arc;
+        ts.materialCoordinateAtZeroAngle = -2 * carStart_ + arc + 0.5 * tractionArc;
         rope.sheaves = {underSheave(*car_, r), ts, underSheave(*counterweight_, r)};
         rope.end = RopeAnchor{matter_->Ground(), Vec3(R + 2 * r, 0, 0)};
-        rope.unstretchedLength = -2 * carStart_ - 2 * cwtStart + 2 * arc;
+        rope.unstretchedLength = -2 * carStart_ - 2 * cwtStart + 2 * arc + tractionArc;
     } else {
         rope.start = RopeAnchor{*car_, Vec3(0)};
-        ts.materialCoordinateAtZeroAngle = -carStart_;
-        rope.sheaves = {ts};
         rope.end = RopeAnchor{*counterweight_, Vec3(0)};
-        rope.unstretchedLength = -carStart_ - cwtStart;
+        if (!wrapped) {
+            // The falls' depths (the chords to the centre are about R^2 / 2 H longer: the static
+            // equilibrium takes that up).
+            ts.materialCoordinateAtZeroAngle = -carStart_;
+            rope.sheaves = {ts};
+            rope.unstretchedLength = -carStart_ - cwtStart;
+        } else {
+            // The car's fall from its hitch P = (-(R + e), y) to its tangent point: length
+            // sqrt(|C - P|^2 - R^2), leaning by psi, (R + e) cos psi - |y| sin psi = R.
+            const double e = p.carHitchOffset, depth = -carStart_;
+            const double rho = std::hypot(R + e, depth);
+            const double psi = std::acos(R / rho) - std::atan2(depth, R + e);
+            const double carFall = std::sqrt(rho * rho - R * R);
+            ts.materialCoordinateAtZeroAngle = carFall + R * (0.5 * Pi - psi);
+            double length = carFall + R * (Pi - psi);
+            if (p.deflector) {
+                // The lead-off span, an outer tangent of the two grooves (both turned clockwise):
+                // theta = atan2(dx, drop) + asin((r_d - R) / |d|) from vertical, the traction
+                // sheave's wrap pi - theta - psi, the deflector's theta; the fall below it vertical.
+                const double rd = p.deflectorRadius, dx = p.counterweightRail - rd, drop = p.deflectorDrop;
+                const double centres = std::hypot(dx, drop);
+                const double theta = std::atan2(dx, drop) + std::asin((rd - R) / centres);
+                length += -theta * R + std::sqrt(centres * centres - (R - rd) * (R - rd)) + rd * theta +
+                          (-drop - cwtStart);
+                DeviationSheave d{matter_->Ground(), Vec3(dx, -drop, 0), rd};
+                d.wrapSense = -1;  // clockwise about +z, as over the traction sheave
+                rope.sheaves = {ts, d};
+            } else {
+                length += -cwtStart;
+                rope.sheaves = {ts};
+            }
+            rope.unstretchedLength = length;
+        }
     }
     rope.properties = {p.rhoA, p.EA, 0.0, true};
     rope.properties.axialRetardationTime = p.retardationTime;
@@ -222,19 +273,21 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
         // the bottom landing (the point sheave's chords then lean at most 3 degrees).
         const double carBottom = -2.5, cwtBottom = -3.0;
         pitStart_ = -p.hoistway + carBottom - 6.0;
+        // Its groove spans the two rails: centre between them, radius half their distance.
+        const double pitX = 0.5 * (counterweightRail() - carRail()), pitRadius = 0.5 * (counterweightRail() + carRail());
         pitSheave_ = std::make_unique<MobilizedBody::Slider>(
-            matter_->Ground(), Transform(slideUp, Vec3(0, 0, 0)),
+            matter_->Ground(), Transform(slideUp, Vec3(pitX, 0, 0)),
             Body::Rigid(MassProperties(p.pitSheaveMass, Vec3(0), Inertia(10))), Transform(slideUp));
         RopeSpec comp;
         comp.name = "compensating ropes";
         comp.start = RopeAnchor{*car_, Vec3(0, carBottom, 0)};
-        comp.sheaves = {underSheave(*pitSheave_, xRail)};
+        comp.sheaves = {underSheave(*pitSheave_, pitRadius)};
         comp.sheaveModel = p.sheaveModel;
         comp.end = RopeAnchor{*counterweight_, Vec3(0, cwtBottom, 0)};
         comp.properties = {p.compensationRhoA > 0 ? p.compensationRhoA : p.rhoA, p.EA, 0.0, true};
         comp.properties.axialRetardationTime = p.retardationTime;
         comp.unstretchedLength =
-            (carStart_ + carBottom - pitStart_) + (cwtStart + cwtBottom - pitStart_) + (wrapped ? Pi * xRail : 0.0);
+            (carStart_ + carBottom - pitStart_) + (cwtStart + cwtBottom - pitStart_) + (wrapped ? Pi * pitRadius : 0.0);
         comp.spanDefaults = spans;
         comp.planeNormal = Vec3(0, 0, 1);
         reeving_->addRope(comp);
@@ -264,6 +317,19 @@ SimTK::State ElevatorScene::makeInitialState() const {
     workMeter_->setWork(s, 0);
     system_->realize(s, Stage::Velocity);
     return s;
+}
+
+double ElevatorScene::carRail() const {
+    const ElevatorParameters& p = parameters_;
+    return p.roping == 2 ? p.sheaveRadius + p.carSheaveRadius : p.sheaveRadius + p.carHitchOffset;
+}
+double ElevatorScene::counterweightRail() const {
+    const ElevatorParameters& p = parameters_;
+    if (p.roping == 2) return p.sheaveRadius + p.carSheaveRadius;
+    return p.deflector ? p.counterweightRail : p.sheaveRadius;
+}
+double ElevatorScene::tractionWrapAngle(const SimTK::State& s) const {
+    return reeving_->getWrapAngle(s, 0, tractionNode());
 }
 
 double ElevatorScene::carHeight(const SimTK::State& s) const { return car_->getOneQ(s, 0); }

@@ -24,11 +24,12 @@ using namespace detail;
 
 namespace {
 
-// A TurningSheave with SheaveModel::Wrapped grips the rope on its groove: wrap sense
-// sigma = -sense (pin axis . n), so that s = s_ref + sense R theta is the material coordinate at
-// the groove's top (WrapStationMap). Its pin must turn about the plane normal, relative to Ground
-// (the tangent points' angles are measured in Ground).
-NodeWrap turningSheaveWrap(const RopeNode& n, const SimTK::UnitVec3& normal, const std::string& name) {
+// A TurningSheave or TractionSheave with SheaveModel::Wrapped grips the rope on its groove (a
+// traction sheave while it sticks): wrap sense sigma = -sense (pin axis . n), so that
+// s = s_ref + sense R theta is the material coordinate at the groove's top (WrapStationMap). Its
+// pin must turn about the plane normal, relative to Ground (the tangent points' angles are
+// measured in Ground).
+NodeWrap grippingSheaveWrap(const RopeNode& n, const SimTK::UnitVec3& normal, const std::string& name) {
     if (!n.body.getParentMobilizedBody().isGround())
         invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground (the rope's grip on the groove "
                        "is measured from Ground's angles)");
@@ -270,8 +271,12 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                             " must be +1 or -1");
                 r.wraps[k].radius = n.radius;
                 r.wraps[k].wrapSense = n.sense;
-            } else if (n.kind == RopeNodeKind::TurningSheave) {
-                r.wraps[k] = turningSheaveWrap(n, normal, who + "TurningSheave at node " + std::to_string(k));
+            } else if (n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) {
+                r.wraps[k] = grippingSheaveWrap(n, normal,
+                                                who + (n.kind == RopeNodeKind::TurningSheave ? "TurningSheave" : "TractionSheave") +
+                                                    " at node " + std::to_string(k));
+                // A traction sheave without a given wrap angle takes the geometry's, l / R.
+                if (n.kind == RopeNodeKind::TractionSheave) r.driven[r.drivenIndex(k)].geometricWrap = n.wrapAngle == 0;
             }
         }
     }

@@ -70,6 +70,9 @@ struct RopeRecord {
         bool traction = false;
         int tractionIndex = -1;  // among the rope's traction sheaves
         double frictionCoefficient = 0, wrapAngle = 0;  // wrapAngle 0: from the geometry
+        // A wrapped TractionSheave (SheaveModel::Wrapped) without a given wrap angle: its capstan
+        // law takes alpha = l / R of the current geometry (RopeModel::setSlipLaw), at every evaluation.
+        bool geometricWrap = false;
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
@@ -326,6 +329,10 @@ public:
     void resolveWrapAngles(const SimTK::State& s, const detail::PositionCache& pc) const;
     /// Axial forces P_a, P_b of the spans before and after node k at the node [N] (Stage::Position).
     std::pair<double, double> nodeAxialForces(const SimTK::State& s, const detail::RopeRecord& r, int node) const;
+    /// The wrap angle alpha [rad] traction sheave d's capstan law uses in state s (Stage::Position):
+    /// the geometry's l / R for a geometricWrap sheave, else the given or resolved one.
+    double tractionWrapAngle(const SimTK::State& s, const detail::RopeRecord& r,
+                             const detail::RopeRecord::DrivenNode& d) const;
     /// e^(mu alpha) of traction sheave d of rope r in state s.
     double tractionLimit(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
     /// Slip rate sdot_k - dsdTheta thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).

@@ -31,8 +31,18 @@ TractionStates& ReevingSubsystem::Guts::updTractionStates(State& s) const {
     return Value<TractionStates>::updDowncast(updDiscreteVariable(s, tractionVariable_)).upd();
 }
 
+double ReevingSubsystem::Guts::tractionWrapAngle(const State& s, const RopeRecord& r,
+                                                 const RopeRecord::DrivenNode& d) const {
+    if (!d.geometricWrap) return tractionStates(s).ropes[r.index][d.tractionIndex].wrapAngle;
+    // l = s1 of the departing span - s_k (the rope on the groove), as getArcLength.
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    const double l = c.planar.spanCoordinates(d.node)[c.planarModel->span(d.node).s1Index()] -
+                     c.planar.materialCoordinates[d.node];
+    return l / r.wraps[d.node].radius;
+}
+
 double ReevingSubsystem::Guts::tractionLimit(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
-    return std::exp(d.frictionCoefficient * tractionStates(s).ropes[r.index][d.tractionIndex].wrapAngle);
+    return std::exp(d.frictionCoefficient * tractionWrapAngle(s, r, d));
 }
 
 const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const RopeRecord& r) const {
@@ -44,22 +54,31 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
         if (!d.traction) continue;
         const TractionNodeState& t = ts[d.tractionIndex];
         if (t.mode == TractionMode::Stick) continue;
+        anySlip = true;
+        if (d.geometricWrap) {  // kappa(l) = e^(+-mu l / R): the phase's sign is the key
+            key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
+            continue;
+        }
         const double limit = std::exp(d.frictionCoefficient * t.wrapAngle);
         // kappa = P_{k-1} / P_k: the tight side is the one the rope slides towards.
         key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? limit : 1.0 / limit;
-        anySlip = true;
     }
     if (!anySlip) return *r.planarModel;
     for (const auto& [k, model] : r.tractionModels)
         if (k == key) return *model;
     std::vector<MaterialNode> kinds = r.materialKinds;
     for (const RopeRecord::DrivenNode& d : r.driven)
-        if (d.traction && key[d.tractionIndex] > 0) kinds[d.node] = MaterialNode::Slipping;
+        if (d.traction && key[d.tractionIndex] != 0) kinds[d.node] = MaterialNode::Slipping;
     std::vector<SpanModel<2>> spans;
     for (int j = 0; j < r.numSpans(); ++j) spans.push_back(r.planarModel->span(j));
     auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, kinds, r.wraps);
-    for (const RopeRecord::DrivenNode& d : r.driven)
-        if (d.traction && key[d.tractionIndex] > 0) model->setSlipRatio(d.node, key[d.tractionIndex]);
+    for (const RopeRecord::DrivenNode& d : r.driven) {
+        if (!d.traction || key[d.tractionIndex] == 0) continue;
+        if (d.geometricWrap)
+            model->setSlipLaw(d.node, 1.0, key[d.tractionIndex] * d.frictionCoefficient / r.wraps[d.node].radius);
+        else
+            model->setSlipRatio(d.node, key[d.tractionIndex]);
+    }
     r.addStoredRope(*model);
     model->setStationaryNodes(r.stationaryNodes());
     r.tractionModels.emplace_back(key, model);
@@ -70,7 +89,7 @@ void ReevingSubsystem::Guts::resolveWrapAngles(const State& s, const PositionCac
     const TractionStates& ts = tractionStates(s);
     for (const RopeRecord& r : ropes)
         for (const RopeRecord::DrivenNode& d : r.driven) {
-            if (!d.traction || ts.ropes[r.index][d.tractionIndex].wrapAngle > 0) continue;
+            if (!d.traction || d.geometricWrap || ts.ropes[r.index][d.tractionIndex].wrapAngle > 0) continue;
             // From this configuration (the state's first realization to Stage::Position): a value the
             // state did not have yet, written in place (as the spatial frames are).
             const int k = d.node;
@@ -102,7 +121,9 @@ std::pair<double, double> ReevingSubsystem::Guts::nodeAxialForces(const State& s
 double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
     const RopeCache& c = positionCache(s).ropes[r.index];
     if (tractionStates(s).ropes[r.index][d.tractionIndex].mode == TractionMode::Stick) return 0;
-    return c.planar.materialRates[d.node] - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+    // The groove's surface where the rope arrives: dsdTheta thetadot, plus sigma R phi_in-dot on a
+    // wrapped sheave (RopeModel::surfaceRate).
+    return c.planar.materialRates[d.node] - c.planarModel->surfaceRate(c.planar, d.node);
 }
 
 double ReevingSubsystem::Guts::tractionWitness(const State& s, int rope, int driven) const {
@@ -133,8 +154,10 @@ void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) 
         const double limit = tractionLimit(s, r, d);
         next.mode = limit * pb - pa < limit * pa - pb ? TractionMode::SlipTowardStart : TractionMode::SlipTowardEnd;
     } else {
-        const double sk = positionCache(s).ropes[rope].planar.materialCoordinates[d.node];
-        next.sStick = sk - d.dsdTheta * r.nodeSpec(d.node).body.getOneQ(s, 0);
+        // s_k continuous: the surface coordinate where the rope arrives (sStick + dsdTheta theta,
+        // plus sigma R phi_in on a wrapped sheave) moves onto s_k.
+        const RopeCache& c = positionCache(s).ropes[rope];
+        next.sStick += c.planar.materialCoordinates[d.node] - c.planarModel->surfaceCoordinate(c.planar, d.node);
         next.mode = TractionMode::Stick;
     }
     ++next.transitions;
@@ -211,8 +234,11 @@ double ReevingSubsystem::getSlipRate(const State& s, int rope, int node) const {
 double ReevingSubsystem::getSlipDistance(const State& s, int rope, int node) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const RopeRecord::DrivenNode& d = tractionAt(r, node);
-    const double sk = getGuts().positionCache(s).ropes[rope].planar.materialCoordinates[node];
-    return sk - d.dsdTheta * r.nodeSpec(node).body.getOneQ(s, 0) - d.sRef;
+    // The slip of the current phase (s_k off the surface where it arrives; 0 in stick) plus the
+    // offset the stick phases so far have accumulated.
+    const RopeCache& c = getGuts().positionCache(s).ropes[rope];
+    const double sStick = getGuts().tractionStates(s).ropes[rope][d.tractionIndex].sStick;
+    return c.planar.materialCoordinates[node] - c.planarModel->surfaceCoordinate(c.planar, node) + sStick - d.sRef;
 }
 
 double ReevingSubsystem::getTractionRatio(const State& s, int rope, int node) const {
@@ -231,14 +257,16 @@ double ReevingSubsystem::getTractionLimit(const State& s, int rope, int node) co
 
 double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
-    if (node >= 0 && node < r.numNodes() && r.planar && r.wraps[node].radius > 0)
-        return getArcLength(s, rope, node) / r.wraps[node].radius;
-    if (node >= 0 && node < r.numNodes() && (r.drivenIndex(node) < 0 || !r.driven[r.drivenIndex(node)].traction))
-        invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
-                " is neither a TractionSheave nor a wrapped sheave: it has no wrap angle");
-    const RopeRecord::DrivenNode& d = tractionAt(r, node);
-    getGuts().positionCache(s);
-    return getGuts().tractionStates(s).ropes[rope][d.tractionIndex].wrapAngle;
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    const int driven = r.drivenIndex(node);
+    if (driven >= 0 && r.driven[driven].traction) {  // the angle its capstan law uses
+        getGuts().positionCache(s);
+        return getGuts().tractionWrapAngle(s, r, r.driven[driven]);
+    }
+    if (r.planar && r.wraps[node].radius > 0) return getArcLength(s, rope, node) / r.wraps[node].radius;
+    invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
+            " is neither a TractionSheave nor a wrapped sheave: it has no wrap angle");
 }
 
 double ReevingSubsystem::getFrictionPower(const State& s, int rope, int node) const {

@@ -274,11 +274,22 @@ public:
     /// kappa_0 = 1 and c = +-mu / R the law is Euler-Eytelwein's e^(+-mu alpha) with the wrap angle
     /// of the current geometry. kappa(l) enters the constraint row's Jacobian (a column at l) and
     /// its acceleration bias (the terms in ldot), so the coupled solve stays exact as alpha changes.
+    /// @param node        k, a Slipping node.
     /// @param kappa0      kappa_0 [-], finite and > 0.
     /// @param arcExponent c [1/m], finite; non-zero only at a wrapped node.
     /// @throws std::invalid_argument if node is not Slipping, kappa0 is not finite and > 0,
     ///         arcExponent is not finite, or it is non-zero at a node that is not wrapped.
     void setSlipLaw(int node, double kappa0, double arcExponent);
+    /// The external coordinate of Driven or Slipping node k, the material coordinate of the
+    /// sheave's surface where the rope arrives on it [m]: drivenS's entry at a point node,
+    /// Y_s + sigma R phi_in at a wrapped one (WrapStationMap), from the last
+    /// solveDependentCoordinates on data from node positions (the NodeMatrix forms).
+    /// @throws std::invalid_argument if node is neither Driven nor Slipping or data holds no such evaluation.
+    double surfaceCoordinate(const RopeData<Dim>& data, int node) const;
+    /// Its rate [m/s], from the last computeDynamics on data. s_k - surfaceCoordinate is the rope's
+    /// slip over a Slipping node's groove (0 at a Driven node), sdot_k - surfaceRate its slip rate.
+    /// @throws std::invalid_argument as surfaceCoordinate.
+    double surfaceRate(const RopeData<Dim>& data, int node) const;
     double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa_0 of a Slipping node (else 1)
     double slipArcExponent(int node) const { return slipExponent_[node]; }  ///< c [1/m] of a Slipping node (else 0)
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero

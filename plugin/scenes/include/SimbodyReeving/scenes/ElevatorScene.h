@@ -48,7 +48,12 @@ struct ElevatorParameters {
     double sheaveRadius = 0.32;     ///< [m], > 0
     double sheaveInertia = 25.0;    ///< machine sheave, rotor and brake drum about the axis [kg m^2], > 0
     double friction = 0.2;          ///< effective groove friction coefficient mu [-], >= 0
-    double wrapAngle = 3.14159265358979323846;  ///< alpha [rad], > 0 (1:1, single wrap: pi)
+    /// The wrap angle alpha [rad] > 0 given to the traction sheave's capstan law (a double wrap,
+    /// an arrangement the model does not see). Unset: pi with SheaveModel::Point (the single wrap
+    /// of a point sheave); with SheaveModel::Wrapped the geometry's, from the tangent points at every
+    /// evaluation (pi with vertical falls; pi - theta - psi with a deflector that leads the
+    /// counterweight's fall off at theta from vertical and a car fall leaning by psi).
+    std::optional<double> wrapAngle;
     double rhoA = 1.4;              ///< rope set [kg/m], > 0 (4 x 0.35)
     double EA = 1.6e7;              ///< rope set [N], > 0 (4 x 4 MN)
     double retardationTime = 0.0;   ///< Kelvin-Voigt c of the rope [s], >= 0
@@ -63,12 +68,28 @@ struct ElevatorParameters {
     /// the rope travel and each fall carries half its weight).
     int roping = 1;
     double carSheaveRadius = 0.2;   ///< 2:1: radius of the car's and the counterweight's sheaves [m], > 0
-    /// The model of the sheaves the ropes pass under: the car's and the counterweight's (2:1) and
-    /// the compensating rope's pit sheave. SheaveModel::Wrapped (the default): the rope on their
-    /// grooves, the falls vertical; SheaveModel::Point: the paper's point sheaves, the falls chords to
-    /// their centres. The traction sheave is a point either way (TractionSheave keeps the point model:
-    /// its wrap angle is wrapAngle).
+    /// The model of every sheave: the traction sheave, the deflector, the car's and the
+    /// counterweight's (2:1) and the compensating rope's pit sheave. SheaveModel::Wrapped (the
+    /// default): the rope on their grooves (R alpha of rope with its mass on each), the falls
+    /// vertical, the traction sheave's wrap angle from the geometry; SheaveModel::Point: the paper's
+    /// point sheaves, the falls chords to their centres, the traction sheave's wrap angle
+    /// wrapAngle (pi unset).
     SheaveModel sheaveModel = SheaveModel::Wrapped;
+    /// 1:1 with SheaveModel::Wrapped: a deflector sheave (a DeviationSheave on Ground, radius
+    /// deflectorRadius, centre deflectorDrop below the traction sheave's axis and
+    /// deflectorRadius left of counterweightRail): the rope runs from the traction sheave down to
+    /// it and around its right side, and the counterweight hangs at x = counterweightRail. It sets
+    /// the traction sheave's wrap angle to pi - theta, theta the lead-off span's angle from vertical.
+    bool deflector = false;
+    double deflectorRadius = 0.2;     ///< [m], > 0
+    double deflectorDrop = 0.8;       ///< its centre below the traction sheave's axis [m], in (0, 1]
+    /// x of the counterweight's fall with the deflector [m]: > sheaveRadius, the deflector clear of
+    /// the traction sheave (centres more than sheaveRadius + deflectorRadius apart).
+    double counterweightRail = 0.7;
+    /// 1:1: the car's rope hitch carHitchOffset [m] left of the traction sheave's tangent line
+    /// x = -sheaveRadius (>= 0, < 0.5): the car's fall leans by about carHitchOffset / its length,
+    /// so the wrap angle changes as the car moves (0: vertical).
+    double carHitchOffset = 0;
     /// A compensating rope: from under the car (2.5 m below its hitch) down around a weighted pit
     /// sheave and up to under the counterweight (3 m below its hitch), a second rope in the same
     /// ReevingSubsystem. It balances the hoist ropes' weight moving from one side to the other.
@@ -99,7 +120,9 @@ struct ElevatorParameters {
 /// stop in EmergencyStop, the stalled drive); the car and the counterweight, MobilizedBody::Sliders
 /// along y (q = the height of the rope hitch, in 2:1 of the sheave's centre [m]).
 /// - 1:1: car and counterweight at x = -R and x = +R. Rope: car hitch (start) -> TractionSheave
-///   (node 1) -> counterweight hitch (end).
+///   (node 1) -> counterweight hitch (end). With the deflector: the car at x = -(R + carHitchOffset),
+///   the counterweight at x = counterweightRail, the rope car hitch -> TractionSheave (node 1) ->
+///   deflector (node 2) -> counterweight hitch.
 /// - 2:1: car and counterweight at x = -(R + r) and x = +(R + r), r = carSheaveRadius. Rope: hitch on
 ///   Ground at (-(R + 2 r), 0) (start) -> DeviationSheave on the car -> TractionSheave (node 2) ->
 ///   DeviationSheave on the counterweight -> hitch on Ground at (R + 2 r, 0) (end).
@@ -149,6 +172,11 @@ public:
     /// carry the car).
     double carSideForce(const SimTK::State& s) const;
     double counterweightSideForce(const SimTK::State& s) const;  ///< [N]
+    /// The wrap angle the traction sheave's capstan law uses [rad] (ReevingSubsystem::getWrapAngle).
+    double tractionWrapAngle(const SimTK::State& s) const;
+    /// x of the car's and the counterweight's falls (their sliders' rails) [m].
+    double carRail() const;
+    double counterweightRail() const;  ///< [m]
     /// E(t) - E(0) + W_friction + W_damping - W_machine [J] (Stage::Velocity), e0 = E(0).
     double energyResidual(const SimTK::State& s, double e0) const;
 

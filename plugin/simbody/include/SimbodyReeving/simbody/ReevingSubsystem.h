@@ -62,9 +62,10 @@ enum class SheaveModel {
     /// R alpha, carries its mass (RopeModel's NodeWrap, GrooveArc; WrapStationMap maps the bodies'
     /// motion to the tangent points and arc lengths). The wrap sense is RopeNode::sense: +1 when
     /// the rope, running from its start to its end, turns counter-clockwise about the plane normal
-    /// on the groove, -1 clockwise. Applies to the DeviationSheave and TurningSheave nodes of
-    /// planar ropes (a TurningSheave's wrap sense follows from its sense and pin axis, see
-    /// TurningSheave); TractionSheave and WinchDrum nodes keep the point model.
+    /// on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
+    /// TractionSheave nodes of planar ropes (a TurningSheave's or TractionSheave's wrap sense follows
+    /// from its sense and pin axis, see TurningSheave; a TractionSheave without a given wrap angle
+    /// then takes the geometry's, see TractionSheave); WinchDrum nodes keep the point model.
     Wrapped,
 };
 
@@ -183,18 +184,28 @@ struct TurningSheave {
 
 /// A traction sheave (see RopeNodeKind::TractionSheave): a MobilizedBody::Pin, radius R [m] > 0,
 /// the groove's friction coefficient mu [-] >= 0 (an effective one: a V or undercut groove's
-/// wedge factor included), the wrap angle alpha [rad] (0, the default: taken when the state is
-/// first realized to Stage::Position from the angle by which the two spans turn the rope at the
-/// node, alpha = pi - angle(r_{k-1} - r_k, r_{k+1} - r_k); fixed for the run: a point sheave does
-/// not follow the tangent points, so give alpha for double wrap or when the geometry changes the
-/// wrap), the material coordinate at the sheave at pin angle 0 with no slip yet [m] (as for a
-/// TurningSheave; getSlipDistance counts from it), the sense (as for a TurningSheave) and the point
-/// on the pin axis (body frame). It starts in stick.
+/// wedge factor included), the wrap angle alpha [rad] (0, the default: from the geometry), the
+/// material coordinate at the sheave at pin angle 0 with no slip yet [m] (as for a TurningSheave;
+/// getSlipDistance counts from it), the sense (as for a TurningSheave) and the point on the pin
+/// axis (body frame). It starts in stick.
 ///
-/// What the point sheave does not model: the tension varies along the wrap arc (P e^(mu phi) in
-/// slip, and the creep of an elastic rope in stick: the whole arc sticks here); the centrifugal
-/// load rhoA v^2 of the rope on the arc (it lowers the effective traction at high rope speed);
-/// groove wear and pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
+/// The wrap angle from the geometry: with SheaveModel::Point it is taken when the state is first
+/// realized to Stage::Position, alpha = pi - angle(r_{k-1} - r_k, r_{k+1} - r_k), and fixed for
+/// the run (a point sheave does not follow the tangent points). With SheaveModel::Wrapped the
+/// rope arrives and leaves at the groove's tangent points (the pin's parent must be Ground and
+/// its axis along the plane normal, as for a wrapped TurningSheave), and alpha = l / R of the
+/// current geometry at every evaluation: the stick limit e^(mu alpha) and, in slip, the capstan
+/// law P_{k-1} = e^(+-mu l / R) P_k (RopeModel::setSlipLaw, whose derivative in l enters the
+/// coupled solve) follow a deflector, a moving car or a leaning fall. A given alpha (double wrap,
+/// an arrangement the geometry does not show) is used as given with either model. In stick
+/// s_k = s_stick + sense R theta is the material coordinate at the groove's top (WrapStationMap).
+///
+/// What it does not model: the tension varies along the wrap arc (P e^(mu phi) in slip, and the
+/// creep of an elastic rope in stick: the whole arc sticks here); the centrifugal load rhoA v^2
+/// of the rope on the arc (it lowers the effective traction at high rope speed; in slip it would
+/// make the capstan law depend on the rope's speed, so that s_k could no longer be solved from
+/// the positions: it needs the rope on the groove as a state of its own); groove wear and
+/// pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
 /// undefined: both forces at or below 0 keep the sheave in its mode. Planar ropes only for now
 /// (addRope throws for a spatial rope with a TractionSheave).
 ///
@@ -220,7 +231,7 @@ struct TractionSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
     double frictionCoefficient = 0;            ///< mu [-], >= 0 (effective: groove shape included)
-    double wrapAngle = 0;                      ///< alpha [rad]; 0: from the geometry at the first realization
+    double wrapAngle = 0;                      ///< alpha [rad]; 0: from the geometry (see above)
     double materialCoordinateAtZeroAngle = 0;  ///< s_ref at pin angle 0 with no slip yet [m]
     int sense = 1;                             ///< +1 or -1, as for a TurningSheave
     SimTK::Vec3 centre{0};                     ///< the rope node's point on the pin axis, body frame [m]
@@ -406,16 +417,16 @@ public:
     /// Force ratio P_a / P_b of the spans before and after the sheave [-] (Stage::Position; NaN if
     /// P_b <= 0).
     double getTractionRatio(const SimTK::State& state, int rope, int node) const;
-    /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position: alpha may come from the
-    /// geometry of the state's first realization).
+    /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position; alpha as getWrapAngle).
     double getTractionLimit(const SimTK::State& state, int rope, int node) const;
     /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
-    /// uses; at a wrapped DeviationSheave or TurningSheave (SheaveModel::Wrapped) the geometry's,
-    /// l / R with l = getArcLength.
+    /// uses (given, the first realization's with a point sheave, l / R with a wrapped one); at a
+    /// wrapped DeviationSheave or TurningSheave (SheaveModel::Wrapped) the geometry's, l / R with
+    /// l = getArcLength.
     /// @throws std::invalid_argument if rope or node is out of range or the node is neither.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
-    /// DeviationSheave or TurningSheave, 0 at every point node. The rope's length is the sum over its spans of
+    /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node. The rope's length is the sum over its spans of
     /// s2 - s1 (getSpanMaterialRange) and over its nodes of l.
     /// @throws std::invalid_argument if rope or node is out of range.
     double getArcLength(const SimTK::State& state, int rope, int node) const;
