@@ -2,10 +2,12 @@
 # Usage: bench/elevator/elevator_cost.sh [BUILD_DIR] [REPEATS]
 # The traction elevator's cost: for each scenario of reeving-elevator, pinned to one core
 # (taskset -c 0), the real-time factor (simulated / wall, median of REPEATS runs, default 5) with the
-# steps and right-hand sides; and the cost of the friction events: each scenario again with
-# --friction 10 (the sheave slips only in the stall, where the counterweight's fall is slack: no
-# other stick/slip events), steps, rhs and wall side by side; then each scenario roped 2:1 and each
-# 1:1 with the compensating rope (mu 0.2).
+# steps and right-hand sides: 1:1 with the default (wrapped) sheaves; then the cost of the friction
+# events, 1:1 with point sheaves at mu 0.2 and again with --friction 10 (the sheave slips only in
+# the stall, where the counterweight's fall is slack: no other stick/slip events; point sheaves, as
+# with wrapped ones the slack fall's quasi-static amplitude stalls the Newton, see
+# docs/elevator.md), steps, rhs and wall side by side; then each scenario roped 2:1 and each 1:1
+# with the compensating rope (mu 0.2).
 set -euo pipefail
 build="${1:-build}"
 repeats="${2:-5}"
@@ -16,13 +18,14 @@ trap 'rm -rf "$tmp"' EXIT
 field() { python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['traction_table'][0]; print(t[sys.argv[2]])" "$1" "$2"; }
 printf '| roping | scenario | mu | traction | transitions | steps | rhs | wall [s] (median of %s) | real-time factor |\n' "$repeats"
 printf '|---|---|---|---|---|---|---|---|---|\n'
-for roping in 1:1 2:1 1:1+compensation; do
+for roping in 1:1 "1:1 point" 2:1 1:1+compensation; do
     for scenario in trip loading emergency-stop stall; do
         for mu in 0.2 10; do
-            [ "$roping" != 1:1 ] && [ "$mu" = 10 ] && continue
-            extra=(--roping "${roping%%+*}")
+            [ "$roping" != "1:1 point" ] && [ "$mu" = 10 ] && continue
+            extra=(--roping "${roping%%[+ ]*}")
             [ "$roping" = 1:1+compensation ] && extra+=(--compensation)
-            out="$tmp/${roping/[:+]/-}-$scenario-$mu"
+            [ "$roping" = "1:1 point" ] && extra+=(--sheaves point)
+            out="$tmp/${roping//[:+ ]/-}-$scenario-$mu"
             walls=()
             for ((i = 0; i < repeats; i++)); do
                 taskset -c 0 "$exe" "${extra[@]}" --scenario "$scenario" --friction "$mu" --no-plots --quiet \
