@@ -273,7 +273,7 @@ TEST(RopeWrappedNodes, RejectsBadWraps) {
     };
     std::vector<NodeWrap> wraps(3);
     wraps[0].radius = 0.2;
-    EXPECT_THROW_MESSAGE(Rope(spans(), 5.0, {}, wraps), std::invalid_argument, "end node 0 cannot be wrapped");
+    EXPECT_THROW_MESSAGE(Rope(spans(), 5.0, {}, wraps), std::invalid_argument, "end node 0 can be wrapped only as a Driven node");
     wraps[0].radius = 0;
     wraps[1].radius = -0.1;
     EXPECT_THROW_MESSAGE(Rope(spans(), 5.0, {}, wraps), std::invalid_argument,

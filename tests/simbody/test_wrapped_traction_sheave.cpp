@@ -150,13 +150,13 @@ TEST(WrappedTractionSheave, GivenWrapAngleOverridesTheGeometry) {
     EXPECT_EQ(a.reeving->updateTractionModes(a.state), 0);  // 2.5 < e^(0.5 pi) = 4.8: holds
 }
 
-// The pin of a wrapped traction sheave must turn about the rope plane's normal relative to Ground
-// (the groove's angles are measured in Ground).
+// The pin of a wrapped traction sheave must turn about the rope plane's normal relative to a body
+// that keeps Ground's orientation (the groove's angles are measured in Ground): not on a rocker.
 TEST(WrappedTractionSheave, PinOnAMovingBodyIsRejected) {
     MultibodySystem system;
     SimbodyMatterSubsystem matter(system);
-    MobilizedBody::Slider carrier(matter.Ground(), Transform(), Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))),
-                                  Transform());
+    MobilizedBody::Pin carrier(matter.Ground(), Transform(Vec3(0, 1, 0)), Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))),
+                               Transform());
     MobilizedBody::Pin sheave(carrier, Transform(), Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))), Transform());
     MobilizedBody::Slider mass(matter.Ground(), Transform(Vec3(-1, -3, 0)),
                                Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))), Transform());
@@ -170,5 +170,6 @@ TEST(WrappedTractionSheave, PinOnAMovingBodyIsRejected) {
     rope.unstretchedLength = 7;
     rope.planeNormal = Vec3(0, 0, 1);
     EXPECT_THROW_MESSAGE(reeving.addRope(rope), std::invalid_argument,
-                         "TractionSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground");
+                         "TractionSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground or "
+                         "translate without turning");
 }

@@ -164,14 +164,16 @@ TEST(WrappedTurningSheave, AtwoodMachineConservesEnergy) {
     EXPECT_LT(worst, 1e-10 * KE0);
 }
 
-// Bad input: a wrapped TurningSheave whose pin's parent is not Ground, or whose pin axis is not
-// the plane's normal.
+// Bad input: a wrapped TurningSheave whose pin's parent turns (here a rocker on a pin), or whose
+// pin axis is not the plane's normal. A parent that only translates (a Slider carriage) is fine.
 TEST(WrappedTurningSheave, RejectsPinsOffGroundOrAcrossThePlane) {
     SimTK::MultibodySystem system;
     SimTK::SimbodyMatterSubsystem matter(system);
     ReevingSubsystem reeving(system, Vec3(0, -kG, 0));
+    MobilizedBody::Pin rocker(matter.Ground(), SimTK::Transform(Vec3(0, 1, 0)), pointMass(10), SimTK::Transform());
+    MobilizedBody::Pin onCarriage(rocker, SimTK::Transform(), wheel(0.1), SimTK::Transform());
     MobilizedBody::Slider carriage(matter.Ground(), SimTK::Transform(), pointMass(10), SimTK::Transform());
-    MobilizedBody::Pin onCarriage(carriage, SimTK::Transform(), wheel(0.1), SimTK::Transform());
+    MobilizedBody::Pin onSlider(carriage, SimTK::Transform(), wheel(0.1), SimTK::Transform());
     // A pin turning about Ground's x (its frames' z along x).
     const SimTK::Transform aboutX(SimTK::Rotation(SimTK::Mat33(0, 0, 1, 0, 1, 0, -1, 0, 0), true), Vec3(0));
     MobilizedBody::Pin tilted(matter.Ground(), aboutX, wheel(0.1), aboutX);
@@ -184,9 +186,12 @@ TEST(WrappedTurningSheave, RejectsPinsOffGroundOrAcrossThePlane) {
     spec.sheaveModel = SheaveModel::Wrapped;
     spec.sheaves = {TurningSheave{onCarriage, 0.2, 3.3, 1}};
     EXPECT_THROW_MESSAGE(reeving.addRope(spec), std::invalid_argument,
-                         "TurningSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground");
+                         "TurningSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground or "
+                         "translate without turning");
     spec.sheaves = {TurningSheave{tilted, 0.2, 3.3, 1}};
     EXPECT_THROW_MESSAGE(reeving.addRope(spec), std::invalid_argument,
                          "TurningSheave at node 1: with SheaveModel::Wrapped its pin axis (1, 0, 0) must be along the "
                          "rope's plane normal (0, 0, 1)");
+    spec.sheaves = {TurningSheave{onSlider, 0.2, 3.3, 1}};
+    EXPECT_NO_THROW(reeving.addRope(spec));
 }

@@ -145,9 +145,10 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
                                         std::to_string(wrap.wrapSense) + " must be +1 or -1");
         nodeOffset_[k] = numNodeCoordinates_;
         if (wrap.radius > 0) {
-            if (k == 0 || k == N)
+            if ((k == 0 || k == N) && nodeKind_[k] != MaterialNode::Driven)
                 throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
-                                            " cannot be wrapped (an end's tangent point is its position)");
+                                            " can be wrapped only as a Driven node (a winch drum): a fastened "
+                                            "end's tangent point is its position");
             arcIndex_[k] = static_cast<int>(arcs_.size());
             arcs_.emplace_back(spans_.front().properties(), wrap.radius, wrap.wrapSense, spans_.front().gravity());
             arcNode_.push_back(k);
@@ -651,8 +652,12 @@ void RopeModel<Dim>::setStationaryNodes(const std::vector<bool>& stationary) {
             continue;
         }
         // A wrapped node's tangent points and arc length move with its neighbours too: only what
-        // depends on stationary nodes alone is.
-        const bool in = stationary[k] && stationary[k - 1], out = stationary[k] && stationary[k + 1];
+        // depends on stationary nodes alone is. A wrapped end (a drum) has one tangent point, T_in =
+        // T_out, and no arc (l = 0).
+        const int N = numSpans();
+        const bool before = k > 0 ? stationary[k - 1] : stationary[k + 1];
+        const bool after = k < N ? stationary[k + 1] : stationary[k - 1];
+        const bool in = stationary[k] && before, out = stationary[k] && after;
         const int o = nodeOffset_[k];
         for (int i = 0; i < wrappedBlockSize(); ++i) {
             bool fixed = stationary[k];  // the centre and the axis

@@ -75,23 +75,6 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         g.wrapSense = rope.arc(k).wrapSense();
         return TangencyEnd::circle(g);
     };
-    // The path must turn at each wrapped node the way its rope wraps the groove: a sense given
-    // the wrong way would wrap the rope around the groove's far side (a figure of eight). Checked
-    // where alpha starts (no previous evaluation); from there alpha is continued, and a wrap angle
-    // falling through 0 (the rope leaving the groove) is for the caller to stop at.
-    for (int k = 1; k < N && !previous; ++k) {
-        if (!rope.isWrapped(k)) continue;
-        const Eigen::Vector2d in = station(k) - station(k - 1), out = station(k + 1) - station(k);
-        const double turn = in[0] * out[1] - in[1] * out[0];
-        const int sigma = rope.arc(k).wrapSense();
-        if (sigma * turn < -1e-9 * in.norm() * out.norm()) {
-            std::ostringstream msg;
-            msg << "WrapStationMap: node " << k << ": the rope's path turns " << (turn > 0 ? "counter-clockwise" : "clockwise")
-                << " about the plane normal there (from node " << k - 1 << " past the groove's centre to node " << k + 1
-                << ") but its wrap sense is " << (sigma > 0 ? "+1" : "-1");
-            throw std::domain_error(msg.str());
-        }
-    }
     // Node blocks: a point's position and a groove's centre are stations.
     for (int k = 0; k <= N; ++k) {
         const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? RopeModel<2>::wrappedCentreOffset() : 0);
@@ -133,34 +116,76 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
             data.jacobian.block<1, 2>(r, 2 * j) += scale * Jt.block<1, 2>(row, 0);
             data.jacobian.block<1, 2>(r, 2 * (j + 1)) += scale * Jt.block<1, 2>(row, 6);
         };
+        // A wrapped end (a drum, Driven) has one tangent point, T_in = T_out, and no arc (l = 0):
+        // the rope beyond it is the drum's stored rope. Its material coordinate there is
+        // Y_s + sigma R phi, phi the tangent point's angle.
         if (rope.isWrapped(j)) {
-            const int o = rope.nodeCoordinateOffset(j) + RopeModel<2>::wrappedDepartureOffset();
-            data.x.segment<2>(o) = t.start.head<2>();
-            if (withRates) {
-                for (int d = 0; d < 2; ++d) {
-                    rowsOver(d, 1.0, o + d);
-                    data.bias[o + d] = rates.startAcceleration[d];
+            const bool drum = j == 0;
+            for (int offset : {RopeModel<2>::wrappedDepartureOffset(), RopeModel<2>::wrappedArrivalOffset()}) {
+                if (!drum && offset == RopeModel<2>::wrappedArrivalOffset()) continue;
+                const int o = rope.nodeCoordinateOffset(j) + offset;
+                data.x.segment<2>(o) = t.start.head<2>();
+                if (withRates) {
+                    for (int d = 0; d < 2; ++d) {
+                        rowsOver(d, 1.0, o + d);
+                        data.bias[o + d] = rates.startAcceleration[d];
+                    }
                 }
-                rowsOver(6, arcScale(j), arcRow(j));
-                data.bias[arcRow(j)] += arcScale(j) * rates.startAngleAcceleration;
+            }
+            if (withRates) {
+                const int row = drum ? nodeRows + rope.drivenIndex(j) : arcRow(j);  // s_0 (below), or l
+                rowsOver(6, arcScale(j), row);
+                data.bias[row] += arcScale(j) * rates.startAngleAcceleration;
             }
         }
         if (rope.isWrapped(j + 1)) {
-            const int o = rope.nodeCoordinateOffset(j + 1) + RopeModel<2>::wrappedArrivalOffset();
-            data.x.segment<2>(o) = t.end.head<2>();
-            if (withRates) {
-                for (int d = 0; d < 2; ++d) {
-                    rowsOver(3 + d, 1.0, o + d);
-                    data.bias[o + d] = rates.endAcceleration[d];
+            const bool drum = j + 1 == N;
+            for (int offset : {RopeModel<2>::wrappedArrivalOffset(), RopeModel<2>::wrappedDepartureOffset()}) {
+                if (!drum && offset == RopeModel<2>::wrappedDepartureOffset()) continue;
+                const int o = rope.nodeCoordinateOffset(j + 1) + offset;
+                data.x.segment<2>(o) = t.end.head<2>();
+                if (withRates) {
+                    for (int d = 0; d < 2; ++d) {
+                        rowsOver(3 + d, 1.0, o + d);
+                        data.bias[o + d] = rates.endAcceleration[d];
+                    }
                 }
-                rowsOver(7, -arcScale(j + 1), arcRow(j + 1));
-                data.bias[arcRow(j + 1)] -= arcScale(j + 1) * rates.endAngleAcceleration;
+            }
+            if (withRates) {
+                if (!drum) {
+                    rowsOver(7, -arcScale(j + 1), arcRow(j + 1));
+                    data.bias[arcRow(j + 1)] -= arcScale(j + 1) * rates.endAngleAcceleration;
+                }
                 if (rope.drivenIndex(j + 1) >= 0) {  // s_in = Y_s + sigma R phi_in (below)
                     const int row = nodeRows + rope.drivenIndex(j + 1);
                     rowsOver(7, arcScale(j + 1), row);
                     data.bias[row] += arcScale(j + 1) * rates.endAngleAcceleration;
                 }
             }
+        }
+    }
+    // The path must turn at each wrapped node the way its rope wraps the groove: a sense given
+    // the wrong way would wrap the rope around the groove's far side (a figure of eight). Checked
+    // where alpha starts (no previous evaluation), on the path through the neighbours and the
+    // groove's centre (a wrapped drum at an end counts at its tangent point: it may be large
+    // against the distance to its neighbour); from there alpha is continued, and a wrap angle
+    // falling through 0 (the rope leaving the groove) is for the caller to stop at.
+    auto pathPoint = [&](int j) {
+        if (j == 0 && rope.isWrapped(0)) return Eigen::Vector2d(data.tangencies[0].start.head<2>());
+        if (j == N && rope.isWrapped(N)) return Eigen::Vector2d(data.tangencies[N - 1].end.head<2>());
+        return station(j);
+    };
+    for (int k = 1; k < N && !previous; ++k) {
+        if (!rope.isWrapped(k)) continue;
+        const Eigen::Vector2d in = station(k) - pathPoint(k - 1), out = pathPoint(k + 1) - station(k);
+        const double turn = in[0] * out[1] - in[1] * out[0];
+        const int sigma = rope.arc(k).wrapSense();
+        if (sigma * turn < -1e-9 * in.norm() * out.norm()) {
+            std::ostringstream msg;
+            msg << "WrapStationMap: node " << k << ": the rope's path turns " << (turn > 0 ? "counter-clockwise" : "clockwise")
+                << " about the plane normal there (from node " << k - 1 << " past the groove's centre to node " << k + 1
+                << ") but its wrap sense is " << (sigma > 0 ? "+1" : "-1");
+            throw std::domain_error(msg.str());
         }
     }
     // Arc lengths l = R alpha, alpha = sigma (phi_out - phi_in) (continuous with the previous alpha).
@@ -183,9 +208,10 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     // continuous with the previous evaluation's, so the departing span starts at
     // Y_s + sigma R phi_out = s_in + l (the rope does not slide on the groove). Its Jacobian row and
     // bias were gathered with the spans' (phi_in's row of the span arriving there).
-    for (int k = 1; k < N; ++k) {
+    for (int k = 0; k <= N; ++k) {
         if (rope.drivenIndex(k) < 0 || !rope.isWrapped(k)) continue;
-        const Eigen::Vector3d& radial = data.tangencies[k - 1].endRadial;
+        // (A drum at the rope's start: the tangent point where span 0 leaves it.)
+        const Eigen::Vector3d& radial = k > 0 ? data.tangencies[k - 1].endRadial : data.tangencies[0].startRadial;
         const Eigen::Vector2d up = upDirection();
         const double measured = std::atan2(up[0] * radial[1] - up[1] * radial[0], up[0] * radial[0] + up[1] * radial[1]);
         double phi = measured;

@@ -94,7 +94,8 @@ CraneLayout craneLayout(const CraneParameters& p) {
     x.resize(n + 1);
     if (wrapped(p)) {
         auto fallX = [&](int j) { return (j - 0.5 * (n - 1)) * 2.0 * p.sheaveRadius; };
-        x[0] = fallX(0);
+        // The drum wrapped too: its centre a drum radius right of fall 0, which leaves its left side.
+        x[0] = fallX(0) + p.drumRadius;
         for (int k = 1; k < n; ++k) x[k] = 0.5 * (fallX(k - 1) + fallX(k));
         x[n] = fallX(n - 1);
     } else {
@@ -421,7 +422,10 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     WinchDrum drum;
     drum.body = *drum_;
     drum.radius = p.drumRadius;
-    drum.ropeOnDrum = p.ropeOnDrum;
+    // Wrapped, WinchDrum::ropeOnDrum counts the rope up to the drum's top: the quarter turn from
+    // there to the tangent point on its left is stored too, so that ropeOnDrum stays the rope
+    // stored at t = 0.
+    drum.ropeOnDrum = p.ropeOnDrum - (wrapped(p) ? 0.5 * SimTK::Pi * p.drumRadius : 0.0);
     drum.payoutSense = 1;
     rope.start = drum;
     for (int k = 1; k < n; ++k) {
@@ -442,8 +446,11 @@ CraneScene::CraneScene(const CraneParameters& p, const CraneCycle& cycle, const 
     const double geometric = fallsLengthAt(p, layout, p.initialHookDepth);
     const double tension = (p.payloadMass + p.hookMass) * p.g / n;
     const double hanging = liftOff ? p.hookMass * p.g / n : tension;
-    // The rope on the grooves is inextensible (GrooveArc): it adds its geometric length.
-    rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * hanging / p.EA) + arcsLength(p, false);
+    // The rope on the grooves is inextensible (GrooveArc): it adds its geometric length. A wrapped
+    // drum's s = s_ref + dsdTheta theta is the material coordinate at its top: the rope's s starts
+    // a quarter turn before the tangent point on its left, so the rope is that much longer.
+    rope.unstretchedLength = geometric / std::sqrt(1.0 + 2.0 * hanging / p.EA) + arcsLength(p, false) +
+                             (wrapped(p) ? 0.5 * SimTK::Pi * p.drumRadius : 0.0);
     rope.spanDefaults = spans;
     rope.planeNormal = Vec3(0, 0, 1);
     rope.sheaveModel = p.sheaveModel;
@@ -619,7 +626,8 @@ double CraneScene::ropeLengthError(const SimTK::State& s) const {
         const auto range = reeving_->getSpanMaterialRange(s, 0, k);
         l += range.second - range.first;
     }
-    return l - (reeving_->getRopeSpec(0).unstretchedLength + parameters_.ropeOnDrum);
+    const RopeSpec& spec = reeving_->getRopeSpec(0);  // (wrapped: the rope stored up to the drum's top)
+    return l - (spec.unstretchedLength + spec.start.ropeOnDrum);
 }
 
 double CraneScene::ropeOnSheaves(const SimTK::State& s) const {

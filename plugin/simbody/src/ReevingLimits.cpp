@@ -17,6 +17,16 @@ namespace SimbodyReeving {
 
 using namespace detail;
 
+namespace {
+// The rope stored on winch drum d [m], from the material coordinate where the rope leaves it
+// (the drum's centre, or its tangent point when wrapped): ropeOnDrum + s_0 at a start drum,
+// ropeOnDrum + L - s_N at an end drum (RopeRecord::addStoredRope).
+double ropeOnDrum(const RopeCache& c, const RopeRecord& r, const RopeRecord::DrivenNode& d) {
+    const double s = r.planar ? c.planar.materialCoordinates[d.node] : c.spatial.materialCoordinates[d.node];
+    return d.node == 0 ? d.ropeOnDrum + s : d.ropeOnDrum + r.spec.unstretchedLength - s;
+}
+}  // namespace
+
 double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) const {
     const PositionCache& pc = positionCache(s);
     double margin = std::numeric_limits<double>::infinity();
@@ -60,7 +70,7 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
         }
         for (const RopeRecord::DrivenNode& d : r.driven) {
             if (!d.drum) continue;
-            const double onDrum = d.ropeOnDrum - d.payout * r.nodeSpec(d.node).body.getOneQ(s, 0);
+            const double onDrum = ropeOnDrum(pc.ropes[i], r, d);
             if (onDrum < margin) {
                 margin = onDrum;
                 if (which)
@@ -142,7 +152,7 @@ double ReevingSubsystem::getDrivenNodePower(const State& s, int rope, int node) 
 double ReevingSubsystem::getRopeOnDrum(const State& s, int rope, int node) const {
     const RopeRecord& r = ropeAt(getGuts(), rope);
     const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum");
-    return d.ropeOnDrum - d.payout * r.nodeSpec(node).body.getOneQ(s, 0);
+    return ropeOnDrum(getGuts().positionCache(s).ropes[rope], r, d);
 }
 
 const std::string& ReevingSubsystem::getLimitReached() const { return getGuts().limitReached(); }

@@ -24,15 +24,30 @@ using namespace detail;
 
 namespace {
 
-// A TurningSheave or TractionSheave with SheaveModel::Wrapped grips the rope on its groove (a
-// traction sheave while it sticks): wrap sense sigma = -sense (pin axis . n), so that
-// s = s_ref + sense R theta is the material coordinate at the groove's top (WrapStationMap). Its
-// pin must turn about the plane normal, relative to Ground (the tangent points' angles are
-// measured in Ground).
-NodeWrap grippingSheaveWrap(const RopeNode& n, const SimTK::UnitVec3& normal, const std::string& name) {
-    if (!n.body.getParentMobilizedBody().isGround())
-        invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground (the rope's grip on the groove "
-                       "is measured from Ground's angles)");
+// True if body b keeps Ground's orientation: Ground, or a Slider, Translation or Weld whose
+// inboard and outboard frames are aligned, on such a body.
+bool alignedWithGround(const SimTK::MobilizedBody& b) {
+    if (b.isGround()) return true;
+    using SimTK::MobilizedBody;
+    if (!MobilizedBody::Slider::isInstanceOf(b) && !MobilizedBody::Translation::isInstanceOf(b) &&
+        !MobilizedBody::Weld::isInstanceOf(b))
+        return false;
+    const SimTK::Rotation& inboard = b.getDefaultInboardFrame().R();
+    const SimTK::Rotation& outboard = b.getDefaultOutboardFrame().R();
+    if (std::abs(std::abs((~inboard * outboard).convertRotationToAngleAxis()[0])) > 1e-14) return false;
+    return alignedWithGround(b.getParentMobilizedBody());
+}
+
+// A TurningSheave, TractionSheave or WinchDrum with SheaveModel::Wrapped grips the rope on its
+// groove (a traction sheave while it sticks): s = s_ref + dsdTheta theta is the material coordinate
+// at the groove's top (WrapStationMap), so the wrap sense is sigma = -sign(dsdTheta) (pin axis . n).
+// Its pin must turn about the plane normal, relative to a parent that keeps Ground's orientation
+// (the tangent points' angles are measured in Ground).
+NodeWrap grippingSheaveWrap(const RopeNode& n, double dsdTheta, const SimTK::UnitVec3& normal, const std::string& name) {
+    if (!alignedWithGround(n.body.getParentMobilizedBody()))
+        invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
+                       "(Slider, Translation or Weld with aligned frames, on such a body): the rope's grip on the "
+                       "groove is measured from Ground's angles");
     const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
     const double alignment = SimTK::dot(axis, normal);
     if (std::abs(std::abs(alignment) - 1) > 1e-12)
@@ -40,7 +55,7 @@ NodeWrap grippingSheaveWrap(const RopeNode& n, const SimTK::UnitVec3& normal, co
                 " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
     NodeWrap w;
     w.radius = n.radius;
-    w.wrapSense = alignment > 0 ? -n.sense : n.sense;
+    w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
     return w;
 }
 
@@ -263,16 +278,21 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
         if (!r.planar)
             invalid(who + "SheaveModel::Wrapped is implemented for planar ropes only (give RopeSpec::planeNormal)");
         const SimTK::UnitVec3 normal(spec.planeNormal);
-        for (int k = 1; k + 1 < r.numNodes(); ++k) {
+        for (int k = 0; k < r.numNodes(); ++k) {
             const RopeNode& n = r.nodeSpec(k);
-            if (n.kind == RopeNodeKind::DeviationSheave) {
+            if (n.kind == RopeNodeKind::WinchDrum) {
+                // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus
+                // sigma R phi); the stored rope is the rest.
+                r.wraps[k] = grippingSheaveWrap(n, r.driven[r.drivenIndex(k)].dsdTheta, normal,
+                                                who + "WinchDrum at node " + std::to_string(k));
+            } else if (n.kind == RopeNodeKind::DeviationSheave) {
                 if (n.sense != 1 && n.sense != -1)
                     invalid(who + "sheave " + std::to_string(k) + " wrap sense = " + std::to_string(n.sense) +
                             " must be +1 or -1");
                 r.wraps[k].radius = n.radius;
                 r.wraps[k].wrapSense = n.sense;
             } else if (n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) {
-                r.wraps[k] = grippingSheaveWrap(n, normal,
+                r.wraps[k] = grippingSheaveWrap(n, r.driven[r.drivenIndex(k)].dsdTheta, normal,
                                                 who + (n.kind == RopeNodeKind::TurningSheave ? "TurningSheave" : "TractionSheave") +
                                                     " at node " + std::to_string(k));
                 // A traction sheave without a given wrap angle takes the geometry's, l / R.

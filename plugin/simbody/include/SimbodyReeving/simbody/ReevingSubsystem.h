@@ -65,7 +65,7 @@ enum class SheaveModel {
     /// on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
     /// TractionSheave nodes of planar ropes (a TurningSheave's or TractionSheave's wrap sense follows
     /// from its sense and pin axis, see TurningSheave; a TractionSheave without a given wrap angle
-    /// then takes the geometry's, see TractionSheave); WinchDrum nodes keep the point model.
+    /// then takes the geometry's, see TractionSheave) and WinchDrum nodes (see WinchDrum).
     Wrapped,
 };
 
@@ -135,6 +135,16 @@ struct DeviationSheave {
 /// ropeOnDrum - sense R theta; the run ends when it reaches 0), the payout sense (+1: a positive
 /// pin angle pays rope out) and the point on the pin axis where the rope node sits (drum body
 /// frame, default its origin).
+///
+/// With SheaveModel::Wrapped the rope leaves the drum at the tangent point of its groove circle
+/// (radius R, about the plane normal), not at its centre: s_0 = -sense R theta (s_N = L + sense R
+/// theta) is then the material coordinate at the drum's top (against gravity), the rope leaves at
+/// that plus sigma R phi (phi the tangent point's angle from the top, sigma = -sign(dsdTheta)
+/// (pin axis . n)), and the stored rope, ropeOnDrum + s_0 (ropeOnDrum + L - s_N), counts the rope
+/// up to the tangent point: ropeOnDrum is the rope stored up to the top at pin angle 0. The pin's
+/// parent must keep Ground's orientation (as for a wrapped TurningSheave). The stored rope's ring
+/// moves at the tangent point's material rate (the drum's surface speed, plus R phidot while the
+/// tangent point moves round the drum).
 struct WinchDrum {
     SimTK::MobilizedBody body;  ///< the drum: a MobilizedBody::Pin
     double radius = 0;          ///< R [m], > 0
@@ -165,7 +175,8 @@ struct WinchDrum {
 /// s_ref + sense R theta + sigma R phi_out (phi the tangent points' angles from the top,
 /// counter-clockwise about the plane normal n; WrapStationMap). Its wrap sense is
 /// sigma = -sense (pin axis . n): the rope must turn on the groove that way. The pin's parent must
-/// be Ground and its axis along n (addRope throws otherwise).
+/// keep Ground's orientation (Ground, or a Slider, Translation or Weld with aligned frames on such a
+/// body: a trolley) and its axis be along n (addRope throws otherwise).
 struct TurningSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
@@ -192,8 +203,8 @@ struct TurningSheave {
 /// The wrap angle from the geometry: with SheaveModel::Point it is taken when the state is first
 /// realized to Stage::Position, alpha = pi - angle(r_{k-1} - r_k, r_{k+1} - r_k), and fixed for
 /// the run (a point sheave does not follow the tangent points). With SheaveModel::Wrapped the
-/// rope arrives and leaves at the groove's tangent points (the pin's parent must be Ground and
-/// its axis along the plane normal, as for a wrapped TurningSheave), and alpha = l / R of the
+/// rope arrives and leaves at the groove's tangent points (the pin's parent must keep Ground's
+/// orientation and its axis be along the plane normal, as for a wrapped TurningSheave), and alpha = l / R of the
 /// current geometry at every evaluation: the stick limit e^(mu alpha) and, in slip, the capstan
 /// law P_{k-1} = e^(+-mu l / R) P_k (RopeModel::setSlipLaw, whose derivative in l enters the
 /// coupled solve) follow a deflector, a moving car or a leaning fall. A given alpha (double wrap,
@@ -336,8 +347,8 @@ public:
     ///         override index out of range, non-finite plane normal, gravity out of the rope plane
     ///         (gravity given to the constructor; with the system's gravity, realizeTopology checks
     ///         the plane and throws std::logic_error); with SheaveModel::Wrapped, a spatial rope, a
-    ///         wrap sense not +-1, or a TurningSheave whose pin's parent is not Ground or whose pin
-    ///         axis is not the plane normal.
+    ///         wrap sense not +-1, or a TurningSheave, TractionSheave or WinchDrum whose pin's
+    ///         parent turns relative to Ground or whose pin axis is not the plane normal.
     int addRope(const RopeSpec& spec);
 
     /// Number of ropes added.
