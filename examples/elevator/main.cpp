@@ -46,6 +46,7 @@ struct Row {
     double t, carY, carV, carA, cwtY, travel, pCar, pCwt, ratio, limit, slipRate, slipDistance, frictionWork,
         dampingWork, machineWork, residual, pitY, wrap;
     int mode;
+    std::vector<std::pair<int, double>> sheaveWraps;  // (node, wrap angle) of the hoist rope's sheaves
 };
 
 struct Result {
@@ -95,6 +96,11 @@ Row observe(const ElevatorScene& scene, const State& s, double e0) {
     const int node = scene.tractionNode();
     r.limit = rv.getTractionLimit(s, 0, node);
     r.wrap = scene.tractionWrapAngle(s);
+    // Every sheave of the hoist rope with a wrap angle: all of them wrapped, the traction sheave's
+    // given one with point sheaves.
+    const bool wrapped = rv.getRopeSpec(0).sheaveModel == SimbodyReeving::SheaveModel::Wrapped;
+    for (int k = 1; k < rv.getNumSpans(0); ++k)
+        if (wrapped || k == node) r.sheaveWraps.emplace_back(k, rv.getWrapAngle(s, 0, k));
     r.mode = static_cast<int>(rv.getTractionMode(s, 0, node));
     r.slipRate = rv.getSlipRate(s, 0, node);
     r.slipDistance = rv.getSlipDistance(s, 0, node);
@@ -193,6 +199,23 @@ Json summarize(const Result& r) {
     j["traction_limit"] = jsonNumber(end.limit);
     j["wrap_angle_min_rad"] = jsonNumber(minWrap);  // the traction sheave's, over the run
     j["wrap_angle_max_rad"] = jsonNumber(maxWrap);
+    // Per sheave of the hoist rope (node index in the rope), as the crane's and the pendulum's
+    // summaries; planar: no fleet angle.
+    Json sheaves = Json::array();
+    for (size_t i = 0; i < r.rows.front().sheaveWraps.size(); ++i) {
+        double lo = r.rows.front().sheaveWraps[i].second, hi = lo;
+        for (const Row& w : r.rows) {
+            lo = std::min(lo, w.sheaveWraps[i].second);
+            hi = std::max(hi, w.sheaveWraps[i].second);
+        }
+        Json e;
+        e["node"] = r.rows.front().sheaveWraps[i].first;
+        e["min_rad"] = jsonNumber(lo);
+        e["max_rad"] = jsonNumber(hi);
+        sheaves.push_back(e);
+    }
+    j["sheave_wrap_angles"] = sheaves;
+    j["max_fleet_angle_rad"] = 0.0;
     j["largest_force_ratio"] = jsonNumber(maxRatio);
     j["traction_margin"] = jsonNumber(end.limit / maxRatio);  // > 1: held with this factor to spare
     j["car_load"] = jsonNumber(r.carLoad);

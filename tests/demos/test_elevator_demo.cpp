@@ -383,6 +383,16 @@ TEST(ElevatorDemo, DeflectorSetsTheWrapAngleOverTheTrip) {
     std::printf("deflector trip: wrap angle %.5f .. %.5f rad, worst off the closed form %.1e rad over %zu rows\n", lo,
                 hi, worst, rows.size());
     EXPECT_LE(worst, 1e-8);
+    // Per sheave: the traction sheave (node 1) as above, the deflector (node 2) wrapped by theta,
+    // fixed by the two fixed grooves (measured to 1e-15 rad; bound 1e-9 rad).
+    const nlohmann::json sheaves = t.at("sheave_wrap_angles");
+    ASSERT_EQ(sheaves.size(), 2u);
+    EXPECT_EQ(sheaves.at(0).at("node"), 1);
+    EXPECT_EQ(sheaves.at(0).at("min_rad").get<double>(), lo);
+    EXPECT_EQ(sheaves.at(1).at("node"), 2);
+    EXPECT_NEAR(sheaves.at(1).at("min_rad").get<double>(), theta, 1e-9);
+    EXPECT_NEAR(sheaves.at(1).at("max_rad").get<double>(), theta, 1e-9);
+    EXPECT_EQ(t.at("max_fleet_angle_rad"), 0.0);
 }
 
 TEST(ElevatorDemo, BadInputExitsTwoAndWritesNothing) {
