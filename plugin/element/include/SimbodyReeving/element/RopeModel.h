@@ -61,12 +61,15 @@ enum class MaterialNode {
 /// the tangent point T_out with the material coordinate s_k + l (s_k the node's material
 /// coordinate, at T_in). The tangent points, the groove's centre (and axis in 3D) and l are
 /// external coordinates given by the caller, as a point node's position is (the wrap geometry
-/// computes them from the bodies, computeSpanTangency and wrapAngle). A wrapped node may be Sliding
-/// (a frictionless sheave: s_k solved from the tension equality) or Driven (a sheave that grips the
-/// rope: s_k given, WrapStationMap carries it around the groove with the sheave's rotation).
+/// computes them from the bodies, computeSpanTangency and wrapAngle). A wrapped interior node may be
+/// Sliding (a frictionless sheave: s_k solved from the tension equality), Driven (a sheave that
+/// grips the rope: s_k given, WrapStationMap carries it around the groove with the sheave's
+/// rotation) or Slipping (a traction sheave in slip; its capstan law may follow the arc,
+/// setSlipLaw). A wrapped end node must be Driven: a winch drum, the rope leaving it at one tangent
+/// point (T_in = T_out there, l = 0: the rope beyond it is the drum's stored rope, setStoredRope).
 struct NodeWrap {
     /// R [m] of the rope's centre line on the groove; 0 (the default): a point node. A wrapped
-    /// node must be interior; R finite and >= 0.
+    /// end node must be Driven; R finite and >= 0.
     double radius = 0;
     /// sigma: +1 or -1 (GrooveCircle::wrapSense).
     int wrapSense = 1;
@@ -213,7 +216,7 @@ public:
     /// @param wraps one NodeWrap per node (N + 1); empty: every node a point.
     /// @throws std::invalid_argument for no spans, spans with different rope properties, L not
     ///         finite and > 0, nodeKinds or wraps of the wrong size, a Fixed interior node or a
-    ///         Sliding end, a wrapped end node, a wrap radius not finite and >= 0 or a wrap sense
+    ///         Sliding end, a wrapped end node that is not Driven, a wrap radius not finite and >= 0 or a wrap sense
     ///         other than +1 or -1.
     RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
               std::vector<NodeWrap> wraps = {});

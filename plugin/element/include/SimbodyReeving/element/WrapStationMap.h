@@ -69,7 +69,11 @@ void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A,
 /// rope's material coordinate where it arrives on the groove is s_k = Y_s + sigma R phi_in, phi_in
 /// the arriving tangent point's angle from "up" (WrapStationMapData::arrivalAngles), and the
 /// departing span starts at s_k + l = Y_s + sigma R phi_out. For a sheave turning by theta about
-/// the plane normal, Y_s = s_ref - sigma R theta.
+/// the plane normal, Y_s = s_ref - sigma R theta. A wrapped end node (a winch drum) has one tangent
+/// point, that of the span it starts or ends (point-to-circle or circle-to-circle), and no arc:
+/// T_in = T_out there, l = 0, and the rope's material coordinate at it is Y_s + sigma R phi (phi
+/// that tangent point's angle from "up"). The sense check (the path turning at each wrapped
+/// interior node the way its rope wraps the groove) counts a wrapped end at its tangent point.
 ///
 /// A coupling that moves the stations then sees the rope through
 ///     S_Y = J^T S J,   h_Y = J^T (h - S b),
