@@ -108,3 +108,12 @@ TEST(WrappedDrum, HeldDrumAndSwingingLoadKeepLengthAndEnergy) {
     EXPECT_GT(rolled, 0.02);
     EXPECT_LE(worstRoll, 1e-9);
 }
+
+// A wrapped drum has no arc and no wrap angle (the rope beyond its tangent point is stored rope):
+// getArcLength is 0 there, getWrapAngle and sampleArc say so.
+TEST(WrappedDrum, HasNoArcAndNoWrapAngle) {
+    SwingingLoad s;
+    EXPECT_EQ(s.reeving->getArcLength(s.state, 0, 0), 0.0);
+    EXPECT_THROW(s.reeving->getWrapAngle(s.state, 0, 0), std::invalid_argument);
+    EXPECT_THROW(s.reeving->sampleArc(s.state, 0, 0, 5), std::invalid_argument);
+}

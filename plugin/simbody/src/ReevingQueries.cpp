@@ -68,7 +68,8 @@ double ReevingSubsystem::getArcLength(const State& s, int rope, int node) const 
     const RopeRecord& r = ropeAt(g, rope);
     if (node < 0 || node >= r.numNodes())
         invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
-    if (!r.planar || !(r.wraps[node].radius > 0)) return 0.0;
+    // (A wrapped drum, an end node, has no arc: the rope beyond its tangent point is stored rope.)
+    if (!r.planar || !(r.wraps[node].radius > 0) || node == 0 || node + 1 == r.numNodes()) return 0.0;
     const RopeCache& c = g.positionCache(s).ropes[rope];
     return getSpanMaterialRange(s, rope, node).first - c.planar.materialCoordinates[node];
 }
@@ -187,7 +188,7 @@ std::vector<Vec3> ReevingSubsystem::sampleArc(const State& s, int rope, int node
     const RopeRecord& r = ropeAt(g, rope);
     if (node < 0 || node >= r.numNodes())
         invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
-    if (!(r.planar && r.wraps[node].radius > 0))
+    if (!(r.planar && r.wraps[node].radius > 0) || node == 0 || node + 1 == r.numNodes())
         invalid("sampleArc: rope '" + r.spec.name + "' node " + std::to_string(node) +
                 " is not a wrapped sheave (SheaveModel::Wrapped): it has no arc");
     if (numPoints < 2) invalid("sampleArc: numPoints = " + std::to_string(numPoints) + " must be >= 2");

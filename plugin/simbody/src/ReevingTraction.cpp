@@ -264,7 +264,8 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
         getGuts().positionCache(s);
         return getGuts().tractionWrapAngle(s, r, r.driven[driven]);
     }
-    if (r.planar && r.wraps[node].radius > 0) return getArcLength(s, rope, node) / r.wraps[node].radius;
+    if (r.planar && r.wraps[node].radius > 0 && node > 0 && node + 1 < r.numNodes())
+        return getArcLength(s, rope, node) / r.wraps[node].radius;
     invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
             " is neither a TractionSheave nor a wrapped sheave: it has no wrap angle");
 }

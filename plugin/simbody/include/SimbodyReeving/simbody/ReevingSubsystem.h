@@ -437,8 +437,10 @@ public:
     /// @throws std::invalid_argument if rope or node is out of range or the node is neither.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
-    /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node. The rope's length is the sum over its spans of
-    /// s2 - s1 (getSpanMaterialRange) and over its nodes of l.
+    /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node and at a wrapped
+    /// WinchDrum (the rope beyond its tangent point is stored rope, getRopeOnDrum). The rope's
+    /// length is the sum over its spans of s2 - s1 (getSpanMaterialRange), over its nodes of l and
+    /// of the rope on its drums.
     /// @throws std::invalid_argument if rope or node is out of range.
     double getArcLength(const SimTK::State& state, int rope, int node) const;
     /// Friction power dissipated in the groove, (P_a - P_b) v >= 0 [W] (Stage::Velocity; 0 in stick).
@@ -493,7 +495,7 @@ public:
     /// departure tangent point (the start of span k, to round-off). With sampleSpan it draws the
     /// rope without a gap at its sheaves.
     /// @throws std::invalid_argument if rope or node is out of range, the node is not a wrapped
-    ///         sheave (a point node has no arc), or numPoints < 2.
+    ///         sheave (a point node or a wrapped drum has no arc), or numPoints < 2.
     std::vector<SimTK::Vec3> sampleArc(const SimTK::State& state, int rope, int node, int numPoints) const;
     /// Power dissipated by the ropes' Kelvin-Voigt damping (RopeProperties::axialRetardationTime)
     /// [W], >= 0 (Stage::Velocity).
