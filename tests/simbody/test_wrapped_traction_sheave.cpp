@@ -4,7 +4,8 @@
 // sheave: mass 1 hangs on a rail outside the sheave's tangent, so its fall leans by psi and
 // alpha = pi - psi changes as it slips down. Checked against the closed-form tangent: the wrap
 // angle, the stick limit e^(mu alpha), the force ratio in slip, and the energy balance with the
-// friction work (which needs the law's derivative in l in the coupled solve).
+// friction work (which needs the law's derivative in l in the coupled solve). With
+// SheaveModel::Point the same law takes the chords' turning angle of the current geometry.
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
 
 #include "support/ExpectThrowMessage.h"
@@ -43,7 +44,10 @@ struct WrappedAtwood {
     MobilizedBody::Slider mass1, mass2;  // along Ground's y: q is the height [m]
     State state;
 
-    WrappedAtwood(double m1, double m2, double givenWrapAngle = 0) {
+    sr::SheaveModel model;
+
+    WrappedAtwood(double m1, double m2, double givenWrapAngle = 0, sr::SheaveModel sheaveModel = sr::SheaveModel::Wrapped)
+        : model(sheaveModel) {
         const Rotation slideUp(Pi / 2, ZAxis);
         sheave = MobilizedBody::Pin(matter.Ground(), Transform(), Body::Rigid(MassProperties(5, Vec3(0), Inertia(0.2))),
                                     Transform());
@@ -54,14 +58,18 @@ struct WrappedAtwood {
         Motion::Steady(sheave, 0.0);  // held: its motion does no work
         reeving = std::make_unique<sr::ReevingSubsystem>(system);
         sr::RopeSpec rope;
-        rope.sheaveModel = sr::SheaveModel::Wrapped;
+        rope.sheaveModel = model;
         rope.start = sr::RopeAnchor{mass1, Vec3(0)};
         // Both masses at y = -5: mass 1's fall sqrt(rho^2 - R^2) to its tangent point, a quarter
         // turn less psi to the groove's top (s_ref, the material coordinate there), the rest of the
         // half turn and mass 2's vertical fall; 1e-4 shorter, so the rope starts taut.
         const double y0 = -5.0, psi = lean(kOffset, y0), rho = std::hypot(kR + kOffset, y0);
         const double fall1 = std::sqrt(rho * rho - kR * kR);
-        const double sRef = fall1 + kR * (0.5 * Pi - psi), length = fall1 + kR * (Pi - psi) - y0;
+        double sRef = fall1 + kR * (0.5 * Pi - psi), length = fall1 + kR * (Pi - psi) - y0;
+        if (model == sr::SheaveModel::Point) {  // both falls end at the sheave's centre
+            sRef = rho;
+            length = rho + std::hypot(kR, y0);
+        }
         rope.sheaves = {sr::TractionSheave{sheave, kR, kMu, givenWrapAngle, sRef, 1, Vec3(0)}};
         rope.end = sr::RopeAnchor{mass2, Vec3(0)};
         rope.properties = {0.05, 1e7, 0.0, false};
@@ -76,7 +84,12 @@ struct WrappedAtwood {
         mass2.setOneQ(state, 0, y0);
         reeving->findStaticEquilibrium(state);  // in stick
     }
-    double analyticWrapAngle(const State& s) const { return Pi - lean(kOffset, mass1.getOneQ(s, 0)); }
+    double analyticWrapAngle(const State& s) const {
+        const double y = mass1.getOneQ(s, 0);
+        if (model == sr::SheaveModel::Wrapped) return Pi - lean(kOffset, y);
+        // pi less the angle between the chords to the masses: atan((R + e) / |y|) + atan(R / |y2|).
+        return Pi - std::atan2(kR + kOffset, -y) - std::atan2(kR, -mass2.getOneQ(s, 0));
+    }
 };
 
 }  // namespace
@@ -137,6 +150,54 @@ TEST(WrappedTractionSheave, SlipKeepsTheCapstanRatioOfTheChangingWrapAngle) {
     EXPECT_GT(std::abs(lastAlpha - firstAlpha), 0.01);  // the geometry did change the law
     EXPECT_LE(worstRatio, 1e-9);
     EXPECT_LE(worstAngle, 1e-12);
+    EXPECT_LE(worstEnergy, 1e-8);
+}
+
+// The point sheave (the paper's eq 30) takes the chords' turning angle of the current geometry:
+// alpha = pi - atan((R + e) / |y1|) - atan(R / |y2|) (closed form). In stick the reported angle and
+// limit match it (measured 4.4e-16 rad and 0; bound 1e-14) and the masses slip exactly past it;
+// slipping for 1 s (alpha changes by 0.013 rad) the force ratio at the sheave is e^(mu alpha) of
+// each instant (measured 8.1e-12; bound 1e-9), alpha the closed form's (measured 4.4e-16 rad; bound
+// 1e-14), and E - E0 + W_friction closes to 1.7e-10 of W_friction (bound 1e-8); without the law's
+// columns at the three node positions in the constraint Jacobian it misses by 1.7e-6.
+TEST(WrappedTractionSheave, PointSheaveTakesTheChordsAngleOfTheCurrentGeometry) {
+    for (double m1 : {160.0, 200.0}) {
+        WrappedAtwood a(m1, 100.0, 0.0, sr::SheaveModel::Point);
+        a.system.realize(a.state, Stage::Position);
+        const double alpha = a.analyticWrapAngle(a.state);
+        EXPECT_LT(alpha, Pi - 0.1);  // the chords lean: 0.24 rad
+        EXPECT_NEAR(a.reeving->getWrapAngle(a.state, 0, 1), alpha, 1e-14);
+        EXPECT_NEAR(a.reeving->getTractionLimit(a.state, 0, 1), std::exp(kMu * alpha), 1e-14);
+        const double ratio = a.reeving->getTractionRatio(a.state, 0, 1);
+        EXPECT_EQ(a.reeving->updateTractionModes(a.state), ratio > std::exp(kMu * alpha) ? 1 : 0) << ratio;
+    }
+    WrappedAtwood a(250.0, 100.0, 0.0, sr::SheaveModel::Point);
+    ASSERT_EQ(a.reeving->updateTractionModes(a.state), 1);
+    a.system.realize(a.state, Stage::Velocity);
+    const double e0 = a.reeving->calcMechanicalEnergy(a.state);
+    RungeKuttaMersonIntegrator integ(a.system);
+    integ.setAccuracy(1e-9);
+    TimeStepper ts(a.system, integ);
+    ts.initialize(a.state);
+    double worstRatio = 0, worstAngle = 0, worstEnergy = 0, firstAlpha = NaN, lastAlpha = NaN;
+    for (int i = 1; i <= 20; ++i) {
+        ts.stepTo(0.05 * i);
+        const State& s = integ.getState();
+        a.system.realize(s, Stage::Velocity);
+        ASSERT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart) << s.getTime();
+        const double alpha = a.analyticWrapAngle(s);
+        if (i == 1) firstAlpha = alpha;
+        lastAlpha = alpha;
+        worstAngle = std::max(worstAngle, std::abs(a.reeving->getWrapAngle(s, 0, 1) - alpha));
+        worstRatio = std::max(worstRatio, std::abs(a.reeving->getTractionRatio(s, 0, 1) / std::exp(kMu * alpha) - 1));
+        const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.reeving->calcMechanicalEnergy(s) - e0;
+        worstEnergy = std::max(worstEnergy, std::abs(de + wf) / wf);
+    }
+    std::printf("point slip: alpha %.6f -> %.6f rad; worst ratio %.2e, angle %.2e rad, energy %.2e of W_friction\n",
+                firstAlpha, lastAlpha, worstRatio, worstAngle, worstEnergy);
+    EXPECT_GT(std::abs(lastAlpha - firstAlpha), 0.01);
+    EXPECT_LE(worstRatio, 1e-9);
+    EXPECT_LE(worstAngle, 1e-14);
     EXPECT_LE(worstEnergy, 1e-8);
 }
 

@@ -582,17 +582,82 @@ void RopeModel<Dim>::setSlipRatio(int node, double kappa) {
 }
 
 template <int Dim>
-void RopeModel<Dim>::setSlipLaw(int node, double kappa0, double arcExponent) {
-    if (!std::isfinite(arcExponent)) {
+void RopeModel<Dim>::setSlipLaw(int node, double kappa0, double angleExponent) {
+    if (!std::isfinite(angleExponent)) {
         std::ostringstream msg;
-        msg << "RopeModel::setSlipLaw: arcExponent = " << arcExponent << " 1/m must be finite";
+        msg << "RopeModel::setSlipLaw: angleExponent = " << angleExponent << " 1/rad must be finite";
         throw std::invalid_argument(msg.str());
     }
     setSlipRatio(node, kappa0);
-    if (arcExponent != 0 && !isWrapped(node))
+    if (Dim == 3 && angleExponent != 0 && !isWrapped(node))
         throw std::invalid_argument("RopeModel::setSlipLaw: node " + std::to_string(node) +
-                                    " is not wrapped: its law has no arc length (arcExponent must be 0)");
-    slipExponent_[node] = arcExponent;
+                                    " is a point node of a spatial rope: its chord angle is not built in 3D "
+                                    "(angleExponent must be 0)");
+    slipExponent_[node] = angleExponent;
+}
+
+template <int Dim>
+typename RopeModel<Dim>::SlipAngle RopeModel<Dim>::slipAngle(int k, const Eigen::VectorXd& x,
+                                                            const Eigen::VectorXd* xdot) const {
+    SlipAngle a;
+    if (isWrapped(k)) {  // alpha = l / R
+        const int lc = nodeOffset_[k] + wrappedArcLengthOffset();
+        const double invR = 1.0 / arc(k).radius();
+        a.alpha = x[lc] * invR;
+        a.count = 1;
+        a.cols[0] = lc;
+        a.grad[0] = invR;
+        if (xdot) a.rate = (*xdot)[lc] * invR;
+        return a;
+    }
+    if constexpr (Dim == 2) {
+        // phi = theta(d_out) - theta(d_in), theta(d) = atan2(d_y, d_x): dtheta/dd = perp(d) / |d|^2
+        // with perp(d) = (-d_y, d_x), and with ddot = 0 thetaddot = -2 (d . ddot)(d x ddot) / |d|^4.
+        // alpha = |phi| (sign sigma).
+        const int oa = departureOffset(k - 1), ok = nodeOffset_[k], ob = arrivalOffset(k + 1);
+        const Eigen::Vector2d din = x.template segment<2>(ok) - x.template segment<2>(oa);
+        const Eigen::Vector2d dout = x.template segment<2>(ob) - x.template segment<2>(ok);
+        auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u[0] * v[1] - u[1] * v[0]; };
+        const double phi = std::atan2(cross(din, dout), din.dot(dout));
+        const double sigma = phi < 0 ? -1.0 : 1.0;
+        a.alpha = sigma * phi;
+        const double nin = din.squaredNorm(), nout = dout.squaredNorm();
+        const Eigen::Vector2d gin = sigma * Eigen::Vector2d(-din[1], din[0]) / nin;     // dalpha/dd_in (negated)
+        const Eigen::Vector2d gout = sigma * Eigen::Vector2d(-dout[1], dout[0]) / nout;  // dalpha/dd_out
+        // d_in = r_k - p_a, d_out = p_b - r_k: dalpha/dp_a = gin, dalpha/dr_k = -gin - gout, dalpha/dp_b = gout.
+        a.count = 6;
+        for (int d = 0; d < 2; ++d) {
+            a.cols[d] = oa + d;
+            a.grad[d] = gin[d];
+            a.cols[2 + d] = ok + d;
+            a.grad[2 + d] = -gin[d] - gout[d];
+            a.cols[4 + d] = ob + d;
+            a.grad[4 + d] = gout[d];
+        }
+        if (xdot) {
+            const Eigen::Vector2d vin = xdot->template segment<2>(ok) - xdot->template segment<2>(oa);
+            const Eigen::Vector2d vout = xdot->template segment<2>(ob) - xdot->template segment<2>(ok);
+            a.rate = gout.dot(vout) - gin.dot(vin);
+            a.bias = sigma * (-2.0 * dout.dot(vout) * cross(dout, vout) / (nout * nout) +
+                              2.0 * din.dot(vin) * cross(din, vin) / (nin * nin));
+        }
+        return a;
+    } else {
+        throw std::logic_error("RopeModel::slipAngle: a point node of a spatial rope has no chord angle");
+    }
+}
+
+template <int Dim>
+double RopeModel<Dim>::wrapAngle(const RopeData<Dim>& data, int node) const {
+    if (node < 1 || node >= numSpans())
+        throw std::invalid_argument("RopeModel::wrapAngle: node " + std::to_string(node) + " is not an interior node");
+    if (Dim == 3 && !isWrapped(node))
+        throw std::invalid_argument("RopeModel::wrapAngle: node " + std::to_string(node) +
+                                    " is a point node of a spatial rope: its chord angle is not built in 3D");
+    const Eigen::VectorXd& x = arcs_.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
+    if (x.size() != numExternalCoordinates())
+        throw std::invalid_argument("RopeModel::wrapAngle: data holds no evaluation from node positions");
+    return slipAngle(node, x, nullptr).alpha;
 }
 
 template <int Dim>
@@ -618,14 +683,14 @@ double RopeModel<Dim>::surfaceRate(const RopeData<Dim>& data, int node) const {
 }
 
 template <int Dim>
-typename RopeModel<Dim>::SlipWeights RopeModel<Dim>::slipWeights(int k, const Eigen::VectorXd& x) const {
+typename RopeModel<Dim>::SlipWeights RopeModel<Dim>::slipWeights(int k, double alpha) const {
     SlipWeights w;
     w.before = weightBefore_[k];
     w.after = weightAfter_[k];
     const double c = slipExponent_[k];
     if (c == 0) return w;
-    // kappa = kappa_0 e^(c l), scaled as weightBefore_: (1 / kappa, 1) for kappa >= 1, (1, kappa) below.
-    const double kappa = slipRatio_[k] * std::exp(c * x[nodeOffset_[k] + wrappedArcLengthOffset()]);
+    // kappa = kappa_0 e^(c alpha), scaled as weightBefore_: (1 / kappa, 1) for kappa >= 1, (1, kappa) below.
+    const double kappa = slipRatio_[k] * std::exp(c * alpha);
     if (kappa >= 1) {
         w.before = 1.0 / kappa;
         w.after = 1.0;
@@ -919,21 +984,24 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
         for (int row = 0; row < nc; ++row) {
             const int k = slidingNode_[row];
             // 1, 1 but at Slipping nodes: eps_{k-1} = kappa eps_k, scaled (see weightBefore_)
-            const SlipWeights sw = slipWeights(k, x);
+            const bool law = slipExponent_[k] != 0;
+            const SlipAngle ang = law ? slipAngle(k, x, withRates ? &data.ws().w : nullptr) : SlipAngle{};
+            const SlipWeights sw = slipWeights(k, ang.alpha);
             const double wb = sw.before, wa = sw.after;
             const EndStrain<Dim>& a = data.ws().secondEnd[k - 1];
             const EndStrain<Dim>& b = data.ws().firstEnd[k];
             C[row] = wb * a.strain - wa * b.strain;
             scatter(row, k - 1, a.gradient, wb);
             scatter(row, k, b.gradient, -wa);
-            if (slipExponent_[k] != 0) {
-                // kappa(l): dC/dl, and the bias's terms in ldot (ws.w holds xdot at the rates' pass).
-                const int lc = nodeOffset_[k] + wrappedArcLengthOffset();
-                put(row, lc, sw.dBefore * a.strain - sw.dAfter * b.strain);
+            if (law) {
+                // kappa(alpha): dC/dalpha dalpha/dx, and the bias's terms in alphadot and alpha's
+                // own bias (ws.w holds xdot at the rates' pass).
+                const double dC = sw.dBefore * a.strain - sw.dAfter * b.strain;
+                for (int i = 0; i < ang.count; ++i) put(row, ang.cols[i], dC * ang.grad[i]);
                 if (withRates) {
-                    const double ld = data.ws().w[lc];
-                    data.ws().bias[row] += 2.0 * ld * (sw.dBefore * a.rate - sw.dAfter * b.rate) +
-                                           ld * ld * (sw.ddBefore * a.strain - sw.ddAfter * b.strain);
+                    const double ad = ang.rate;
+                    data.ws().bias[row] += 2.0 * ad * (sw.dBefore * a.rate - sw.dAfter * b.rate) +
+                                           ad * ad * (sw.ddBefore * a.strain - sw.ddAfter * b.strain) + dC * ang.bias;
                 }
             }
             if (withRates)
@@ -995,22 +1063,26 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + ki;
-        const SlipWeights sw = slipWeights(k, x);
+        const bool law = slipExponent_[k] != 0;
+        const SlipAngle ang = law ? slipAngle(k, x, withRates ? &data.ws().w : nullptr) : SlipAngle{};
+        const SlipWeights sw = slipWeights(k, ang.alpha);
         const int qa = kernels_[k - 1].endStrain(SpanEnd::Second), qb = kernels_[k].endStrain(SpanEnd::First);
         addTerm(row, k - 1, qa, sw.before);
         addTerm(row, k, qb, -sw.after);
-        if (slipExponent_[k] != 0) {
-            // kappa(l) (setSlipLaw): dC/dl, and the bias's terms in ldot (the values are the
-            // position pass's, still in the kernels' data at the rates' pass).
+        if (law) {
+            // kappa(alpha) (setSlipLaw): dC/dalpha dalpha/dx, and the bias's terms in alphadot and
+            // alpha's own bias (the values are the position pass's, still in the kernels' data at
+            // the rates' pass).
             const auto& Ka = data.ws().condensation[k - 1];
             const auto& Kb = data.ws().condensation[k];
-            const int lc = nodeOffset_[k] + wrappedArcLengthOffset();
+            const double dC = sw.dBefore * Ka.value[qa] - sw.dAfter * Kb.value[qb];
             if (withRates) {
-                const double ld = data.ws().w[lc];
-                data.ws().bias[row] += 2.0 * ld * (sw.dBefore * Ka.rate[qa] - sw.dAfter * Kb.rate[qb]) +
-                                       ld * ld * (sw.ddBefore * Ka.value[qa] - sw.ddAfter * Kb.value[qb]);
+                const double ad = ang.rate;
+                data.ws().bias[row] += 2.0 * ad * (sw.dBefore * Ka.rate[qa] - sw.dAfter * Kb.rate[qb]) +
+                                       ad * ad * (sw.ddBefore * Ka.value[qa] - sw.ddAfter * Kb.value[qb]) +
+                                       dC * ang.bias;
             } else {
-                put(row, lc, sw.dBefore * Ka.value[qa] - sw.dAfter * Kb.value[qb]);
+                for (int i = 0; i < ang.count; ++i) put(row, ang.cols[i], dC * ang.grad[i]);
             }
         }
     }

@@ -97,10 +97,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         r.tractionModels.clear();
         traction.ropes.emplace_back(r.numTraction);
         for (const RopeRecord::DrivenNode& d : r.driven)
-            if (d.traction) {
-                traction.ropes.back()[d.tractionIndex].sStick = d.sRef;
-                traction.ropes.back()[d.tractionIndex].wrapAngle = d.wrapAngle;
-            }
+            if (d.traction) traction.ropes.back()[d.tractionIndex].sStick = d.sRef;
     }
     // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
     // coordinate (1 row each); each rope records which of its external coordinates each row is.
@@ -233,7 +230,6 @@ int ReevingSubsystem::Guts::realizeSubsystemPositionImpl(const State& s) const {
     PositionCache& pc = updPositionCache(s);
     pc.ropes.resize(ropes.size());
     updateBodyKinematics(s, pc, false);
-    resolveWrapAngles(s, pc);
     for (size_t i = 0; i < ropes.size(); ++i) {
         updatePositionPart(s, ropes[i], pc, pc.ropes[i]);
         if (ropes[i].numModal > 0)

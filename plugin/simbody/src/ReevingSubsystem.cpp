@@ -252,6 +252,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                     d.tractionIndex = r.numTraction++;
                     d.frictionCoefficient = n.frictionCoefficient;
                     d.wrapAngle = n.wrapAngle;
+                    d.geometricWrap = n.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
                 }
                 d.ropeOnDrum = n.ropeOnDrum;
                 d.payout = n.sense * n.radius;
@@ -295,8 +296,6 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                 r.wraps[k] = grippingSheaveWrap(n, r.driven[r.drivenIndex(k)].dsdTheta, normal,
                                                 who + (n.kind == RopeNodeKind::TurningSheave ? "TurningSheave" : "TractionSheave") +
                                                     " at node " + std::to_string(k));
-                // A traction sheave without a given wrap angle takes the geometry's, l / R.
-                if (n.kind == RopeNodeKind::TractionSheave) r.driven[r.drivenIndex(k)].geometricWrap = n.wrapAngle == 0;
             }
         }
     }

@@ -70,15 +70,17 @@ struct RopeRecord {
         bool traction = false;
         int tractionIndex = -1;  // among the rope's traction sheaves
         double frictionCoefficient = 0, wrapAngle = 0;  // wrapAngle 0: from the geometry
-        // A wrapped TractionSheave (SheaveModel::Wrapped) without a given wrap angle: its capstan
-        // law takes alpha = l / R of the current geometry (RopeModel::setSlipLaw), at every evaluation.
+        // A TractionSheave without a given wrap angle: its capstan law takes the current geometry's
+        // alpha (RopeModel::wrapAngle: l / R wrapped, the chords' turning angle at a point sheave;
+        // RopeModel::setSlipLaw), at every evaluation.
         bool geometricWrap = false;
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
     int dampingZOffset = -1;  // Z entry of the rope's damping work (ropes with axialRetardationTime > 0)
     /// Models by traction phase (planar ropes with TractionSheaves): key = per traction sheave 0
-    /// (stick) or its slip ratio kappa; built on first use (the set of phases a run visits is small).
+    /// (stick), its slip ratio kappa (a given wrap angle) or +-1 (the slip's direction, with the
+    /// geometry's wrap angle); built on first use (the set of phases a run visits is small).
     mutable std::vector<std::pair<std::vector<double>, std::shared_ptr<const RopeModel<2>>>> tractionModels;
     std::vector<DrivenNode> driven;
     std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
@@ -128,14 +130,12 @@ struct RopeRecord {
 /// (or ReevingSubsystem::resetSpanFrames) replaces a rope's model by one whose references are the
 /// current element frames, rotating the transverse modal coordinates and rates with it.
 /// State (a discrete variable, invalidating Stage::Position): per rope, per TractionSheave its phase
-/// and the material coordinate offset of its current stick phase (s_k = sStick + dsdTheta theta),
-/// the wrap angle in use (resolved from the geometry at the state's first realization to
-/// Stage::Position when the spec gives 0: written in place, as SpatialFrames) and the count of
-/// transitions.
+/// and the material coordinate offset of its current stick phase (s_k = sStick + dsdTheta theta)
+/// and the count of transitions. (A wrap angle taken from the geometry is not state: it is a
+/// function of the positions, RopeModel::wrapAngle of the position cache's evaluation.)
 struct TractionNodeState {
     TractionMode mode = TractionMode::Stick;
     double sStick = 0;
-    double wrapAngle = 0;  // 0: not resolved yet
     int transitions = 0;
 };
 struct TractionStates {
@@ -324,13 +324,10 @@ public:
     const RopeModel<2>& planarModel(const SimTK::State& s, const detail::RopeRecord& r) const;
     const detail::TractionStates& tractionStates(const SimTK::State& s) const;
     detail::TractionStates& updTractionStates(SimTK::State& s) const;
-    /// Resolves the wrap angles the specs leave to the geometry (TractionSheave::wrapAngle = 0) from
-    /// the node positions of pc, in place (realizeSubsystemPositionImpl).
-    void resolveWrapAngles(const SimTK::State& s, const detail::PositionCache& pc) const;
     /// Axial forces P_a, P_b of the spans before and after node k at the node [N] (Stage::Position).
     std::pair<double, double> nodeAxialForces(const SimTK::State& s, const detail::RopeRecord& r, int node) const;
     /// The wrap angle alpha [rad] traction sheave d's capstan law uses in state s (Stage::Position):
-    /// the geometry's l / R for a geometricWrap sheave, else the given or resolved one.
+    /// the current geometry's (RopeModel::wrapAngle) for a geometricWrap sheave, else the given one.
     double tractionWrapAngle(const SimTK::State& s, const detail::RopeRecord& r,
                              const detail::RopeRecord::DrivenNode& d) const;
     /// e^(mu alpha) of traction sheave d of rope r in state s.

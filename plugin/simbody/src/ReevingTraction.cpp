@@ -33,12 +33,10 @@ TractionStates& ReevingSubsystem::Guts::updTractionStates(State& s) const {
 
 double ReevingSubsystem::Guts::tractionWrapAngle(const State& s, const RopeRecord& r,
                                                  const RopeRecord::DrivenNode& d) const {
-    if (!d.geometricWrap) return tractionStates(s).ropes[r.index][d.tractionIndex].wrapAngle;
-    // l = s1 of the departing span - s_k (the rope on the groove), as getArcLength.
+    if (!d.geometricWrap) return d.wrapAngle;
+    // l / R wrapped, the chords' turning angle at a point sheave: the angle the slip law uses.
     const RopeCache& c = positionCache(s).ropes[r.index];
-    const double l = c.planar.spanCoordinates(d.node)[c.planarModel->span(d.node).s1Index()] -
-                     c.planar.materialCoordinates[d.node];
-    return l / r.wraps[d.node].radius;
+    return c.planarModel->wrapAngle(c.planar, d.node);
 }
 
 double ReevingSubsystem::Guts::tractionLimit(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
@@ -55,11 +53,11 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
         const TractionNodeState& t = ts[d.tractionIndex];
         if (t.mode == TractionMode::Stick) continue;
         anySlip = true;
-        if (d.geometricWrap) {  // kappa(l) = e^(+-mu l / R): the phase's sign is the key
+        if (d.geometricWrap) {  // kappa(alpha) = e^(+-mu alpha): the phase's sign is the key
             key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
             continue;
         }
-        const double limit = std::exp(d.frictionCoefficient * t.wrapAngle);
+        const double limit = std::exp(d.frictionCoefficient * d.wrapAngle);
         // kappa = P_{k-1} / P_k: the tight side is the one the rope slides towards.
         key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? limit : 1.0 / limit;
     }
@@ -75,7 +73,7 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
     for (const RopeRecord::DrivenNode& d : r.driven) {
         if (!d.traction || key[d.tractionIndex] == 0) continue;
         if (d.geometricWrap)
-            model->setSlipLaw(d.node, 1.0, key[d.tractionIndex] * d.frictionCoefficient / r.wraps[d.node].radius);
+            model->setSlipLaw(d.node, 1.0, key[d.tractionIndex] * d.frictionCoefficient);
         else
             model->setSlipRatio(d.node, key[d.tractionIndex]);
     }
@@ -83,27 +81,6 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
     model->setStationaryNodes(r.stationaryNodes());
     r.tractionModels.emplace_back(key, model);
     return *r.tractionModels.back().second;
-}
-
-void ReevingSubsystem::Guts::resolveWrapAngles(const State& s, const PositionCache& pc) const {
-    const TractionStates& ts = tractionStates(s);
-    for (const RopeRecord& r : ropes)
-        for (const RopeRecord::DrivenNode& d : r.driven) {
-            if (!d.traction || d.geometricWrap || ts.ropes[r.index][d.tractionIndex].wrapAngle > 0) continue;
-            // From this configuration (the state's first realization to Stage::Position): a value the
-            // state did not have yet, written in place (as the spatial frames are).
-            const int k = d.node;
-            auto at = [&](int node) { return pc.bodyX[r.nodeSlot[node]] * r.node(node).second; };
-            const SimTK::Vec3 a = at(k - 1) - at(k), b = at(k + 1) - at(k);
-            const double cosine = std::clamp(SimTK::dot(a, b) / (a.norm() * b.norm()), -1.0, 1.0);
-            const double alpha = SimTK::Pi - std::acos(cosine);
-            if (!(alpha > 0))
-                throw std::runtime_error("ReevingSubsystem: rope '" + r.spec.name + "' traction sheave at node " +
-                                         std::to_string(k) +
-                                         ": the rope passes straight over it in this configuration (wrap angle 0); "
-                                         "give TractionSheave::wrapAngle");
-            const_cast<TractionStates&>(ts).ropes[r.index][d.tractionIndex].wrapAngle = alpha;
-        }
 }
 
 std::pair<double, double> ReevingSubsystem::Guts::nodeAxialForces(const State& s, const RopeRecord& r, int k) const {
@@ -264,10 +241,13 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
         getGuts().positionCache(s);
         return getGuts().tractionWrapAngle(s, r, r.driven[driven]);
     }
-    if (r.planar && r.wraps[node].radius > 0 && node > 0 && node + 1 < r.numNodes())
-        return getArcLength(s, rope, node) / r.wraps[node].radius;
+    if (r.planar && node > 0 && node + 1 < r.numNodes()) {
+        if (r.wraps[node].radius > 0) return getArcLength(s, rope, node) / r.wraps[node].radius;
+        const RopeCache& c = getGuts().positionCache(s).ropes[rope];  // a point sheave: its chords' angle
+        return c.planarModel->wrapAngle(c.planar, node);
+    }
     invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
-            " is neither a TractionSheave nor a wrapped sheave: it has no wrap angle");
+            " is neither a TractionSheave nor a sheave of a planar rope: it has no wrap angle");
 }
 
 double ReevingSubsystem::getFrictionPower(const State& s, int rope, int node) const {

@@ -271,18 +271,31 @@ public:
     /// MaterialNode::Slipping; default 1): setSlipLaw(node, kappa, 0).
     /// @throws std::invalid_argument if node is not Slipping or kappa is not finite and > 0.
     void setSlipRatio(int node, double kappa);
-    /// Sets the capstan law of the Slipping node k as a function of the rope on its groove:
-    ///     kappa(l) = P_{k-1} / P_k = kappa_0 e^(c l),
-    /// l = R alpha [m] the arc length of a wrapped node (an external coordinate), so that with
-    /// kappa_0 = 1 and c = +-mu / R the law is Euler-Eytelwein's e^(+-mu alpha) with the wrap angle
-    /// of the current geometry. kappa(l) enters the constraint row's Jacobian (a column at l) and
-    /// its acceleration bias (the terms in ldot), so the coupled solve stays exact as alpha changes.
-    /// @param node        k, a Slipping node.
-    /// @param kappa0      kappa_0 [-], finite and > 0.
-    /// @param arcExponent c [1/m], finite; non-zero only at a wrapped node.
+    /// Sets the capstan law of the Slipping node k as a function of its wrap angle alpha in the
+    /// current geometry:
+    ///     kappa(alpha) = P_{k-1} / P_k = kappa_0 e^(c alpha),
+    /// so that with kappa_0 = 1 and c = +-mu the law is Euler-Eytelwein's e^(+-mu alpha) with the
+    /// wrap angle of the current geometry (wrapAngle): alpha = l / R at a wrapped node (l an
+    /// external coordinate), the turning angle between the two spans' chords at a point node of a
+    /// planar rope (from the positions of node k and of the spans' far ends). kappa(alpha) enters
+    /// the constraint row's Jacobian (its columns at l, or at the three positions) and its
+    /// acceleration bias (the terms in alphadot, and alpha's own quadratic-velocity term at a
+    /// point node), so the coupled solve stays exact as alpha changes.
+    /// @param node          k, a Slipping node.
+    /// @param kappa0        kappa_0 [-], finite and > 0.
+    /// @param angleExponent c [1/rad], finite.
     /// @throws std::invalid_argument if node is not Slipping, kappa0 is not finite and > 0,
-    ///         arcExponent is not finite, or it is non-zero at a node that is not wrapped.
-    void setSlipLaw(int node, double kappa0, double arcExponent);
+    ///         angleExponent is not finite, or it is non-zero at a point node of a spatial rope
+    ///         (its chord angle is not built in 3D).
+    void setSlipLaw(int node, double kappa0, double angleExponent);
+    /// The wrap angle alpha [rad] of interior node k in the geometry of data's last evaluation
+    /// from node positions or stations (as surfaceCoordinate): l / R at a wrapped node; at a point
+    /// node of a planar rope the turning angle between the chords of spans k - 1 and k,
+    /// |atan2(d_in x d_out, d_in . d_out)| in [0, pi] (d_in from span k - 1's start to r_k, d_out
+    /// from r_k to span k's end): pi for a rope doubling back over the node, 0 for a straight one.
+    /// @throws std::invalid_argument if node is not interior, is a point node of a spatial rope,
+    ///         or data holds no such evaluation.
+    double wrapAngle(const RopeData<Dim>& data, int node) const;
     /// The external coordinate of Driven or Slipping node k, the material coordinate of the
     /// sheave's surface where the rope arrives on it [m]: drivenS's entry at a point node,
     /// Y_s + sigma R phi_in at a wrapped one (WrapStationMap), from the last
@@ -294,7 +307,7 @@ public:
     /// @throws std::invalid_argument as surfaceCoordinate.
     double surfaceRate(const RopeData<Dim>& data, int node) const;
     double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa_0 of a Slipping node (else 1)
-    double slipArcExponent(int node) const { return slipExponent_[node]; }  ///< c [1/m] of a Slipping node (else 0)
+    double slipAngleExponent(int node) const { return slipExponent_[node]; }  ///< c [1/rad] of a Slipping node (else 0)
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
     /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
     /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
@@ -516,13 +529,23 @@ private:
     // any kappa. Unscaled, a large kappa (e^(mu alpha) = 4e13 at mu = 10) multiplies the slack
     // side's round-off past the Newton's tolerance.
     std::vector<double> weightBefore_, weightAfter_;
-    std::vector<double> slipExponent_;  // per node: c [1/m] of kappa(l) = kappa_0 e^(c l), else 0
-    /// The row weights (w_before, w_after) of Slipping node k at the arc length of x and their
-    /// first and second derivatives in l (zero unless the law has an arc exponent).
+    std::vector<double> slipExponent_;  // per node: c [1/rad] of kappa(alpha) = kappa_0 e^(c alpha), else 0
+    /// The row weights (w_before, w_after) of Slipping node k at wrap angle alpha and their first
+    /// and second derivatives in alpha (zero unless the law has an angle exponent).
     struct SlipWeights {
         double before = 1, after = 1, dBefore = 0, dAfter = 0, ddBefore = 0, ddAfter = 0;
     };
-    SlipWeights slipWeights(int node, const Eigen::VectorXd& x) const;
+    SlipWeights slipWeights(int node, double alpha) const;
+    /// Node k's wrap angle alpha in x as a function of the external coordinates: its value, its
+    /// gradient (count entries at columns cols), and with rates xdot its rate and the
+    /// quadratic-velocity part of its second derivative (alphaddot = grad . xddot + bias).
+    struct SlipAngle {
+        double alpha = 0, rate = 0, bias = 0;
+        int count = 0;
+        std::array<int, 3 * Dim> cols{};
+        std::array<double, 3 * Dim> grad{};
+    };
+    SlipAngle slipAngle(int node, const Eigen::VectorXd& x, const Eigen::VectorXd* xdot) const;
     int numFixed_ = 0;
     struct Storage {
         int node = -1;

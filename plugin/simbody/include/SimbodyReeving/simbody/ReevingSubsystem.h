@@ -200,15 +200,16 @@ struct TurningSheave {
 /// getSlipDistance counts from it), the sense (as for a TurningSheave) and the point on the pin
 /// axis (body frame). It starts in stick.
 ///
-/// The wrap angle from the geometry: with SheaveModel::Point it is taken when the state is first
-/// realized to Stage::Position, alpha = pi - angle(r_{k-1} - r_k, r_{k+1} - r_k), and fixed for
-/// the run (a point sheave does not follow the tangent points). With SheaveModel::Wrapped the
-/// rope arrives and leaves at the groove's tangent points (the pin's parent must keep Ground's
-/// orientation and its axis be along the plane normal, as for a wrapped TurningSheave), and alpha = l / R of the
-/// current geometry at every evaluation: the stick limit e^(mu alpha) and, in slip, the capstan
-/// law P_{k-1} = e^(+-mu l / R) P_k (RopeModel::setSlipLaw, whose derivative in l enters the
-/// coupled solve) follow a deflector, a moving car or a leaning fall. A given alpha (double wrap,
-/// an arrangement the geometry does not show) is used as given with either model. In stick
+/// The wrap angle from the geometry (wrapAngle 0), at every evaluation: with SheaveModel::Point the
+/// turning angle between the two chords at the sheave's centre, alpha = pi - angle(p_a - r_k,
+/// p_b - r_k) (p_a, p_b the spans' far ends; 0 for a rope running straight over it, where the
+/// sheave has no traction); with SheaveModel::Wrapped, where the rope arrives and leaves at the
+/// groove's tangent points (the pin's parent must keep Ground's orientation and its axis be along
+/// the plane normal, as for a wrapped TurningSheave), alpha = l / R. The stick limit e^(mu alpha)
+/// and, in slip, the capstan law P_{k-1} = e^(+-mu alpha) P_k (RopeModel::setSlipLaw, whose
+/// derivatives in the positions or in l enter the coupled solve) follow a deflector, a moving car
+/// or a leaning fall. A given alpha (double wrap, an arrangement the geometry does not show) is
+/// used as given with either model. In stick
 /// s_k = s_stick + sense R theta is the material coordinate at the groove's top (WrapStationMap).
 ///
 /// What it does not model: the tension varies along the wrap arc (P e^(mu phi) in slip, and the
@@ -431,10 +432,12 @@ public:
     /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position; alpha as getWrapAngle).
     double getTractionLimit(const SimTK::State& state, int rope, int node) const;
     /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
-    /// uses (given, the first realization's with a point sheave, l / R with a wrapped one); at a
-    /// wrapped DeviationSheave or TurningSheave (SheaveModel::Wrapped) the geometry's, l / R with
-    /// l = getArcLength.
-    /// @throws std::invalid_argument if rope or node is out of range or the node is neither.
+    /// uses (the given one, else the current geometry's as below); at any other sheave of a planar
+    /// rope the current geometry's: l / R with l = getArcLength with SheaveModel::Wrapped, the
+    /// turning angle between the chords of the two spans at a point sheave (pi - the angle between
+    /// them at the node; RopeModel::wrapAngle).
+    /// @throws std::invalid_argument if rope or node is out of range, or the node is an end node
+    ///         or a sheave of a spatial rope other than a TractionSheave with a given angle.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
     /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node and at a wrapped
