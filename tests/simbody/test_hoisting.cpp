@@ -529,6 +529,53 @@ TEST(Hoisting, BadDrumAndSheaveInputIsAnInvalidArgument) {
     EXPECT_NO_THROW(reeving.addRope(r));
 }
 
+// Where each node kind may stand (its unit's kAtEnds / kInPath, nodes/NodeKinds.h): every kind at
+// the rope's start and as its one sheave, accepted or rejected with the placement message.
+TEST(Hoisting, EachNodeKindStandsWhereItsUnitAllows) {
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter(system);
+    SimTK::GeneralForceSubsystem forces(system);
+    MobilizedBody::Pin pin(matter.Ground(), SimTK::Transform(Vec3(1, 0, 0)), wheel(1), SimTK::Transform());
+    MobilizedBody::Slider load(matter.Ground(), vertical(Vec3(0, -3, 0)), pointMass(100), vertical(Vec3(0)));
+    ReevingSubsystem reeving(system, Vec3(0, -kG, 0));
+    struct Kind {
+        const char* name;
+        RopeNode node;
+        bool atEnds, inPath;
+    };
+    const std::vector<Kind> kinds = {
+        {"Anchor", RopeAnchor{matter.Ground(), Vec3(0, 1, 0)}, true, false},
+        {"DeviationSheave", DeviationSheave{matter.Ground(), Vec3(0, 1, 0), 0.1}, false, true},
+        {"WinchDrum", WinchDrum{pin, 0.3, 10.0}, true, false},
+        {"TurningSheave", TurningSheave{pin, 0.3, 1.0}, false, true},
+        {"TractionSheave", TractionSheave{pin, 0.3, 0.2, 0.0, 1.0, 1, Vec3(0)}, false, true},
+    };
+    for (const Kind& k : kinds) {
+        for (bool atEnd : {true, false}) {
+            RopeSpec r;
+            r.name = k.name;
+            r.start = atEnd ? k.node : RopeNode(RopeAnchor{matter.Ground(), Vec3(-1, 0, 0)});
+            r.sheaves = {atEnd ? RopeNode(DeviationSheave{matter.Ground(), Vec3(1, 0.5, 0), 0.1}) : k.node};
+            r.end = RopeAnchor{load, Vec3(0)};
+            r.properties = {0.6, 1e6, 0};
+            r.unstretchedLength = 5;
+            r.planeNormal = Vec3(0, 0, 1);
+            const std::string where = atEnd ? std::string("start node (") + k.name + ", node 0)"
+                                            : std::string("sheave 0 (") + k.name + ", node 1)";
+            if (atEnd ? k.atEnds : k.inPath) {
+                EXPECT_NO_THROW(reeving.addRope(r)) << where;
+            } else {
+                EXPECT_THROW_MESSAGE(reeving.addRope(r), std::invalid_argument,
+                                     "ReevingSubsystem: rope '" + std::string(k.name) + "': " + where +
+                                         (atEnd ? ": a rope end must be an Anchor or a WinchDrum"
+                                                : ": a node inside the path must be a DeviationSheave, TurningSheave "
+                                                  "or TractionSheave"));
+            }
+        }
+    }
+    EXPECT_EQ(reeving.getNumRopes(), 5);
+}
+
 // Long hauls: one span hauled in from 100 m to its 0.5 m minimum by an end drum, with
 // quasi-static axial modes and transverse modes: every evaluation succeeds (Newton, quadrature and
 // modes stay conditioned over the 200x length range), the run ends at the limit, and the motor's

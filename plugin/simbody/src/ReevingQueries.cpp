@@ -2,6 +2,7 @@
 // sampling, energies, evaluation failures).
 
 #include "ReevingSubsystemGuts.h"
+#include "nodes/NodeKinds.h"
 
 #include <Eigen/Geometry>
 
@@ -172,7 +173,8 @@ double ReevingSubsystem::getMaxConstraintError(const State& s) const {
     double worst = 0;
     for (int i = 0; i < getNumRopes(); ++i)
         for (int k = 1; k + 1 < getGuts().ropes[i].numNodes(); ++k)
-            if (getGuts().ropes[i].nodeSpec(k).kind == RopeNodeKind::DeviationSheave)
+            if (visitNodeKind(getGuts().ropes[i].nodeSpec(k).kind,
+                              [](auto unit) { return decltype(unit)::kTensionEquality; }))
                 worst = std::max(worst, std::abs(getConstraintError(s, i, k)));
     return worst;
 }

@@ -1,6 +1,7 @@
 // ReevingSubsystem: construction, addRope (validation), rope accessors and the modal state.
 
 #include "ReevingSubsystemGuts.h"
+#include "nodes/NodeKinds.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,44 +23,6 @@ namespace SimbodyReeving {
 
 using namespace detail;
 
-namespace {
-
-// True if body b keeps Ground's orientation: Ground, or a Slider, Translation or Weld whose
-// inboard and outboard frames are aligned, on such a body.
-bool alignedWithGround(const SimTK::MobilizedBody& b) {
-    if (b.isGround()) return true;
-    using SimTK::MobilizedBody;
-    if (!MobilizedBody::Slider::isInstanceOf(b) && !MobilizedBody::Translation::isInstanceOf(b) &&
-        !MobilizedBody::Weld::isInstanceOf(b))
-        return false;
-    const SimTK::Rotation& inboard = b.getDefaultInboardFrame().R();
-    const SimTK::Rotation& outboard = b.getDefaultOutboardFrame().R();
-    if (std::abs(std::abs((~inboard * outboard).convertRotationToAngleAxis()[0])) > 1e-14) return false;
-    return alignedWithGround(b.getParentMobilizedBody());
-}
-
-// A TurningSheave, TractionSheave or WinchDrum with SheaveModel::Wrapped grips the rope on its
-// groove (a traction sheave while it sticks): s = s_ref + dsdTheta theta is the material coordinate
-// at the groove's top (WrapStationMap), so the wrap sense is sigma = -sign(dsdTheta) (pin axis . n).
-// Its pin must turn about the plane normal, relative to a parent that keeps Ground's orientation
-// (the tangent points' angles are measured in Ground).
-NodeWrap grippingSheaveWrap(const RopeNode& n, double dsdTheta, const SimTK::UnitVec3& normal, const std::string& name) {
-    if (!alignedWithGround(n.body.getParentMobilizedBody()))
-        invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
-                       "(Slider, Translation or Weld with aligned frames, on such a body): the rope's grip on the "
-                       "groove is measured from Ground's angles");
-    const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
-    const double alignment = SimTK::dot(axis, normal);
-    if (std::abs(std::abs(alignment) - 1) > 1e-12)
-        invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
-                " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
-    NodeWrap w;
-    w.radius = n.radius;
-    w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
-    return w;
-}
-
-}  // namespace
 
 // ---- ReevingSubsystem ------------------------------------------------------------------------
 
@@ -149,62 +112,27 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                 SimTK::MultibodySystem::downcast(getSystem()).hasMatterSubsystem()
             ? &SimTK::MultibodySystem::downcast(getSystem()).getMatterSubsystem()
             : nullptr;
-    auto kindName = [](RopeNodeKind k) {
-        switch (k) {
-            case RopeNodeKind::Anchor: return "Anchor";
-            case RopeNodeKind::DeviationSheave: return "DeviationSheave";
-            case RopeNodeKind::WinchDrum: return "WinchDrum";
-            case RopeNodeKind::TurningSheave: return "TurningSheave";
-            case RopeNodeKind::TractionSheave: return "TractionSheave";
-        }
-        return "unknown kind";
-    };
-    auto number = [](const std::string& what, double v, const char* must) {
-        std::ostringstream o;
-        o << what << " = " << v << " must be " << must;
-        return o.str();
-    };
+    auto number = [](const std::string& what, double v, const char* must) { return mustBe(what, v, must); };
     for (int k = 0; k < r.numNodes(); ++k) {
         const RopeNode& n = r.nodeSpec(k);
         const bool end = k == 0 || k == r.numNodes() - 1;
         const std::string name = who + (k == 0                  ? std::string("start node")
                                         : k == r.numNodes() - 1 ? std::string("end node")
                                                                 : "sheave " + std::to_string(k - 1)) +
-                                 " (" + kindName(n.kind) + ", node " + std::to_string(k) + ")";
-        if (end && (n.kind == RopeNodeKind::DeviationSheave || n.kind == RopeNodeKind::TurningSheave ||
-                    n.kind == RopeNodeKind::TractionSheave))
-            invalid(name + ": a rope end must be an Anchor or a WinchDrum (a sheave needs a span on both sides)");
-        if (!end && (n.kind == RopeNodeKind::Anchor || n.kind == RopeNodeKind::WinchDrum))
-            invalid(name + ": a node inside the path must be a DeviationSheave, TurningSheave or TractionSheave (a "
-                           "rope fastened mid-path is two ropes)");
-        if (n.body.isEmptyHandle()) invalid(name + " has no body");
-        if (matter && &n.body.getMatterSubsystem() != matter)
-            invalid(name + " is on a body of another system's matter subsystem");
-        if (!finite(n.point)) invalid(name + " point [m] = " + str(n.point) + " must be finite");
-        if (n.kind == RopeNodeKind::Anchor) continue;
-        if (!std::isfinite(n.radius) || !(n.radius > 0)) invalid(number(name + " radius [m]", n.radius, "finite and > 0"));
-        if (n.kind == RopeNodeKind::DeviationSheave) continue;
-        // WinchDrum, TurningSheave: on a Pin, node on its axis.
-        if (!SimTK::MobilizedBody::Pin::isInstanceOf(n.body))
-            invalid(name + ": its body must be a MobilizedBody::Pin (the rope turns it about the pin axis)");
-        const SimTK::Transform& X_BM = n.body.getDefaultOutboardFrame();
-        const SimTK::Vec3 axis = X_BM.R().z(), offset = n.point - X_BM.p();
-        if ((offset - axis * SimTK::dot(offset, axis)).norm() > 1e-12 * std::max(1.0, offset.norm()))
-            invalid(name + " point " + str(n.point) + " is off the pin axis (it would orbit as the pin turns)");
-        if (n.sense != 1 && n.sense != -1) invalid(name + " sense = " + std::to_string(n.sense) + " must be +1 or -1");
-        if (n.kind == RopeNodeKind::WinchDrum && (!std::isfinite(n.ropeOnDrum) || n.ropeOnDrum < 0))
-            invalid(number(name + " ropeOnDrum [m]", n.ropeOnDrum, "finite and >= 0"));
-        if ((n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) &&
-            !std::isfinite(n.materialCoordinateAtZeroAngle))
-            invalid(number(name + " materialCoordinateAtZeroAngle [m]", n.materialCoordinateAtZeroAngle, "finite"));
-        if (n.kind == RopeNodeKind::TractionSheave) {
-            if (!std::isfinite(n.frictionCoefficient) || n.frictionCoefficient < 0)
-                invalid(number(name + " frictionCoefficient [-]", n.frictionCoefficient, "finite and >= 0"));
-            if (!std::isfinite(n.wrapAngle) || n.wrapAngle < 0 || n.wrapAngle > 20 * SimTK::Pi)
-                invalid(number(name + " wrapAngle [rad]", n.wrapAngle, "in [0, 20 pi] (0: from the geometry)"));
-            if (!(spec.planeNormal.norm() > 0))
-                invalid(name + ": TractionSheave is implemented for planar ropes only (give RopeSpec::planeNormal)");
-        }
+                                 " (" + nodeKindName(n.kind) + ", node " + std::to_string(k) + ")";
+        visitNodeKind(n.kind, [&](auto unit) {
+            using Unit = decltype(unit);
+            if (end && !Unit::kAtEnds)
+                invalid(name + ": a rope end must be an Anchor or a WinchDrum (a sheave needs a span on both sides)");
+            if (!end && !Unit::kInPath)
+                invalid(name + ": a node inside the path must be a DeviationSheave, TurningSheave or TractionSheave (a "
+                               "rope fastened mid-path is two ropes)");
+            if (n.body.isEmptyHandle()) invalid(name + " has no body");
+            if (matter && &n.body.getMatterSubsystem() != matter)
+                invalid(name + " is on a body of another system's matter subsystem");
+            if (!finite(n.point)) invalid(name + " point [m] = " + str(n.point) + " must be finite");
+            Unit::validate(NodeSite{r, k, n, name});
+        });
     }
     if (!std::isfinite(spec.minimumSpanLength) || !(spec.minimumSpanLength > 0))
         invalid(number(who + "minimumSpanLength [m]", spec.minimumSpanLength, "finite and > 0"));
@@ -237,39 +165,9 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     r.materialKinds.resize(r.numNodes());
     for (int k = 0; k < r.numNodes(); ++k) {
         const RopeNode& n = r.nodeSpec(k);
-        switch (n.kind) {
-            case RopeNodeKind::Anchor: r.materialKinds[k] = MaterialNode::Fixed; break;
-            case RopeNodeKind::DeviationSheave: r.materialKinds[k] = MaterialNode::Sliding; break;
-            case RopeNodeKind::WinchDrum:
-            case RopeNodeKind::TurningSheave:
-            case RopeNodeKind::TractionSheave: {
-                r.materialKinds[k] = MaterialNode::Driven;  // a TractionSheave starts in stick
-                RopeRecord::DrivenNode d;
-                d.node = k;
-                d.drum = n.kind == RopeNodeKind::WinchDrum;
-                d.traction = n.kind == RopeNodeKind::TractionSheave;
-                if (d.traction) {
-                    d.tractionIndex = r.numTraction++;
-                    d.frictionCoefficient = n.frictionCoefficient;
-                    d.wrapAngle = n.wrapAngle;
-                    d.geometricWrap = n.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
-                }
-                d.ropeOnDrum = n.ropeOnDrum;
-                d.payout = n.sense * n.radius;
-                if (!d.drum) {
-                    d.sRef = n.materialCoordinateAtZeroAngle;
-                    d.dsdTheta = n.sense * n.radius;
-                } else if (k == 0) {
-                    d.sRef = 0;
-                    d.dsdTheta = -n.sense * n.radius;
-                } else {
-                    d.sRef = spec.unstretchedLength;
-                    d.dsdTheta = n.sense * n.radius;
-                }
-                r.driven.push_back(d);
-                break;
-            }
-        }
+        const std::string name = nodeKindName(n.kind);
+        NodeSite site{r, k, n, name};
+        visitNodeKind(n.kind, [&](auto unit) { decltype(unit)::addMaterialRelation(site); });
     }
     if (!finite(spec.planeNormal)) invalid(who + "planeNormal = " + str(spec.planeNormal) + " must be finite");
     r.planar = spec.planeNormal.norm() > 0;
@@ -281,22 +179,9 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
         const SimTK::UnitVec3 normal(spec.planeNormal);
         for (int k = 0; k < r.numNodes(); ++k) {
             const RopeNode& n = r.nodeSpec(k);
-            if (n.kind == RopeNodeKind::WinchDrum) {
-                // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus
-                // sigma R phi); the stored rope is the rest.
-                r.wraps[k] = grippingSheaveWrap(n, r.driven[r.drivenIndex(k)].dsdTheta, normal,
-                                                who + "WinchDrum at node " + std::to_string(k));
-            } else if (n.kind == RopeNodeKind::DeviationSheave) {
-                if (n.sense != 1 && n.sense != -1)
-                    invalid(who + "sheave " + std::to_string(k) + " wrap sense = " + std::to_string(n.sense) +
-                            " must be +1 or -1");
-                r.wraps[k].radius = n.radius;
-                r.wraps[k].wrapSense = n.sense;
-            } else if (n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) {
-                r.wraps[k] = grippingSheaveWrap(n, r.driven[r.drivenIndex(k)].dsdTheta, normal,
-                                                who + (n.kind == RopeNodeKind::TurningSheave ? "TurningSheave" : "TractionSheave") +
-                                                    " at node " + std::to_string(k));
-            }
+            const std::string name = nodeKindName(n.kind);
+            const NodeSite site{r, k, n, name};
+            r.wraps[k] = visitNodeKind(n.kind, [&](auto unit) { return decltype(unit)::wrap(site, normal); });
         }
     }
     const Eigen::Vector3d gravity = toEigen(g.gravity());

@@ -1,0 +1,104 @@
+#pragma once
+/// @file
+/// Internal to the plugin: each RopeNodeKind as its own unit. A unit is a struct of static members
+/// (a closed set, dispatched once by visitNodeKind: no virtual call, and a new kind is one new unit
+/// plus one case there):
+///   - kName, kAtEnds, kInPath: its name in messages and where in a path it may stand;
+///   - validate(site): its own fields (the common ones, body, matter subsystem and point, are
+///     checked by addRope first), throwing std::invalid_argument with the site's name;
+///   - addMaterialRelation(site): how the rope's material coordinate at the node is determined
+///     (RopeRecord::materialKinds: Fixed, Sliding or Driven; a Driven node's DrivenNode record:
+///     s = s_ref + dsdTheta theta, a drum's stored rope, a traction sheave's friction);
+///   - wrap(site, normal): its groove with SheaveModel::Wrapped (NodeWrap; radius 0: a point);
+///   - kTensionEquality: the node's constraint row is the frictionless tension equality (its
+///     residual counts in getMaxConstraintError).
+/// What every node shares at run time (a station on a body: positions, velocities, the coupled
+/// solve's rows; a Driven node's angle row) is generic in ReevingRealization.cpp and
+/// ReevingCoupling.cpp.
+
+#include "../ReevingSubsystemGuts.h"
+
+#include <string>
+
+namespace SimbodyReeving {
+namespace detail {
+
+/// A node of a rope being added (addRope): the record it fills, its index and spec, its name for
+/// messages ("rope 'r': sheave 0 (TurningSheave, node 1)").
+struct NodeSite {
+    RopeRecord& rope;
+    int node;
+    const RopeNode& spec;
+    const std::string& name;
+};
+
+/// "what = value must be must" for messages.
+std::string mustBe(const std::string& what, double value, const char* must);
+
+/// An end fastened to a body: s fixed (0 at the start, L at the end). Ends only.
+struct AnchorNode {
+    static constexpr const char* kName = "Anchor";
+    static constexpr bool kAtEnds = true, kInPath = false, kTensionEquality = false;
+    static void validate(const NodeSite&) {}
+    static void addMaterialRelation(NodeSite& site);
+    static NodeWrap wrap(const NodeSite&, const SimTK::UnitVec3&) { return {}; }
+};
+
+/// A frictionless idler (paper eq 30/32): s solved from the tension equality. Inside a path.
+struct DeviationSheaveNode {
+    static constexpr const char* kName = "DeviationSheave";
+    static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = true;
+    static void validate(const NodeSite& site);
+    static void addMaterialRelation(NodeSite& site);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+};
+
+/// A drum at a rope end on a Pin: s = s_end - or + sense R theta, its stored rope. Ends only.
+struct WinchDrumNode {
+    static constexpr const char* kName = "WinchDrum";
+    static constexpr bool kAtEnds = true, kInPath = false, kTensionEquality = false;
+    static void validate(const NodeSite& site);
+    static void addMaterialRelation(NodeSite& site);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+};
+
+/// A sheave on a Pin that grips the rope: s = s_ref + sense R theta. Inside a path.
+struct TurningSheaveNode {
+    static constexpr const char* kName = "TurningSheave";
+    static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;
+    static void validate(const NodeSite& site);
+    static void addMaterialRelation(NodeSite& site);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+};
+
+/// A sheave on a Pin that grips the rope by friction (stick: a TurningSheave with a state offset;
+/// slip: the capstan law, ReevingTraction.cpp). Inside a path of a planar rope.
+struct TractionSheaveNode {
+    static constexpr const char* kName = "TractionSheave";
+    static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;
+    static void validate(const NodeSite& site);
+    static void addMaterialRelation(NodeSite& site);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+};
+
+/// Calls f with the unit of kind (a value of its empty struct) and returns what it returns: the
+/// one switch over RopeNodeKind.
+template <class F>
+decltype(auto) visitNodeKind(RopeNodeKind kind, F&& f) {
+    switch (kind) {
+        case RopeNodeKind::Anchor: return f(AnchorNode{});
+        case RopeNodeKind::DeviationSheave: return f(DeviationSheaveNode{});
+        case RopeNodeKind::WinchDrum: return f(WinchDrumNode{});
+        case RopeNodeKind::TurningSheave: return f(TurningSheaveNode{});
+        case RopeNodeKind::TractionSheave: return f(TractionSheaveNode{});
+    }
+    invalid("unknown RopeNodeKind " + std::to_string(static_cast<int>(kind)));
+}
+
+/// The kind's name in messages ("Anchor", "DeviationSheave", ...).
+inline const char* nodeKindName(RopeNodeKind kind) {
+    return visitNodeKind(kind, [](auto unit) { return decltype(unit)::kName; });
+}
+
+}  // namespace detail
+}  // namespace SimbodyReeving

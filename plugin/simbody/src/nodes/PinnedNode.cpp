@@ -1,0 +1,75 @@
+// What the node kinds on a Pin share: checks, the Driven material relation, the wrapped grip.
+
+#include "PinnedNode.h"
+
+#include <cmath>
+
+namespace SimbodyReeving {
+namespace detail {
+
+namespace {
+
+// True if body b keeps Ground's orientation: Ground, or a Slider, Translation or Weld whose
+// inboard and outboard frames are aligned, on such a body.
+bool alignedWithGround(const SimTK::MobilizedBody& b) {
+    if (b.isGround()) return true;
+    using SimTK::MobilizedBody;
+    if (!MobilizedBody::Slider::isInstanceOf(b) && !MobilizedBody::Translation::isInstanceOf(b) &&
+        !MobilizedBody::Weld::isInstanceOf(b))
+        return false;
+    const SimTK::Rotation& inboard = b.getDefaultInboardFrame().R();
+    const SimTK::Rotation& outboard = b.getDefaultOutboardFrame().R();
+    if (std::abs(std::abs((~inboard * outboard).convertRotationToAngleAxis()[0])) > 1e-14) return false;
+    return alignedWithGround(b.getParentMobilizedBody());
+}
+
+}  // namespace
+
+std::string mustBe(const std::string& what, double value, const char* must) {
+    std::ostringstream o;
+    o << what << " = " << value << " must be " << must;
+    return o.str();
+}
+
+void validatePinnedNode(const NodeSite& site) {
+    const RopeNode& n = site.spec;
+    if (!std::isfinite(n.radius) || !(n.radius > 0)) invalid(mustBe(site.name + " radius [m]", n.radius, "finite and > 0"));
+    if (!SimTK::MobilizedBody::Pin::isInstanceOf(n.body))
+        invalid(site.name + ": its body must be a MobilizedBody::Pin (the rope turns it about the pin axis)");
+    const SimTK::Transform& X_BM = n.body.getDefaultOutboardFrame();
+    const SimTK::Vec3 axis = X_BM.R().z(), offset = n.point - X_BM.p();
+    if ((offset - axis * SimTK::dot(offset, axis)).norm() > 1e-12 * std::max(1.0, offset.norm()))
+        invalid(site.name + " point " + str(n.point) + " is off the pin axis (it would orbit as the pin turns)");
+    if (n.sense != 1 && n.sense != -1) invalid(site.name + " sense = " + std::to_string(n.sense) + " must be +1 or -1");
+}
+
+RopeRecord::DrivenNode drivenNodeOf(NodeSite& site) {
+    site.rope.materialKinds[site.node] = MaterialNode::Driven;
+    RopeRecord::DrivenNode d;
+    d.node = site.node;
+    d.payout = site.spec.sense * site.spec.radius;
+    return d;
+}
+
+NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::UnitVec3& normal) {
+    const RopeNode& n = site.spec;
+    const std::string name =
+        "rope '" + site.rope.spec.name + "': " + kindName + " at node " + std::to_string(site.node);
+    if (!alignedWithGround(n.body.getParentMobilizedBody()))
+        invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
+                       "(Slider, Translation or Weld with aligned frames, on such a body): the rope's grip on the "
+                       "groove is measured from Ground's angles");
+    const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
+    const double alignment = SimTK::dot(axis, normal);
+    if (std::abs(std::abs(alignment) - 1) > 1e-12)
+        invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
+                " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
+    const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
+    NodeWrap w;
+    w.radius = n.radius;
+    w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
+    return w;
+}
+
+}  // namespace detail
+}  // namespace SimbodyReeving

@@ -1,0 +1,30 @@
+#pragma once
+/// @file
+/// Internal to the plugin: what the node kinds on a MobilizedBody::Pin share (WinchDrumNode,
+/// TurningSheaveNode, TractionSheaveNode): the pin's checks, the Driven material relation
+/// s = s_ref + dsdTheta theta, and the grip on a wrapped groove.
+
+#include "NodeKinds.h"
+
+namespace SimbodyReeving {
+namespace detail {
+
+/// Radius finite and > 0, the body a Pin, the node on its axis, sense +1 or -1.
+/// @throws std::invalid_argument (ReevingSubsystem's message) otherwise.
+void validatePinnedNode(const NodeSite& site);
+
+/// Makes the node Driven and returns its DrivenNode record with node and payout filled (the kind
+/// sets s_ref and dsdTheta and its own fields, then pushes it).
+RopeRecord::DrivenNode drivenNodeOf(NodeSite& site);
+
+/// A TurningSheave, TractionSheave or WinchDrum with SheaveModel::Wrapped grips the rope on its
+/// groove (a traction sheave while it sticks): s = s_ref + dsdTheta theta is the material
+/// coordinate at the groove's top (WrapStationMap), so the wrap sense is sigma = -sign(dsdTheta)
+/// (pin axis . n). Its pin must turn about the plane normal, relative to a parent that keeps
+/// Ground's orientation (the tangent points' angles are measured in Ground).
+/// kindName names the node in the messages ("rope 'r': TurningSheave at node 1: ...").
+/// @throws std::invalid_argument if the parent turns or the pin axis is off the plane normal.
+NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::UnitVec3& normal);
+
+}  // namespace detail
+}  // namespace SimbodyReeving

@@ -1,0 +1,37 @@
+// RopeNodeKind::TractionSheave: a sheave on a pin that grips the rope by friction. Built as a
+// TurningSheave in stick; its slip phases and events are in ReevingTraction.cpp.
+
+#include "PinnedNode.h"
+
+#include <cmath>
+
+namespace SimbodyReeving {
+namespace detail {
+
+void TractionSheaveNode::validate(const NodeSite& site) {
+    TurningSheaveNode::validate(site);
+    const RopeNode& n = site.spec;
+    if (!std::isfinite(n.frictionCoefficient) || n.frictionCoefficient < 0)
+        invalid(mustBe(site.name + " frictionCoefficient [-]", n.frictionCoefficient, "finite and >= 0"));
+    if (!std::isfinite(n.wrapAngle) || n.wrapAngle < 0 || n.wrapAngle > 20 * SimTK::Pi)
+        invalid(mustBe(site.name + " wrapAngle [rad]", n.wrapAngle, "in [0, 20 pi] (0: from the geometry)"));
+    if (!(site.rope.spec.planeNormal.norm() > 0))
+        invalid(site.name + ": TractionSheave is implemented for planar ropes only (give RopeSpec::planeNormal)");
+}
+
+void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
+    TurningSheaveNode::addMaterialRelation(site);  // it starts in stick
+    RopeRecord::DrivenNode& d = site.rope.driven.back();
+    d.traction = true;
+    d.tractionIndex = site.rope.numTraction++;
+    d.frictionCoefficient = site.spec.frictionCoefficient;
+    d.wrapAngle = site.spec.wrapAngle;
+    d.geometricWrap = site.spec.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
+}
+
+NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::UnitVec3& normal) {
+    return grippingSheaveWrap(site, kName, normal);
+}
+
+}  // namespace detail
+}  // namespace SimbodyReeving

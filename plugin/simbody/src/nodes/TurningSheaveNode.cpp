@@ -1,0 +1,28 @@
+// RopeNodeKind::TurningSheave: a sheave on a pin that grips the rope, s = s_ref + sense R theta.
+
+#include "PinnedNode.h"
+
+#include <cmath>
+
+namespace SimbodyReeving {
+namespace detail {
+
+void TurningSheaveNode::validate(const NodeSite& site) {
+    validatePinnedNode(site);
+    const double sRef = site.spec.materialCoordinateAtZeroAngle;
+    if (!std::isfinite(sRef)) invalid(mustBe(site.name + " materialCoordinateAtZeroAngle [m]", sRef, "finite"));
+}
+
+void TurningSheaveNode::addMaterialRelation(NodeSite& site) {
+    RopeRecord::DrivenNode d = drivenNodeOf(site);
+    d.sRef = site.spec.materialCoordinateAtZeroAngle;
+    d.dsdTheta = site.spec.sense * site.spec.radius;
+    site.rope.driven.push_back(d);
+}
+
+NodeWrap TurningSheaveNode::wrap(const NodeSite& site, const SimTK::UnitVec3& normal) {
+    return grippingSheaveWrap(site, kName, normal);
+}
+
+}  // namespace detail
+}  // namespace SimbodyReeving
