@@ -700,3 +700,32 @@ TEST(Hoisting, FreeDrumLowersTheLoad) {
     EXPECT_NEAR(2 * c[2], expected, 1e-3 * std::abs(expected));
     EXPECT_LE(drift, 5e-9 * m * kG * 1.0);
 }
+
+// findStaticEquilibrium with nothing free (the rope's only body prescribed, no rope mode: n_t = 0
+// and quasi-static axial modes) leaves the state as it is and reports 0 (it read an empty residual
+// before: a crash).
+TEST(Hoisting, StaticEquilibriumWithNothingFreeIsTheStateItself) {
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter(system);
+    SimTK::GeneralForceSubsystem forces(system);
+    SimTK::Force::Gravity gravity(forces, matter, -SimTK::YAxis, kG);
+    MobilizedBody::Slider load(matter.Ground(), vertical(Vec3(0, -3, 0)), pointMass(100), vertical(Vec3(0)));
+    SimTK::Motion::Steady(load, 0.0);
+    ReevingSubsystem reeving(system);
+    RopeSpec r;
+    r.start = RopeAnchor{matter.Ground(), Vec3(0)};
+    r.end = RopeAnchor{load, Vec3(0)};
+    r.properties = {0.6, 1e6, 0};
+    r.unstretchedLength = 2.999;
+    r.spanDefaults.transverseModes = 0;
+    r.spanDefaults.axialModes = 2;
+    r.spanDefaults.axialDynamics = AxialDynamics::QuasiStatic;
+    r.planeNormal = Vec3(0, 0, 1);
+    reeving.addRope(r);
+    system.realizeTopology();
+    State s = system.getDefaultState();
+    ASSERT_EQ(reeving.getNumModalCoordinates(0), 0);
+    const SimTK::Vector q = s.getQ();
+    EXPECT_EQ(reeving.findStaticEquilibrium(s), 0.0);
+    EXPECT_EQ((s.getQ() - q).norm(), 0.0);
+}

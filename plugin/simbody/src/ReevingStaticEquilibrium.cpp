@@ -102,6 +102,9 @@ double ReevingSubsystem::findStaticEquilibrium(State& state, double relativeTole
         mbs.prescribe(state);
         return rel;
     };
+    // Nothing free (every mobility prescribed or locked, no rope mode): the state is what it is
+    // (the residual below would be empty).
+    if (n == 0) return restorePrescribedSpeeds(0.0);
     double scale = 0;
     Eigen::VectorXd r = residual(state, &scale);
     for (int iter = 0; iter < maxIterations; ++iter) {
