@@ -2,6 +2,7 @@
 // caches, the potential energy and the decorations.
 
 #include "ReevingSubsystemGuts.h"
+#include "nodes/NodeDrawing.h"
 
 #include "ForceFreeSubsystem.h"
 
@@ -428,12 +429,6 @@ Vec3 forceColour(double x) {
 /// metal fills 0.6 of its circle [m] (20.8 mm for 1.6 kg/m). Drawing only.
 double drawnRopeDiameter(double rhoA) { return std::sqrt(4.0 * rhoA / (SimTK::Pi * 0.6 * 7850.0)); }
 
-/// A unit vector perpendicular to the unit vector u.
-Vec3 perpendicularTo(const Vec3& u) {
-    const Vec3 trial = std::abs(u[0]) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-    return (trial - SimTK::dot(trial, u) * u).normalize();
-}
-
 /// Axial forces at the midpoints of the numPoints - 1 drawn segments of a span [N].
 void segmentForces(const ReevingSubsystem& rv, const State& s, int rope, int span, int numPoints,
                    std::vector<double>& forces) {
@@ -441,12 +436,6 @@ void segmentForces(const ReevingSubsystem& rv, const State& s, int rope, int spa
     forces.resize(numPoints - 1);
     for (int k = 0; k + 1 < numPoints; ++k)
         forces[k] = rv.getAxialForce(s, rope, span, range.first + (range.second - range.first) * (k + 0.5) / (numPoints - 1));
-}
-
-/// The pin axis of a WinchDrum / TurningSheave body in Ground, and a body-fixed radial direction.
-std::pair<Vec3, Vec3> pinAxes(const State& s, const MobilizedBody& pin) {
-    const SimTK::Rotation R_GM = pin.getBodyRotation(s) * pin.getOutboardFrame(s).R();
-    return {Vec3(R_GM.z()), Vec3(R_GM.x())};
 }
 
 }  // namespace
@@ -476,11 +465,6 @@ double ReevingSubsystem::getDecorationForceScale(const State& s) const {
 
 int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, Stage stage,
                                                                 Array_<DecorativeGeometry>& geometry) const {
-    using SimTK::DecorativeCylinder;
-    using SimTK::DecorativeSphere;
-    using SimTK::Rotation;
-    using SimTK::Transform;
-    using SimTK::UnitVec3;
     if (stage != Stage::Position) return 0;
     const ReevingSubsystem& rv = static_cast<const ReevingSubsystem&>(getOwnerSubsystemHandle());  // this Guts' handle
     const double reference = rv.getDecorationForceScale(s);
@@ -508,81 +492,12 @@ int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, 
             for (size_t m = 0; m + 1 < p.size(); ++m)
                 geometry.push_back(DecorativeLine(p[m], p[m + 1]).setColor(colour).setLineThickness(4));
         }
-        // Nodes: sheaves and drums at their radius, anchors as small spheres.
+        // Nodes: each kind draws itself (nodes/NodeDrawing.cpp): sheaves and drums at their
+        // radius, anchors as small spheres.
         const double d = drawnRopeDiameter(r.spec.properties.massPerLength);
         for (int k = 0; k < r.numNodes(); ++k) {
-            const RopeNode& n = r.nodeSpec(k);
-            const Vec3 centre = toSimTK(Eigen::Vector3d(c.nodes3.col(k)));
-            if (n.kind == RopeNodeKind::Anchor) {
-                geometry.push_back(DecorativeSphere(0.05).setTransform(Transform(centre)).setColor(Vec3(0.2, 0.2, 0.2)));
-                continue;
-            }
-            Vec3 axis, radial;
-            if (n.kind == RopeNodeKind::DeviationSheave) {
-                if (r.planar) {
-                    axis = toSimTK(r.normal);
-                } else {  // the plane of the two spans at the sheave (any plane through a straight pass)
-                    const Vec3 in = toSimTK(Eigen::Vector3d(c.nodes3.col(k) - c.nodes3.col(k - 1)));
-                    const Vec3 out = toSimTK(Eigen::Vector3d(c.nodes3.col(k + 1) - c.nodes3.col(k)));
-                    const Vec3 normal = SimTK::cross(in, out);
-                    axis = normal.norm() > 1e-9 * in.norm() * out.norm() ? normal.normalize()
-                                                                         : perpendicularTo(in.normalize());
-                }
-                radial = perpendicularTo(axis);
-            } else {
-                std::tie(axis, radial) = pinAxes(s, n.body);
-            }
-            const Rotation R_GC(UnitVec3(axis), SimTK::YAxis);  // cylinder axis (its y) along the sheave axis
-            if (n.kind != RopeNodeKind::WinchDrum) {
-                const double halfWidth = 0.3 * n.radius;
-                geometry.push_back(DecorativeCylinder(n.radius, halfWidth)
-                                       .setTransform(Transform(R_GC, centre))
-                                       .setColor(Vec3(0.72, 0.72, 0.78))
-                                       .setResolution(2));
-                if (n.kind == RopeNodeKind::TurningSheave || n.kind == RopeNodeKind::TractionSheave) {  // a spoke turning with the pin, on both faces
-                    for (double face : {-1.0, 1.0}) {
-                        const Vec3 o = centre + face * 1.05 * halfWidth * axis;
-                        geometry.push_back(DecorativeLine(o - 0.9 * n.radius * radial, o + 0.9 * n.radius * radial)
-                                               .setColor(Vec3(0.15, 0.15, 0.15))
-                                               .setLineThickness(3));
-                    }
-                }
-                continue;
-            }
-            // WinchDrum: core and flanges; drawn length holds the rope stored at pin angle 0 on one layer.
-            const double storedAtZero = std::max(n.ropeOnDrum, 0.0);
-            const double length = std::max(2.0 * n.radius, d * std::ceil(storedAtZero / (2.0 * SimTK::Pi * n.radius)));
-            geometry.push_back(DecorativeCylinder(n.radius, 0.5 * length)
-                                   .setTransform(Transform(R_GC, centre))
-                                   .setColor(Vec3(0.45, 0.45, 0.5))
-                                   .setResolution(2));
-            for (double side : {-1.0, 1.0})
-                geometry.push_back(DecorativeCylinder(n.radius + 3 * d, 0.5 * d)
-                                       .setTransform(Transform(R_GC, centre + side * (0.5 * length + 0.5 * d) * axis))
-                                       .setColor(Vec3(0.3, 0.3, 0.35))
-                                       .setResolution(2));
-            // The stored rope, wound from its fastening (body-fixed, radial direction) in layers of
-            // turnsPerLayer turns; body angle phi = sense u / rho along the wound length u, so the
-            // point where the rope leaves the drum stays put in Ground while the drum turns.
-            const double stored = rv.getRopeOnDrum(s, rope, k);
-            const Vec3 tangent = SimTK::cross(axis, radial);
-            const int turnsPerLayer = std::max(1, static_cast<int>(std::floor(length / d)));
-            const int segmentsPerTurn = 16;
-            const double dPhi = 2.0 * SimTK::Pi / segmentsPerTurn;
-            double u = 0;
-            Vec3 previous;
-            for (int step = 0; u < stored && step < 4000; ++step) {
-                const int turn = step / segmentsPerTurn, layer = turn / turnsPerLayer;
-                const double rho = n.radius + (layer + 0.5) * d;
-                const double along = (turn % turnsPerLayer + double(step % segmentsPerTurn) / segmentsPerTurn) * d;
-                const double z = -0.5 * length + 0.5 * d + (layer % 2 == 0 ? along : length - d - along);
-                const double phi = n.sense * step * dPhi;
-                const Vec3 point = centre + z * axis + rho * (std::cos(phi) * radial + std::sin(phi) * tangent);
-                if (step > 0)
-                    geometry.push_back(DecorativeLine(previous, point).setColor(Vec3(0.45, 0.28, 0.12)).setLineThickness(2));
-                previous = point;
-                u += rho * dPhi;
-            }
+            const NodeDrawing drawing{s, rv, r, c, k, d, geometry};
+            visitNodeKind(r.nodeSpec(k).kind, [&](auto unit) { decltype(unit)::draw(drawing); });
         }
     }
     return 0;

@@ -11,7 +11,8 @@
 ///     s = s_ref + dsdTheta theta, a drum's stored rope, a traction sheave's friction);
 ///   - wrap(site, normal): its groove with SheaveModel::Wrapped (NodeWrap; radius 0: a point);
 ///   - kTensionEquality: the node's constraint row is the frictionless tension equality (its
-///     residual counts in getMaxConstraintError).
+///     residual counts in getMaxConstraintError);
+///   - draw(drawing): its Visualizer decoration (NodeDrawing.h).
 /// What every node shares at run time (a station on a body: positions, velocities, the coupled
 /// solve's rows; a Driven node's angle row) is generic in ReevingRealization.cpp and
 /// ReevingCoupling.cpp.
@@ -25,6 +26,8 @@ namespace detail {
 
 /// A node of a rope being added (addRope): the record it fills, its index and spec, its name for
 /// messages ("rope 'r': sheave 0 (TurningSheave, node 1)").
+struct NodeDrawing;  // NodeDrawing.h
+
 struct NodeSite {
     RopeRecord& rope;
     int node;
@@ -42,6 +45,7 @@ struct AnchorNode {
     static void validate(const NodeSite&) {}
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite&, const SimTK::UnitVec3&) { return {}; }
+    static void draw(const NodeDrawing& drawing);
 };
 
 /// A frictionless idler (paper eq 30/32): s solved from the tension equality. Inside a path.
@@ -51,6 +55,7 @@ struct DeviationSheaveNode {
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static void draw(const NodeDrawing& drawing);
 };
 
 /// A drum at a rope end on a Pin: s = s_end - or + sense R theta, its stored rope. Ends only.
@@ -60,6 +65,7 @@ struct WinchDrumNode {
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static void draw(const NodeDrawing& drawing);
 };
 
 /// A sheave on a Pin that grips the rope: s = s_ref + sense R theta. Inside a path.
@@ -69,6 +75,7 @@ struct TurningSheaveNode {
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static void draw(const NodeDrawing& drawing);
 };
 
 /// A sheave on a Pin that grips the rope by friction (stick: a TurningSheave with a state offset;
@@ -79,6 +86,7 @@ struct TractionSheaveNode {
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static void draw(const NodeDrawing& drawing);
 };
 
 /// Calls f with the unit of kind (a value of its empty struct) and returns what it returns: the
