@@ -1999,6 +1999,9 @@ void RopeModel<Dim>::assembleReduced(RopeData<Dim>& data) const {
 template <int Dim>
 const Eigen::VectorXd& RopeData<Dim>::spanCoordinates(int span) const { return ws().spanQ[span]; }
 
+template <int Dim>
+const Eigen::VectorXd& RopeData<Dim>::spanRates(int span) const { return ws().spanQdot[span]; }
+
 template struct RopeData<2>;
 template struct RopeData<3>;
 template class RopeModel<2>;

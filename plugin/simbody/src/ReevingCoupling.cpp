@@ -37,11 +37,15 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
 
     const int m = static_cast<int>(mobileNodes_.size()), na = static_cast<int>(mobileAngles_.size());
     const int ns = numStationRows_, n = ns + na;
+    // Traction sheaves slipping with TractionSlip::RopeMomentum: the friction's reaction on the pin
+    // is an applied force; Y is condensed out of its rope: with F the Y indices and g_F the momentum
+    // balance's right sides, S' = S - S_xF S_FF^-1 S_Fx and h' = h - S_xF S_FF^-1 g_F on the others.
+    condenseMomentumSlips(s, pc, mobilityForces);
     ws.h.setZero(n);
     for (size_t i = 0; i < ropes.size(); ++i) {
         const RopeCoupling& rc = ropeCoupling_[i];
         const RopeCache& c = pc.ropes[i];
-        const Eigen::VectorXd& h = ropes[i].planar ? c.planar.nodeForce : c.spatial.nodeForce;
+        const Eigen::VectorXd& h = c.condensed ? c.condensedForce : ropes[i].planar ? c.planar.nodeForce : c.spatial.nodeForce;
         for (size_t b = 0; b < rc.rows.size(); ++b) ws.h[rc.rows[b]] = h[rc.external[b]];
     }
     // S on the coupled rows, for the routes that need it whole (constraints; fewer rows than
@@ -60,7 +64,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                     spatialModel(s, ropes[i]).multiplyByNodeMass(c.spatial, Eigen::MatrixXd::Identity(nx, nx),
                                                                 c.spatial.nodeMass);
             }
-            const Eigen::MatrixXd& S = ropes[i].planar ? c.planar.nodeMass : c.spatial.nodeMass;
+            const Eigen::MatrixXd& S = c.condensed ? c.condensedMass : ropes[i].planar ? c.planar.nodeMass : c.spatial.nodeMass;
             const int k = static_cast<int>(rc.rows.size());
             for (int b = 0; b < k; ++b)
                 for (int a = 0; a < k; ++a) ws.S(rc.rows[a], rc.rows[b]) = S(rc.external[a], rc.external[b]);
@@ -89,8 +93,12 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         ws.Lambda.resize(n, n);
         if (!constrained) {
             mobilityLambda(s, ws);
-            products = static_cast<int>(ws.U.size()) <= n;
-            if (!products) assembleS();
+            products = static_cast<int>(ws.U.size()) <= n && ws.freeSlips.empty();
+            if (!products) {
+                // (The product route keeps Lambda in its factors; a condensed rope needs S whole.)
+                if (static_cast<int>(ws.U.size()) <= n) ws.Lambda.noalias() = ws.JUMinv * ws.JU.transpose();
+                assembleS();
+            }
         } else {
             assembleS();
             // Constraints: calcAcceleration honours them; Lambda by differences, one call per column.
@@ -187,6 +195,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         const RopeCoupling& rc = ropeCoupling_[i];
         c.externalAccelerations.setZero(r.numExternal());
         for (size_t a = 0; a < rc.rows.size(); ++a) c.externalAccelerations[rc.external[a]] = ws.rdd[rc.rows[a]];
+        if (c.condensed) recoverMomentumSlips(pc, static_cast<int>(i));
         c.nodeAccelerations3.setZero(3, r.numNodes());
         for (int k = 0; k < r.numNodes(); ++k) {
             if (r.planar)
@@ -214,9 +223,21 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             zdot[r.zOffset + r.numModal + j] = c.modalAccelerations[j];
         }
         if (r.dampingZOffset >= 0) zdot[r.dampingZOffset] = r.planar ? c.planar.dampingPower : c.spatial.dampingPower;
-        // Friction work of the traction sheaves: (P_a - P_b) v_slip, zero in stick.
+        // Friction work of the traction sheaves: (P_a - P_b) v_slip, zero in stick; the slip states
+        // of TractionSlip::RopeMomentum sheaves (zero rates in stick).
         for (const RopeRecord::DrivenNode& d : r.driven) {
             if (!d.traction) continue;
+            const int zy = r.slipZOffset + 2 * d.tractionIndex;
+            zdot[zy] = zdot[zy + 1] = 0;
+            if (inMomentumSlip(s, r, d)) {
+                const int external = r.dim() * r.numNodes() + static_cast<int>(&d - r.driven.data());
+                zdot[zy] = z[zy + 1];
+                zdot[zy + 1] = c.externalAccelerations[external];
+                for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+                    if (f.rope == static_cast<int>(i) && f.external == external)
+                        zdot[r.tractionZOffset + d.tractionIndex] = f.workRate;
+                continue;
+            }
             const double v = slipRate(s, r, d);
             double power = 0;
             if (v != 0) {

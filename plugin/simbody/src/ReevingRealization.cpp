@@ -92,6 +92,8 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     for (RopeRecord& r : self.ropes) {
         r.tractionZOffset = z;  // friction work of each traction sheave
         z += r.numTraction;
+        r.slipZOffset = z;  // slip states (Y, Ydot) of each traction sheave (TractionSlip::RopeMomentum)
+        z += 2 * r.numTraction;
         bool damped = r.spec.properties.axialRetardationTime > 0;
         for (const SpanOptions& o : r.spanOptions) damped = damped || o.transverseDampingRatio > 0;
         r.dampingZOffset = damped ? z++ : -1;  // damping work
@@ -245,7 +247,7 @@ int ReevingSubsystem::Guts::realizeSubsystemVelocityImpl(const State& s) const {
     PositionCache& pc = updPositionCache(s);
     updateBodyKinematics(s, pc, true);
     for (size_t i = 0; i < ropes.size(); ++i) {
-        if (!matchesZ(s, ropes[i], pc.ropes[i].modalCoordinates, false))
+        if (!matchesZ(s, ropes[i], pc.ropes[i], false))
             updatePositionPart(s, ropes[i], pc, pc.ropes[i]);
         updateVelocityPart(s, ropes[i], pc, pc.ropes[i]);
     }
@@ -288,20 +290,26 @@ void ReevingSubsystem::Guts::updateBodyKinematics(const State& s, PositionCache&
 void ReevingSubsystem::Guts::refreshFromZ(const State& s, PositionCache& pc, bool velocityLevel) const {
     for (size_t i = 0; i < ropes.size(); ++i) {
         RopeCache& c = pc.ropes[i];
-        const bool positionsCurrent = matchesZ(s, ropes[i], c.modalCoordinates, false);
+        const bool positionsCurrent = matchesZ(s, ropes[i], c, false);
         if (!positionsCurrent) updatePositionPart(s, ropes[i], pc, c);
-        if (velocityLevel && (!positionsCurrent || !matchesZ(s, ropes[i], c.modalRates, true)))
+        if (velocityLevel && (!positionsCurrent || !matchesZ(s, ropes[i], c, true)))
             updateVelocityPart(s, ropes[i], pc, c);
     }
 }
 
-bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const Eigen::VectorXd& cached,
+bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const RopeCache& c,
                                       bool rates) const {
+    const Eigen::VectorXd& cached = rates ? c.modalRates : c.modalCoordinates;
     if (cached.size() != r.numModal) return false;
     const Vector& z = getZ(s);
     const int offset = r.zOffset + (rates ? r.numModal : 0);
     for (int j = 0; j < r.numModal; ++j)
         if (cached[j] != z[offset + j]) return false;
+    // The slip states Y (Ydot) of the traction sheaves (TractionSlip::RopeMomentum) are Z too.
+    const Eigen::VectorXd& slip = rates ? c.slipRates : c.slipStates;
+    if (slip.size() != r.numTraction) return false;
+    for (int t = 0; t < r.numTraction; ++t)
+        if (slip[t] != z[r.slipZOffset + 2 * t + (rates ? 1 : 0)]) return false;
     return true;
 }
 
@@ -311,6 +319,8 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
     for (int k = 0; k < r.numNodes(); ++k)  // MobilizedBody::findStationLocationInGround, per body
         c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.node(k).second);
     modal(getZ(s), r, false, c.modalCoordinates);
+    c.slipStates.resize(r.numTraction);
+    for (int t = 0; t < r.numTraction; ++t) c.slipStates[t] = getZ(s)[r.slipZOffset + 2 * t];
     drivenCoordinates(s, r, c.drivenS, nullptr);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
     // What Simbody 3.7 does with the exception (its sources, confirmed in
@@ -361,6 +371,8 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
         c.nodeVelocities3.col(k) = toEigen(V[1] + V[0] % p);
     }
     modal(getZ(s), r, true, c.modalRates);
+    c.slipRates.resize(r.numTraction);
+    for (int t = 0; t < r.numTraction; ++t) c.slipRates[t] = getZ(s)[r.slipZOffset + 2 * t + 1];
     drivenCoordinates(s, r, c.drivenS, &c.drivenSdot);
     // The coupled solve of the last realizeDynamics needed S only as products (productCoupling_):
     // then the rope does not form it.
@@ -646,7 +658,13 @@ void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord&
     for (int d = 0; d < n; ++d) {
         const MobilizedBody& pin = r.nodeSpec(r.driven[d].node).body;
         // A traction sheave's stick offset is state (in slip the entry is the groove's coordinate,
-        // which no span reads).
+        // which no span reads); with TractionSlip::RopeMomentum in slip it is the state Y.
+        if (r.driven[d].momentumSlip && (*traction)[r.driven[d].tractionIndex].mode != TractionMode::Stick) {
+            const int zi = r.slipZOffset + 2 * r.driven[d].tractionIndex;
+            sDriven[d] = getZ(s)[zi];
+            if (sDrivenDot) (*sDrivenDot)[d] = getZ(s)[zi + 1];
+            continue;
+        }
         const double sRef = r.driven[d].traction ? (*traction)[r.driven[d].tractionIndex].sStick : r.driven[d].sRef;
         sDriven[d] = sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
         if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * pin.getOneU(s, 0);

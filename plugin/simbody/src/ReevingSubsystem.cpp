@@ -224,7 +224,8 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     if (!r.planar) installFrameChangeHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()));
     for (size_t d = 0; d < r.driven.size(); ++d)
         if (r.driven[d].traction)
-            installTractionHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()), static_cast<int>(d));
+            installTractionHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()), static_cast<int>(d),
+                                   r.driven[d].momentumSlip);
     g.ropes.push_back(std::move(r));
     invalidateSubsystemTopologyCache();
     return static_cast<int>(g.ropes.size()) - 1;

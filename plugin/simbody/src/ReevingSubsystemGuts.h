@@ -7,6 +7,7 @@
 
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include <cmath>
@@ -74,9 +75,13 @@ struct RopeRecord {
         // alpha (RopeModel::wrapAngle: l / R wrapped, the chords' turning angle at a point sheave;
         // RopeModel::setSlipLaw), at every evaluation.
         bool geometricWrap = false;
+        // TractionSlip::RopeMomentum: in slip the driven entry is the state Y (Z at
+        // slipZOffset + 2 tractionIndex, its rate after it), not sStick + dsdTheta theta.
+        bool momentumSlip = false;
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
+    int slipZOffset = 0;      // first Z entry of the traction sheaves' slip states (Y, Ydot) each
     int dampingZOffset = -1;  // Z entry of the rope's damping work (ropes with axialRetardationTime > 0)
     /// Models by traction phase (planar ropes with TractionSheaves): key = per traction sheave 0
     /// (stick), its slip ratio kappa (a given wrap angle) or +-1 (the slip's direction, with the
@@ -158,6 +163,12 @@ struct RopeCache {
     RopeData<2> planar;
     RopeData<3> spatial;
     const RopeModel<2>* planarModel = nullptr;  // the model `planar` was computed with (traction phases)
+    // With TractionSlip::RopeMomentum sheaves in slip: S and h with their Y condensed out (rows and
+    // columns of Y zero), for the coupled solve.
+    Eigen::MatrixXd condensedMass;
+    Eigen::VectorXd condensedForce;
+    bool condensed = false;
+    Eigen::VectorXd slipStates, slipRates;  // the Z slip states Y, Ydot these were computed from (per traction sheave)
     Eigen::VectorXd drivenS, drivenSdot;  // material coordinates and rates of the driven nodes
     // dynamics
     Eigen::VectorXd externalAccelerations;  // xddot of RopeModel's external coordinates (node positions
@@ -186,6 +197,18 @@ struct CouplingWorkspace {
     std::vector<SimTK::Vec3> nodeOffsets;  // per MobileNode: R_GB station [m], in Ground
     SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
     SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit, bodyVelocities, bodyForces;
+    // Traction sheaves in TractionSlip::RopeMomentum slip: Y is a coordinate of the rope alone (no
+    // body), condensed out of the rope's S and h before the coupled solve (RopeCache::condensed*),
+    // its acceleration recovered after it.
+    struct FreeSlip {
+        int rope = 0, driven = 0, external = 0;
+        double drive = 0, workRate = 0;
+    };
+    std::vector<FreeSlip> freeSlips;
+    std::vector<int> freeIndex;                   // one rope's Y indices (scratch)
+    Eigen::VectorXd freeDrive, freeAcceleration;  // its g_F, Yddot (scratch)
+    Eigen::MatrixXd freeSxF, freeSFF, freeSolve;  // S_xF, S_FF, S_FF^-1 S_Fx (scratch)
+    Eigen::LDLT<Eigen::MatrixXd> freeLdlt;
 };
 
 /// Cache (per evaluation): the subsystem's cache entry (Stage::Position), every rope's RopeCache,
@@ -298,8 +321,9 @@ public:
     void seedDependentCoordinates(const SimTK::State& from, const SimTK::State& to) const;
     /// Refreshes rope i's cache if Z changed after it was computed (see realizeSubsystemPositionImpl).
     void refreshFromZ(const SimTK::State& s, detail::PositionCache& pc, bool velocityLevel) const;
-    bool matchesZ(const SimTK::State& s, const detail::RopeRecord& r, const Eigen::VectorXd& cached,
-                  bool rates) const;
+    /// True if c was computed from the current Z: the modal coordinates (rates) and the traction
+    /// sheaves' slip states Y (Ydot).
+    bool matchesZ(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeCache& c, bool rates) const;
     /// Node positions from the body transforms of pc (set by realizeSubsystemPositionImpl), then
     /// the rope's dependent coordinates.
     void updatePositionPart(const SimTK::State& s, const detail::RopeRecord& r, const detail::PositionCache& pc,
@@ -333,6 +357,41 @@ public:
     /// e^(mu alpha) of traction sheave d of rope r in state s.
     double tractionLimit(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
     /// Slip rate sdot_k - dsdTheta thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).
+    /// The slip of a TractionSlip::RopeMomentum traction sheave in slip (Stage::Velocity): the
+    /// rope's speed over the groove v = Ydot [m/s], the friction on the groove sigma F [N] (along
+    /// s; the rope receives -sigma F), the momentum balance's right side P_a - P_b - sigma F [N],
+    /// the correction P_a - P_b - h_Y [N] (h_Y the rope's own generalized force on Y), the slip
+    /// rate v - dsdTheta thetadot [m/s] and the rate of the friction work sigma F v_slip - c v [W].
+    struct MomentumSlip {
+        double speed = 0, friction = 0, drive = 0, correction = 0, slipRate = 0, workRate = 0;
+        int external = -1;  // Y's index among the rope's external coordinates (stations)
+    };
+    MomentumSlip momentumSlip(const SimTK::State& s, const detail::RopeRecord& r,
+                              const detail::RopeRecord::DrivenNode& d) const;
+    /// The total axial forces EA (eps + c epsdot) at node k's two span ends [N] (Stage::Velocity):
+    /// what TractionSlip::RopeMomentum's balance and friction act on.
+    std::pair<double, double> nodeTotalForces(const SimTK::State& s, const detail::RopeRecord& r, int node) const;
+    /// F_max = max(tight - rhoA v^2, 0)(1 - e^(-mu alpha)) of a TractionSlip::RopeMomentum sheave
+    /// in stick (v the groove's speed) with tight the force on the side it would slide to [N].
+    double maxFriction(const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d, double tight,
+                       const SimTK::State& s) const;
+    /// The friction that holds a TractionSlip::RopeMomentum sheave's rope in stick (Stage::Dynamics),
+    /// Phi = P_a - P_b - (S xddot)_Y [N] (positive: it would slide towards the rope's start).
+    double stickFriction(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
+    /// Before the coupled solve (realizeSubsystemDynamicsImpl): every TractionSlip::RopeMomentum
+    /// sheave in slip applies its friction's reaction to its pin (mobilityForces) and has its Y
+    /// condensed out of its rope's S and h (RopeCache::condensed*; CouplingWorkspace::freeSlips).
+    void condenseMomentumSlips(const SimTK::State& s, detail::PositionCache& pc, SimTK::Vector& mobilityForces) const;
+    /// After it: rope i's Y accelerations from their rows, S_FF Yddot = g_F - S_Fx xddot, into its
+    /// externalAccelerations.
+    void recoverMomentumSlips(detail::PositionCache& pc, int rope) const;
+    /// Sets traction sheave d's slip states Y, Ydot from its stick phase (stick's sStick) in s.
+    void startMomentumSlip(SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d,
+                           const detail::TractionNodeState& stick) const;
+    /// True if traction sheave d is TractionSlip::RopeMomentum and slipping in state s.
+    bool inMomentumSlip(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const {
+        return d.momentumSlip && tractionStates(s).ropes[r.index][d.tractionIndex].mode != TractionMode::Stick;
+    }
     double slipRate(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
     /// Witness of traction sheave d's next transition (Stage::Velocity), positive until it is due:
     /// stick: the smaller of P_b - P_a e^(-mu alpha) and P_a - P_b e^(-mu alpha) (the capstan
@@ -497,8 +556,8 @@ void installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving);
 void installFrameChangeHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope);
 
 /// Adds to `system` the event handler of the stick/slip transitions of rope `rope`'s driven node
-/// `driven`, a TractionSheave (ReevingTraction.cpp).
-void installTractionHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope, int driven);
+/// `driven`, a TractionSheave (ReevingTraction.cpp). (momentum: TractionSlip::RopeMomentum, whose stick witness is at Stage::Dynamics)
+void installTractionHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope, int driven, bool momentum);
 
 /// Helper: rope `rope` of g; throws std::invalid_argument if the index is out of range.
 inline const RopeRecord& ropeAt(const ReevingSubsystem::Guts& g, int rope) {

@@ -51,7 +51,7 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
     for (const RopeRecord::DrivenNode& d : r.driven) {
         if (!d.traction) continue;
         const TractionNodeState& t = ts[d.tractionIndex];
-        if (t.mode == TractionMode::Stick) continue;
+        if (t.mode == TractionMode::Stick || d.momentumSlip) continue;  // RopeMomentum: Driven by Y
         anySlip = true;
         if (d.geometricWrap) {  // kappa(alpha) = e^(+-mu alpha): the phase's sign is the key
             key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
@@ -98,15 +98,160 @@ std::pair<double, double> ReevingSubsystem::Guts::nodeAxialForces(const State& s
 double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
     const RopeCache& c = positionCache(s).ropes[r.index];
     if (tractionStates(s).ropes[r.index][d.tractionIndex].mode == TractionMode::Stick) return 0;
+    if (d.momentumSlip)  // v - dsdTheta thetadot: the rope over the groove's top
+        return c.slipRates[d.tractionIndex] - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
     // The groove's surface where the rope arrives: dsdTheta thetadot, plus sigma R phi_in-dot on a
     // wrapped sheave (RopeModel::surfaceRate).
     return c.planar.materialRates[d.node] - c.planarModel->surfaceRate(c.planar, d.node);
+}
+
+void ReevingSubsystem::Guts::startMomentumSlip(State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d,
+                                               const TractionNodeState& stick) const {
+    // Y and Ydot from the stick phase's s = sStick + dsdTheta theta: s_k and its rate continuous.
+    const MobilizedBody& pin = r.nodeSpec(d.node).body;
+    SimTK::Vector& z = updZ(s);
+    z[r.slipZOffset + 2 * d.tractionIndex] = stick.sStick + d.dsdTheta * pin.getOneQ(s, 0);
+    z[r.slipZOffset + 2 * d.tractionIndex + 1] = d.dsdTheta * pin.getOneU(s, 0);
+}
+
+std::pair<double, double> ReevingSubsystem::Guts::nodeTotalForces(const State& s, const RopeRecord& r, int k) const {
+    // EA (eps + c deps/dt) at the node's two span ends (Stage::Velocity): the rope's Kelvin-Voigt
+    // damping (RopeProperties::axialRetardationTime c) included.
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    const RopeModel<2>& model = *c.planarModel;
+    const double EA = r.spec.properties.axialStiffness, tau = r.spec.properties.axialRetardationTime;
+    EndStrain<2> e;
+    model.span(k - 1).endStrain(c.planar.spanCoordinates(k - 1), c.planar.spanRates(k - 1), SpanEnd::Second, e);
+    const double pa = EA * (e.strain + tau * e.rate);
+    model.span(k).endStrain(c.planar.spanCoordinates(k), c.planar.spanRates(k), SpanEnd::First, e);
+    return {pa, EA * (e.strain + tau * e.rate)};
+}
+
+double ReevingSubsystem::Guts::maxFriction(const RopeRecord& r, const RopeRecord::DrivenNode& d, double tight,
+                                           const State& s) const {
+    // In stick the rope moves with the groove: v = dsdTheta thetadot.
+    const double v = d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+    const double pressing = std::max(tight - r.spec.properties.massPerLength * v * v, 0.0);
+    return pressing * (1.0 - std::exp(-d.frictionCoefficient * tractionWrapAngle(s, r, d)));
+}
+
+double ReevingSubsystem::Guts::stickFriction(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    const auto [pa, pb] = nodeTotalForces(s, r, d.node);
+    const int external = r.dim() * r.numNodes() + r.drivenIndex(d.node);
+    // ropeReaction = h - S xddot, so (S xddot)_Y = h_Y - reaction_Y.
+    const double sxdd = c.planar.nodeForce[external] - ropeReaction(s, r, c)[external];
+    return pa - pb - sxdd;
+}
+
+ReevingSubsystem::Guts::MomentumSlip ReevingSubsystem::Guts::momentumSlip(const State& s, const RopeRecord& r,
+                                                                          const RopeRecord::DrivenNode& d) const {
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    const TractionNodeState& t = tractionStates(s).ropes[r.index][d.tractionIndex];
+    MomentumSlip m;
+    const auto [pa, pb] = nodeTotalForces(s, r, d.node);
+    m.speed = c.slipRates[d.tractionIndex];
+    const double sigma = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
+    const double tight = sigma > 0 ? pa : pb, rhoA = r.spec.properties.massPerLength;
+    // The groove's normal load per unit angle is P - rhoA v^2: none where the rope lifts off.
+    const double pressing = std::max(tight - rhoA * m.speed * m.speed, 0.0);
+    m.friction = sigma * pressing * (1.0 - std::exp(-d.frictionCoefficient * tractionWrapAngle(s, r, d)));
+    m.drive = pa - pb - m.friction;
+    m.external = r.dim() * r.numNodes() + r.drivenIndex(d.node);
+    m.correction = pa - pb - c.planar.nodeForce[m.external];
+    m.slipRate = m.speed - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+    m.workRate = m.friction * m.slipRate - m.correction * m.speed;
+    return m;
+}
+
+// Y is a coordinate of the rope alone (no body): with F the Y indices of a rope and g_F their
+// momentum balances' right sides, S' = S - S_xF S_FF^-1 S_Fx and h' = h - S_xF S_FF^-1 g_F on the
+// other coordinates (rows and columns F zero), so the coupled solve sees the rope with Y moving as
+// its balance says.
+void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache& pc, SimTK::Vector& mobilityForces) const {
+    CouplingWorkspace& ws = pc.coupling;
+    ws.freeSlips.clear();
+    for (const RopeRecord& r : ropes) {
+        pc.ropes[r.index].condensed = false;
+        for (const RopeRecord::DrivenNode& d : r.driven) {
+            if (!d.traction || !inMomentumSlip(s, r, d)) continue;
+            const MomentumSlip ms = momentumSlip(s, r, d);
+            ws.freeSlips.push_back({r.index, static_cast<int>(&d - r.driven.data()), ms.external, ms.drive, ms.workRate});
+            mobilityForces[r.nodeSpec(d.node).body.getFirstUIndex(s)] += ms.friction * d.dsdTheta;
+        }
+    }
+    for (const RopeRecord& r : ropes) {
+        ws.freeIndex.clear();
+        for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+            if (f.rope == r.index) ws.freeIndex.push_back(f.external);
+        if (ws.freeIndex.empty()) continue;
+        RopeCache& c = pc.ropes[r.index];
+        const int nx = r.numExternal(), nf = static_cast<int>(ws.freeIndex.size());
+        if (c.planar.nodeMass.size() == 0)
+            c.planarModel->multiplyByNodeMass(c.planar, Eigen::MatrixXd::Identity(nx, nx), c.planar.nodeMass);
+        const Eigen::MatrixXd& S = c.planar.nodeMass;
+        ws.freeSxF.resize(nx, nf);
+        ws.freeSFF.resize(nf, nf);
+        ws.freeDrive.resize(nf);
+        int a = 0;
+        for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+            if (f.rope == r.index) ws.freeDrive[a++] = f.drive;
+        for (a = 0; a < nf; ++a) {
+            ws.freeSxF.col(a) = S.col(ws.freeIndex[a]);
+            for (int b = 0; b < nf; ++b) ws.freeSFF(a, b) = S(ws.freeIndex[a], ws.freeIndex[b]);
+        }
+        for (a = 0; a < nf; ++a) ws.freeSxF.row(ws.freeIndex[a]).setZero();  // the others' rows only
+        ws.freeLdlt.compute(ws.freeSFF);
+        ws.freeSolve = ws.freeLdlt.solve(ws.freeSxF.transpose());
+        c.condensedMass = S;
+        c.condensedMass.noalias() -= ws.freeSxF * ws.freeSolve;
+        ws.freeAcceleration = ws.freeLdlt.solve(ws.freeDrive);
+        c.condensedForce = c.planar.nodeForce;
+        c.condensedForce.noalias() -= ws.freeSxF * ws.freeAcceleration;
+        for (a = 0; a < nf; ++a) {
+            c.condensedMass.row(ws.freeIndex[a]).setZero();
+            c.condensedMass.col(ws.freeIndex[a]).setZero();
+            c.condensedForce[ws.freeIndex[a]] = 0;
+        }
+        c.condensed = true;
+    }
+}
+
+void ReevingSubsystem::Guts::recoverMomentumSlips(PositionCache& pc, int rope) const {
+    CouplingWorkspace& ws = pc.coupling;
+    RopeCache& c = pc.ropes[rope];
+    ws.freeIndex.clear();
+    for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+        if (f.rope == rope) ws.freeIndex.push_back(f.external);
+    const int nf = static_cast<int>(ws.freeIndex.size());
+    const Eigen::MatrixXd& S = c.planar.nodeMass;
+    ws.freeDrive.resize(nf);
+    ws.freeSFF.resize(nf, nf);
+    int a = 0;
+    for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+        if (f.rope == rope) ws.freeDrive[a++] = f.drive;
+    for (a = 0; a < nf; ++a) c.externalAccelerations[ws.freeIndex[a]] = 0;
+    for (a = 0; a < nf; ++a) {
+        ws.freeDrive[a] -= S.row(ws.freeIndex[a]).dot(c.externalAccelerations);
+        for (int b = 0; b < nf; ++b) ws.freeSFF(a, b) = S(ws.freeIndex[a], ws.freeIndex[b]);
+    }
+    ws.freeLdlt.compute(ws.freeSFF);
+    ws.freeAcceleration = ws.freeLdlt.solve(ws.freeDrive);
+    for (a = 0; a < nf; ++a) c.externalAccelerations[ws.freeIndex[a]] = ws.freeAcceleration[a];
 }
 
 double ReevingSubsystem::Guts::tractionWitness(const State& s, int rope, int driven) const {
     const RopeRecord& r = ropes[rope];
     const RopeRecord::DrivenNode& d = r.driven[driven];
     const TractionNodeState& t = tractionStates(s).ropes[rope][d.tractionIndex];
+    if (t.mode == TractionMode::Stick && d.momentumSlip) {
+        // The groove holds the rope with Phi = P_a - P_b - (S xddot)_Y (Stage::Dynamics: the coupled
+        // solve's accelerations); it slips when |Phi| reaches F_max of the side it would slide to.
+        const auto [pa, pb] = nodeTotalForces(s, r, d.node);
+        const double phi = stickFriction(s, r, d);
+        const double fa = maxFriction(r, d, pa, s), fb = maxFriction(r, d, pb, s);
+        return std::min(fa - phi, fb + phi) + kTractionHysteresis * (std::abs(pa) + std::abs(pb));
+    }
     if (t.mode == TractionMode::Stick) {
         const auto [pa, pb] = nodeAxialForces(s, r, d.node);
         const double scale = std::abs(pa) + std::abs(pb);
@@ -126,10 +271,18 @@ void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) 
     const RopeRecord& r = ropes[rope];
     const RopeRecord::DrivenNode& d = r.driven[driven];
     TractionNodeState next = tractionStates(s).ropes[rope][d.tractionIndex];
-    if (next.mode == TractionMode::Stick) {
+    if (next.mode == TractionMode::Stick && d.momentumSlip) {
+        getSystem().realize(s, Stage::Dynamics);
+        next.mode = stickFriction(s, r, d) > 0 ? TractionMode::SlipTowardStart : TractionMode::SlipTowardEnd;
+        startMomentumSlip(s, r, d, next);
+    } else if (next.mode == TractionMode::Stick) {
         const auto [pa, pb] = nodeAxialForces(s, r, d.node);
         const double limit = tractionLimit(s, r, d);
         next.mode = limit * pb - pa < limit * pa - pb ? TractionMode::SlipTowardStart : TractionMode::SlipTowardEnd;
+    } else if (d.momentumSlip) {
+        // s_k continuous: the stick offset takes over from Y (Y - dsdTheta theta).
+        next.sStick = getZ(s)[r.slipZOffset + 2 * d.tractionIndex] - d.dsdTheta * r.nodeSpec(d.node).body.getOneQ(s, 0);
+        next.mode = TractionMode::Stick;
     } else {
         // s_k continuous: the surface coordinate where the rope arrives (sStick + dsdTheta theta,
         // plus sigma R phi_in on a wrapped sheave) moves onto s_k.
@@ -156,8 +309,8 @@ namespace {
 /// zero, the sheave changes between stick and slip.
 class TractionEvent : public SimTK::TriggeredEventHandler {
 public:
-    TractionEvent(const System& system, SubsystemIndex reeving, int rope, int driven)
-        : SimTK::TriggeredEventHandler(Stage::Velocity), system_(system), reeving_(reeving), rope_(rope),
+    TractionEvent(const System& system, SubsystemIndex reeving, int rope, int driven, Stage stage)
+        : SimTK::TriggeredEventHandler(stage), system_(system), reeving_(reeving), rope_(rope),
           driven_(driven) {
         getTriggerInfo().setTriggerOnRisingSignTransition(false);
         getTriggerInfo().setTriggerOnFallingSignTransition(true);
@@ -189,8 +342,10 @@ const RopeRecord::DrivenNode& tractionAt(const RopeRecord& r, int node) {
 
 }  // namespace
 
-void detail::installTractionHandler(System& system, SubsystemIndex reeving, int rope, int driven) {
-    system.addEventHandler(new TractionEvent(system, reeving, rope, driven));  // the system owns it
+void detail::installTractionHandler(System& system, SubsystemIndex reeving, int rope, int driven, bool momentum) {
+    // A TractionSlip::RopeMomentum sheave's stick witness reads the coupled solve's accelerations.
+    const Stage stage = momentum ? Stage::Dynamics : Stage::Velocity;
+    system.addEventHandler(new TractionEvent(system, reeving, rope, driven, stage));  // the system owns it
 }
 
 // ---- public queries ---------------------------------------------------------------------------
@@ -214,6 +369,8 @@ double ReevingSubsystem::getSlipDistance(const State& s, int rope, int node) con
     // The slip of the current phase (s_k off the surface where it arrives; 0 in stick) plus the
     // offset the stick phases so far have accumulated.
     const RopeCache& c = getGuts().positionCache(s).ropes[rope];
+    if (getGuts().inMomentumSlip(s, r, d))  // Y over the groove's top, less the pin's turn
+        return c.slipStates[d.tractionIndex] - d.dsdTheta * r.nodeSpec(node).body.getOneQ(s, 0) - d.sRef;
     const double sStick = getGuts().tractionStates(s).ropes[rope][d.tractionIndex].sStick;
     return c.planar.materialCoordinates[node] - c.planarModel->surfaceCoordinate(c.planar, node) + sStick - d.sRef;
 }
@@ -252,6 +409,8 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
 
 double ReevingSubsystem::getFrictionPower(const State& s, int rope, int node) const {
     const double v = getSlipRate(s, rope, node);
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    if (getGuts().inMomentumSlip(s, r, r.driven[r.drivenIndex(node)])) return getGuts().momentumSlip(s, r, r.driven[r.drivenIndex(node)]).workRate;
     if (v == 0) return 0;
     const auto [pa, pb] = getGuts().nodeAxialForces(s, ropeAt(getGuts(), rope), node);
     return (pa - pb) * v;
@@ -294,6 +453,7 @@ int ReevingSubsystem::updateTractionModes(State& s) const {
                 continue;
             }
             ++t.transitions;
+            if (d.momentumSlip) g.startMomentumSlip(s, r, d, t);
             g.updTractionStates(s).ropes[r.index][d.tractionIndex] = t;
             g.getSystem().realize(s, Stage::Position);
             ++changed;

@@ -15,6 +15,9 @@ void TractionSheaveNode::validate(const NodeSite& site) {
         invalid(mustBe(site.name + " frictionCoefficient [-]", n.frictionCoefficient, "finite and >= 0"));
     if (!std::isfinite(n.wrapAngle) || n.wrapAngle < 0 || n.wrapAngle > 20 * SimTK::Pi)
         invalid(mustBe(site.name + " wrapAngle [rad]", n.wrapAngle, "in [0, 20 pi] (0: from the geometry)"));
+    if (n.slipModel != TractionSlip::CapstanConstraint && n.slipModel != TractionSlip::RopeMomentum)
+        invalid(site.name + " slipModel = " + std::to_string(static_cast<int>(n.slipModel)) +
+                " is not a TractionSlip");
     if (!(site.rope.spec.planeNormal.norm() > 0))
         invalid(site.name + ": TractionSheave is implemented for planar ropes only (give RopeSpec::planeNormal)");
 }
@@ -27,6 +30,7 @@ void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
     d.frictionCoefficient = site.spec.frictionCoefficient;
     d.wrapAngle = site.spec.wrapAngle;
     d.geometricWrap = site.spec.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
+    d.momentumSlip = site.spec.slipModel == TractionSlip::RopeMomentum;
 }
 
 NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::UnitVec3& normal) {

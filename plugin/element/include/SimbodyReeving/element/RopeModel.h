@@ -159,6 +159,8 @@ struct RopeData {
     const Eigen::VectorXd& reducedForce() const;
     /// Coordinates q of span j (SpanModel layout) at the last evaluation.
     const Eigen::VectorXd& spanCoordinates(int span) const;
+    /// Their rates qdot (SpanModel layout) at the last computeDynamics.
+    const Eigen::VectorXd& spanRates(int span) const;
 
     RopeData();                                      ///< empty: sized by the first evaluation
     ~RopeData();                                     ///< (the workspace's type is complete in the .cpp)

@@ -69,6 +69,39 @@ enum class SheaveModel {
     Wrapped,
 };
 
+/// How a TractionSheave's rope moves over the groove in slip (TractionSheave::slipModel).
+enum class TractionSlip {
+    /// The rope's material at the sheave is a massless contact point: its material coordinate s_k
+    /// is solved from the positions so that the capstan law P_{k-1} = e^(+-mu alpha) P_k holds at
+    /// every instant (RopeModel's MaterialNode::Slipping). Without the centrifugal load of the rope
+    /// on the groove (it would make the law depend on the rope's speed, which a coordinate solved
+    /// from the positions cannot carry). mu = 0 is then exactly a DeviationSheave.
+    CapstanConstraint,
+    /// The rope on the groove is a dynamic coordinate in slip: Y (the rope's material coordinate at
+    /// the groove's top; s_k itself at a point sheave) and its rate v = Ydot, the rope's speed over
+    /// the groove relative to the sheave's centre, are states (Z entries), with the momentum balance
+    ///     m_s Yddot + (S Y-row) yddot = P_{k-1} - P_k - sigma F,
+    ///     F = max(P_tight - rhoA v^2, 0) (1 - e^(-mu alpha)),
+    /// m_s the rope's reduced inertia at Y (RopeModel's nodeMass, spans and groove arc), sigma = +1
+    /// while the rope slides towards its start (span k - 1 tight), -1 towards its end, alpha the wrap
+    /// angle the law uses. In steady slip this is Euler-Eytelwein with the centrifugal term,
+    /// (P_tight - rhoA v^2) = e^(mu alpha) (P_slack - rhoA v^2), for the span end forces exactly;
+    /// the sheave receives the friction's reaction sigma F R. P are the total end forces,
+    /// EA (eps + c epsdot) with the rope's Kelvin-Voigt damping c (which damps this coordinate's
+    /// motion; RopeProperties::axialRetardationTime). The end-force difference stands in
+    /// for the rope's own generalized force on Y (RopeModel's nodeForce there), as the tension
+    /// equality does at a DeviationSheave (paper eq 32): they differ by O(eps P) (energy density
+    /// and weight redistribution terms of the ALE spans) and by the groove arc's tangential weight
+    /// and the spans' quadratic-velocity terms at Y; that difference's power is booked in the
+    /// friction work, so E - E0 + W_friction = W_drives still closes. The s_k motion adds the
+    /// rope's axial mode at the sheave (frequency about sqrt((EA / l_a + EA / l_b) / m_s)) to slip
+    /// phases, and the transitions keep s_k and its rate continuous: stick ends when the friction
+    /// that holds the rope, P_a - P_b - (S xddot)_Y (inertia included), reaches F of the side it
+    /// would slide to (an event at Stage::Dynamics); slip ends when the slip rate returns to zero.
+    /// Without damping that mode rings after each stick -> slip transition.
+    RopeMomentum,
+};
+
 /// The phase of a TractionSheave (ReevingSubsystem::getTractionMode).
 enum class TractionMode {
     Stick,            ///< the rope moves with the groove
@@ -92,6 +125,7 @@ struct RopeNode {
     double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave, TractionSheave: s_ref [m]
     double frictionCoefficient = 0;  ///< TractionSheave: mu [-], >= 0
     double wrapAngle = 0;            ///< TractionSheave: alpha [rad], in [0, 20 pi]; 0: from the geometry
+    TractionSlip slipModel = TractionSlip::CapstanConstraint;  ///< TractionSheave: how it slips
 
     RopeNode() = default;
     /// An Anchor at `station` of `body`.
@@ -212,23 +246,27 @@ struct TurningSheave {
 /// used as given with either model. In stick
 /// s_k = s_stick + sense R theta is the material coordinate at the groove's top (WrapStationMap).
 ///
+/// Two slip models (slipModel, TractionSlip): the default CapstanConstraint solves s_k from the
+/// positions (a massless contact point, the law without the rope's speed); RopeMomentum makes the
+/// rope on the groove a state of its own in slip, with the rope's inertia there, the
+/// centrifugal load rhoA v^2 in the law, (P_tight - rhoA v^2) = e^(mu alpha) (P_slack - rhoA v^2)
+/// in steady slip, and a stick limit on the friction that holds the rope (inertia included). Its
+/// cost: the rope's axial mode at the sheave joins the slip phases (an explicit integrator's steps
+/// follow it: the swing of tests/simbody/test_traction_sheave.cpp runs about 30 times longer).
+///
 /// What it does not model: the tension varies along the wrap arc (P e^(mu phi) in slip, and the
-/// creep of an elastic rope in stick: the whole arc sticks here); the centrifugal load rhoA v^2
-/// of the rope on the arc (it lowers the effective traction at high rope speed; in slip it would
-/// make the capstan law depend on the rope's speed, so that s_k could no longer be solved from
-/// the positions: it needs the rope on the groove as a state of its own); groove wear and
-/// pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
+/// creep of an elastic rope in stick: the whole arc sticks here); groove wear and pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
 /// undefined: both forces at or below 0 keep the sheave in its mode. Planar ropes only for now
 /// (addRope throws for a spatial rope with a TractionSheave).
 ///
-/// With Kelvin-Voigt rope damping (RopeProperties::axialRetardationTime c > 0) the capstan law and
-/// the stick limit act on the elastic forces P = EA eps at the node, not on EA (eps + c Deps/Dt).
+/// With Kelvin-Voigt rope damping (RopeProperties::axialRetardationTime c > 0) CapstanConstraint's
+/// law and stick limit act on the elastic forces P = EA eps at the node, not on EA (eps + c Deps/Dt)
+/// (RopeMomentum's act on the total forces, EA (eps + c epsdot) at the span ends).
 /// In slip the elastic ratio is held at e^(mu alpha) at every instant, so the strain rates at
 /// the node keep that ratio too and the total forces follow it (exactly for uniform strain along
 /// the spans; otherwise up to c EA times the strain gradient times the slip rate). What differs is
 /// the onset of slip, which waits until the elastic ratio reaches e^(mu alpha): about c later than
-/// the total force ratio does (docs/elevator.md). The exact law makes s_k a state relaxing with
-/// time constant c in slip (not built).
+/// the total force ratio does (docs/elevator.md). RopeMomentum has the total forces' law.
 ///
 /// Chatter: where neither mode is consistent, the sheave switches at the scale of the events'
 /// hysteresis (1e-9 of the rope force, 1e-9 m/s). Seen with a slack side and a huge mu alpha
@@ -247,6 +285,8 @@ struct TractionSheave {
     double materialCoordinateAtZeroAngle = 0;  ///< s_ref at pin angle 0 with no slip yet [m]
     int sense = 1;                             ///< +1 or -1, as for a TurningSheave
     SimTK::Vec3 centre{0};                     ///< the rope node's point on the pin axis, body frame [m]
+    /// How the rope slips (TractionSlip; the default keeps the paper-style massless contact point).
+    TractionSlip slipModel = TractionSlip::CapstanConstraint;
     /// The RopeNode of kind TractionSheave.
     operator RopeNode() const {
         RopeNode n(body, centre, radius);
@@ -255,6 +295,7 @@ struct TractionSheave {
         n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
         n.frictionCoefficient = frictionCoefficient;
         n.wrapAngle = wrapAngle;
+        n.slipModel = slipModel;
         return n;
     }
 };
@@ -446,7 +487,9 @@ public:
     /// of the rope on its drums.
     /// @throws std::invalid_argument if rope or node is out of range.
     double getArcLength(const SimTK::State& state, int rope, int node) const;
-    /// Friction power dissipated in the groove, (P_a - P_b) v >= 0 [W] (Stage::Velocity; 0 in stick).
+    /// Friction power dissipated in the groove [W] (Stage::Velocity; 0 in stick): (P_a - P_b) v >= 0
+    /// with TractionSlip::CapstanConstraint; with TractionSlip::RopeMomentum sigma F v - c Ydot
+    /// (its friction's power plus that of the end-force correction c, see TractionSlip).
     double getFrictionPower(const SimTK::State& state, int rope, int node) const;
     /// Work dissipated by friction in the groove since the start [J]: the integral of
     /// getFrictionPower (a Z entry of the subsystem), plus at each stick -> slip transition the
