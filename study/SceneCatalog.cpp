@@ -87,6 +87,7 @@ const std::vector<SceneInfo>& scenes() {
           "roping",
           "compensation",
           "sheaves",
+          "traction_slip",
           "friction",
           "wrap_angle_rad",
           "deflector",

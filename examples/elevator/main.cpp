@@ -32,7 +32,7 @@ namespace {
 constexpr const char* kProgram = "reeving-elevator";
 
 struct Options {
-    std::string scenario = "all", roping = "1:1";
+    std::string scenario = "all", roping = "1:1", tractionSlip = "constraint";
     ElevatorParameters parameters;
     int axialModes = 1, transverseModes = 1;
     std::string integrator = "rk-merson";
@@ -399,6 +399,11 @@ int main(int argc, char** argv) {
            "below the sheave)")
         ->type_name("Z")
         ->check(finiteNumber());
+    app.add_option("--traction-slip", o.tractionSlip,
+                   "how the rope slips over the traction sheave: constraint (default: a\n"
+                   "massless contact point, the capstan law at every instant) or momentum\n"
+                   "(the rope's inertia at the groove and the centrifugal term rhoA v^2)")
+        ->check(oneOf({"constraint", "momentum"}));
     app.add_option("--retardation-time", o.parameters.retardationTime,
                    "Kelvin-Voigt rope damping c [s] (default 0: no damping)")
         ->check(finiteNumber());
@@ -428,6 +433,8 @@ int main(int argc, char** argv) {
     const int status = parseOrExitStatus(app, argc, argv);
     if (status >= 0) return status;
     o.parameters.roping = o.roping == "2:1" ? 2 : 1;
+    o.parameters.tractionSlip = o.tractionSlip == "momentum" ? SimbodyReeving::TractionSlip::RopeMomentum
+                                                             : SimbodyReeving::TractionSlip::CapstanConstraint;
     if (o.parameters.retardationTime < 0) {
         std::cerr << usageErrorText(kProgram, "--retardation-time: '" + numberText(o.parameters.retardationTime) +
                                                   "' must be >= 0");
@@ -464,6 +471,7 @@ int main(int argc, char** argv) {
     summary["roping"] = o.roping;
     summary["compensation"] = o.parameters.compensation;
     summary["sheaves"] = o.parameters.sheaveModel == SimbodyReeving::SheaveModel::Wrapped ? "wrapped" : "point";
+    summary["traction_slip"] = o.tractionSlip;
     summary["friction"] = jsonNumber(o.parameters.friction);
     summary["rated_load_kg"] = jsonNumber(o.parameters.ratedLoad);
     summary["car_mass_kg"] = jsonNumber(o.parameters.carMass);

@@ -204,6 +204,7 @@ ElevatorScene::ElevatorScene(const ElevatorParameters& parameters, const SpanOpt
     // Given, or (0) the geometry's with the wrapped model; pi for the point model's single wrap.
     ts.wrapAngle = p.wrapAngle ? *p.wrapAngle : (p.sheaveModel == SheaveModel::Wrapped ? 0.0 : Pi);
     ts.sense = 1;
+    ts.slipModel = p.tractionSlip;
     // Car, counterweight and pit sheaves: the rope passes under them, turning counter-clockwise
     // about +z (wrap sense +1); wrapped, the half turn pi r on each groove is rope too.
     const bool wrapped = p.sheaveModel == SheaveModel::Wrapped;

@@ -75,6 +75,11 @@ struct ElevatorParameters {
     /// point sheaves, the falls chords to their centres, the traction sheave's wrap angle
     /// wrapAngle (pi unset).
     SheaveModel sheaveModel = SheaveModel::Wrapped;
+    /// How the rope slips over the traction sheave (TractionSheave::slipModel): the massless
+    /// contact point (TractionSlip::CapstanConstraint, the default) or the rope's momentum on the
+    /// groove with the centrifugal term (TractionSlip::RopeMomentum; its axial mode at the sheave
+    /// rings after each slip onset unless retardationTime damps it).
+    TractionSlip tractionSlip = TractionSlip::CapstanConstraint;
     /// 1:1 with SheaveModel::Wrapped: a deflector sheave (a DeviationSheave on Ground, radius
     /// deflectorRadius, centre deflectorDrop below the traction sheave's axis and
     /// deflectorRadius left of counterweightRail): the rope runs from the traction sheave down to
