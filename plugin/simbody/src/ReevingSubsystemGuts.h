@@ -208,7 +208,9 @@ struct CouplingWorkspace {
     std::vector<int> freeIndex;                   // one rope's Y indices (scratch)
     Eigen::VectorXd freeDrive, freeAcceleration;  // its g_F, Yddot (scratch)
     Eigen::MatrixXd freeSxF, freeSFF, freeSolve;  // S_xF, S_FF, S_FF^-1 S_Fx (scratch)
-    Eigen::LDLT<Eigen::MatrixXd> freeLdlt;
+    // Factored once at construction: a default-constructed LDLT leaves its info member
+    // uninitialized, and the workspace is copied with the State's cache (UBSan reads it there).
+    Eigen::LDLT<Eigen::MatrixXd> freeLdlt{Eigen::MatrixXd::Identity(1, 1)};
 };
 
 /// Cache (per evaluation): the subsystem's cache entry (Stage::Position), every rope's RopeCache,
