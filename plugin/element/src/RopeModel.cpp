@@ -734,16 +734,39 @@ void RopeModel<Dim>::setStationaryNodes(const std::vector<bool>& stationary) {
     }
 }
 
+namespace {
+// The law of the rope stored at Driven end node k (setStoredRope; StoredRope.h): a point drum, or
+// a wrapped one whose rope leaves at its tangent point (the start of span 0, the end of span N - 1).
+template <int Dim>
+detail::StoredRope<Dim> storedRopeLaw(const RopeModel<Dim>& model, int k, double lengthAtZero, double slope) {
+    detail::StoredRope<Dim> law(k, lengthAtZero, slope, model.properties().massPerLength, model.span(0).gravity());
+    const int o = model.nodeCoordinateOffset(k);
+    if (model.isWrapped(k)) {
+        const int tangent = o + (k == 0 ? RopeModel<Dim>::wrappedDepartureOffset() : RopeModel<Dim>::wrappedArrivalOffset());
+        law.setWrapped(model.arc(k).radius(), model.arc(k).wrapSense(), o + RopeModel<Dim>::wrappedCentreOffset(), tangent);
+    } else {
+        law.setPointOffset(o);
+    }
+    law.setMaterialOffset(model.numNodeCoordinates() + model.drivenIndex(k));
+    return law;
+}
+}  // namespace
+
 template <int Dim>
 double RopeModel<Dim>::storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     double u = 0;
-    const double rhoA = properties().massPerLength;
     for (const Storage& st : storage_) {
-        const double l = st.lengthAtZero + st.slope * data.materialCoordinates[st.node];
-        u -= rhoA * l * spans_.front().gravity().dot(nodes.col(st.node));
+        const detail::StoredRope<Dim> law = storedRopeLaw(*this, st.node, st.lengthAtZero, st.slope);
+        const double s = data.materialCoordinates[st.node];
+        if (!law.isWrapped()) {
+            u -= properties().massPerLength * law.length(s) * spans_.front().gravity().dot(nodes.col(st.node));
+            continue;
+        }
+        u += law.gravityEnergy(mappedPositions(nodes, data), s);
     }
     return u;
 }
+
 
 namespace {
 // The coordinates q of span j of `model` (SpanModel layout) from its end positions r1, r2, its
@@ -1651,28 +1674,20 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
         for (int c = 1; c < ncol; ++c) ws.modalCoupling(m, columns[c - 1]) = -y[c];
     }
 
-    // Rope stored on drums (setStoredRope): L_st = 1/2 rhoA l(s) (|rdot|^2 + sdot^2) + rhoA l(s) g.r,
-    // l = l0 + c s, gives
-    //     rhoA l rddot = rhoA l g - rhoA c sdot rdot + f_r,
-    //     rhoA l sddot = rhoA c (1/2 |rdot|^2 - 1/2 sdot^2 + g.r) + f_s,
-    // i.e. mass rhoA l on the node's position and on s, and these forces in h. It involves only the
-    // external coordinates, so it adds to S and h after the modal reduction.
-    const double rhoA = properties().massPerLength;
-    for (const Storage& st : storage_) {
-        const int k = st.node, xs = nn + drivenIndex_[k], o = nodeOffset_[k];
-        const double l = st.lengthAtZero + st.slope * data.materialCoordinates[k];
-        const double sdot = data.materialRates[k];
-        const Vec rdot = xdot.template segment<Dim>(o);
-        const Vec r = x.template segment<Dim>(o);
-        const Vec& g = spans_.front().gravity();
-        for (int d = 0; d < Dim; ++d) {
-            if (data.formNodeMass) data.nodeMass(o + d, o + d) += rhoA * l;
-            data.nodeForce[o + d] += rhoA * l * g[d] - rhoA * st.slope * sdot * rdot[d];
+    // Rope stored on drums (setStoredRope, StoredRope): it involves only the external coordinates,
+    // so it adds to S and h after the modal reduction.
+    ws.storedRope.resize(storage_.size());
+    for (std::size_t i = 0; i < storage_.size(); ++i) {
+        const int k = storage_[i].node;
+        detail::StoredRopeTerms<Dim>& t = ws.storedRope[i];
+        storedRopeLaw(*this, k, storage_[i].lengthAtZero, storage_[i].slope).evaluate(x, xdot, data.materialCoordinates[k], data.materialRates[k], t);
+        for (int a = 0; a < t.count; ++a) {
+            data.nodeForce[t.cols[a]] += t.force[a];
+            if (data.formNodeMass)
+                for (int b = 0; b < t.count; ++b) data.nodeMass(t.cols[a], t.cols[b]) += t.mass(a, b);
         }
-        if (data.formNodeMass) data.nodeMass(xs, xs) += rhoA * l;
-        data.nodeForce[xs] += rhoA * st.slope * (0.5 * rdot.squaredNorm() - 0.5 * sdot * sdot + g.dot(r));
-        data.kineticEnergy += 0.5 * rhoA * l * (rdot.squaredNorm() + sdot * sdot);
-        data.gravityEnergy -= rhoA * l * g.dot(r);
+        data.kineticEnergy += t.kineticEnergy;
+        data.gravityEnergy += t.gravityEnergy;
     }
     dependentsSnapshot(ws.dynamicsDependents);
     ws.dynamicsCurrent = true;
@@ -1761,20 +1776,15 @@ void RopeModel<Dim>::multiplyByExternalMass(const RopeData<Dim>& data, const Eig
             axpyRow<false>(ws.externalColumnValue[at],
                            B.data() + static_cast<std::ptrdiff_t>(kktRowPos_[ws.externalColumnRow[at]]) * p, sx, p);
     }
-    // Stored rope: mass rhoA l on the drum node's position and material coordinate.
-    const double rhoA = properties().massPerLength;
-    const int nn = numNodeCoordinates_;
-    for (const Storage& st : storage_) {
-        const int k = st.node, xs = nn + drivenIndex_[k];
-        const double l = st.lengthAtZero + st.slope * data.materialCoordinates[k];
-        auto addMass = [&](int i) {
-            double* sx = row(SXr, i);
-            const double* x = row(Xr, i);
-            for (int c = 0; c < p; ++c) sx[c] += rhoA * l * x[c];
-        };
-        for (int d = 0; d < Dim; ++d) addMass(nodeOffset_[k] + d);
-        addMass(xs);
-    }
+    // Stored rope: its mass block at the drum's coordinates (StoredRope).
+    for (const detail::StoredRopeTerms<Dim>& t : ws.storedRope)
+        for (int a = 0; a < t.count; ++a) {
+            double* sx = row(SXr, t.cols[a]);
+            for (int b = 0; b < t.count; ++b) {
+                const double* xb = row(Xr, t.cols[b]);
+                for (int c = 0; c < p; ++c) sx[c] += t.mass(a, b) * xb[c];
+            }
+        }
     for (int c = 0; c < p; ++c)
         for (int i = 0; i < nx; ++i) SX(i, c) = SXr[static_cast<std::size_t>(i) * p + c];
 }

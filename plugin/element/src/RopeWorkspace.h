@@ -6,6 +6,7 @@
 #include "SimbodyReeving/element/BandedLU.h"
 #include "SimbodyReeving/element/RopeModel.h"
 #include "SimbodyReeving/element/WrapStationMap.h"
+#include "StoredRope.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -31,6 +32,7 @@ struct RopeWorkspace {
     Eigen::VectorXd zddot, inertialLoad, massTimesAcceleration;  ///< scratch of the recovery
     std::vector<SpanData<Dim>> spans;
     std::vector<GrooveArcData<Dim>> arcs;  ///< per wrapped node (RopeModel::arc)
+    std::vector<StoredRopeTerms<Dim>> storedRope;  ///< per drum with stored rope (RopeModel::setStoredRope)
     /// External coordinates and rates packed from the NodeMatrix forms of the API.
     Eigen::VectorXd packedX, packedXdot;
     /// A planar rope with wrapped nodes evaluated from its stations (the NodeMatrix forms): the
