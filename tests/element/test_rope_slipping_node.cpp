@@ -116,7 +116,7 @@ namespace {
 // there.
 struct WrappedSlip {
     RopeModel<2> rope;
-    WrapStationMap map;
+    WrapStationMap<2> map;
     explicit WrappedSlip(AxialDynamics axial, double R)
         : rope(makeSpans(3, 1, axial), 19.99, {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed},
                {NodeWrap{}, NodeWrap{R, -1}, NodeWrap{}}),

@@ -290,17 +290,29 @@ TEST(RopeWrappedNodes, RejectsBadWraps) {
     Eigen::Matrix<double, 2, Eigen::Dynamic> nodes(2, 3);
     nodes << 0, 1, 2, 0, -1, 0;
     const Eigen::VectorXd qm = Eigen::VectorXd::Zero(rope.numModalCoordinates());
-    // A planar rope takes its stations (WrapStationMap); a spatial one all its external coordinates.
+    // A rope with wrapped nodes takes its stations (WrapStationMap), planar or spatial: in the
+    // plane z = 0 with the groove's axis +z, the spatial rope's material coordinates are the
+    // planar one's (measured to round-off; bound 1e-12 m).
     rope.solveDependentCoordinates(nodes, qm, data);
     EXPECT_GT(data.materialCoordinates[1], 0.0);
     const Eigen::Vector3d g3(0.0, -kG, 0.0);
-    std::vector<SpanModel<3>> spans3{SpanModel<3>(props, SpanOptions{}, g3), SpanModel<3>(props, SpanOptions{}, g3)};
-    const RopeModel<3> rope3(std::move(spans3), 5.0, {}, wraps);
+    auto spans3 = [&]() {
+        return std::vector<SpanModel<3>>{SpanModel<3>(props, SpanOptions{}, g3), SpanModel<3>(props, SpanOptions{}, g3)};
+    };
+    const RopeModel<3> rope3(spans3(), 5.0, {}, wraps);
     RopeData<3> data3;
     Eigen::Matrix<double, 3, Eigen::Dynamic> nodes3 = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, 3);
     nodes3.topRows<2>() = nodes;
-    EXPECT_THROW_MESSAGE(rope3.solveDependentCoordinates(nodes3, Eigen::VectorXd::Zero(rope3.numModalCoordinates()), data3),
-                         std::invalid_argument, "a spatial rope with wrapped nodes takes all its external coordinates");
+    rope3.solveDependentCoordinates(nodes3, Eigen::VectorXd::Zero(rope3.numModalCoordinates()), data3);
+    EXPECT_NEAR(data3.materialCoordinates[1], data.materialCoordinates[1], 1e-12);
+    // A spatial groove's axis must be a finite unit vector.
+    std::vector<NodeWrap> badAxis = wraps;
+    badAxis[1].axis = Eigen::Vector3d(0.0, 0.0, 0.0);
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 5.0, {}, badAxis), std::invalid_argument,
+                         "node 1's groove axis (0 0 0) must be a finite unit vector");
+    badAxis[1].axis = Eigen::Vector3d(0.0, 0.0, 2.0);
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 5.0, {}, badAxis), std::invalid_argument,
+                         "must be a finite unit vector (|n| = 2)");
     EXPECT_THROW_MESSAGE(rope.solveDependentCoordinatesFromExternal(Eigen::VectorXd::Zero(3), qm, data),
                          std::invalid_argument, "3 external coordinates given for 11");
     EXPECT_THROW_MESSAGE(rope.arc(0), std::invalid_argument, "node 0 is not a wrapped node");

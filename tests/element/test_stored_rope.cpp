@@ -173,3 +173,117 @@ TEST(StoredRope, HeldDrumsRopeDoesNotMove) {
         EXPECT_GT(0.5 * kRhoA * law.length(x[4]) * std::pow(kR * phidot, 2), 1.0);
     }
 }
+
+namespace {
+
+// The spatial law: x = [c (3), T (3), s, n (3)], the groove's axis tilted off gravity's plane.
+const Eigen::Vector3d kGravity3(0.3, -9.81, 0.5);
+const Eigen::Vector3d kAxis3 = Eigen::Vector3d(0.2, 0.3, 1.0).normalized();
+
+StoredRope<3> wrappedLaw3(int node, double slope, int sigma) {
+    StoredRope<3> law(node, kL0, slope, kRhoA, kGravity3);
+    law.setWrapped(kR, sigma, 0, 3, 7);
+    law.setMaterialOffset(6);
+    return law;
+}
+
+// In-plane "up" (gravity projected onto the groove's plane, reversed) and its normal n x up.
+void planeBasis3(Eigen::Vector3d& up, Eigen::Vector3d& w) {
+    const Eigen::Vector3d gp = kGravity3 - kAxis3 * kAxis3.dot(kGravity3);
+    up = -gp.normalized();
+    w = kAxis3.cross(up);
+}
+
+void state3(double phi, Eigen::VectorXd& x, Eigen::VectorXd& xdot) {
+    Eigen::Vector3d up, w;
+    planeBasis3(up, w);
+    const Eigen::Vector3d c(0.7, -1.2, 0.4), cdot(0.9, -0.4, 0.3);
+    const double phidot = 1.7;
+    x.resize(10);
+    xdot.resize(10);
+    x << c, c + kR * (std::cos(phi) * up + std::sin(phi) * w), 0.35, kAxis3;
+    xdot << cdot, cdot + kR * phidot * (-std::sin(phi) * up + std::cos(phi) * w), -0.8, 0, 0, 0;
+}
+
+Quadrature byQuadrature3(double slope, int sigma, const Eigen::VectorXd& x, const Eigen::VectorXd& xdot) {
+    Eigen::Vector3d up, w;
+    planeBasis3(up, w);
+    const Eigen::Vector3d c = x.segment<3>(0), cdot = xdot.segment<3>(0);
+    const Eigen::Vector3d r = x.segment<3>(3) - c, rdot = xdot.segment<3>(3) - cdot;
+    const double phi = std::atan2(w.dot(r), up.dot(r));
+    const double phidot = (up.dot(r) * w.dot(rdot) - w.dot(r) * up.dot(rdot)) / r.squaredNorm();
+    const double s = x[6], sdot = xdot[6], l = kL0 + slope * s;
+    const double Ys = s - sigma * kR * phi, v = sdot - sigma * kR * phidot;
+    const double from = slope > 0 ? s - l : s, to = slope > 0 ? s : s + l;
+    Quadrature q;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+        const double sm = from + (to - from) * (i + 0.5) / n, ds = (to - from) / n;
+        const double psi = sigma * (sm - Ys) / kR;
+        const Eigen::Vector3d u = std::cos(psi) * up + std::sin(psi) * w, du = -std::sin(psi) * up + std::cos(psi) * w;
+        q.kinetic += 0.5 * kRhoA * (cdot - sigma * v * du).squaredNorm() * ds;
+        q.gravity -= kRhoA * kGravity3.dot(c + kR * u) * ds;
+    }
+    return q;
+}
+
+}  // namespace
+
+// The spatial law (a groove tilted out of gravity's plane): energies against the quadrature of
+// the stored material, and mass and force against differences of those energies, as the planar
+// tests above (same bounds; measured below).
+TEST(StoredRope, SpatialLawIsLagrangesEquationsOfTheStoredMaterial) {
+    double worstEnergy = 0, worstMass = 0, worstForce = 0;
+    const int cols[7] = {0, 1, 2, 3, 4, 5, 6};
+    for (double slope : {1.0, -1.0})
+        for (int sigma : {1, -1})
+            for (double phi : {0.3, 2.0, -2.6}) {
+                const StoredRope<3> law = wrappedLaw3(slope > 0 ? 0 : 5, slope, sigma);
+                Eigen::VectorXd x, xdot;
+                state3(phi, x, xdot);
+                StoredRopeTerms<3> t;
+                law.evaluate(x, xdot, x[6], xdot[6], t);
+                const Quadrature q = byQuadrature3(slope, sigma, x, xdot);
+                worstEnergy = std::max({worstEnergy, std::abs(t.kineticEnergy - q.kinetic) / std::abs(q.kinetic),
+                                        std::abs(t.gravityEnergy - q.gravity) / std::abs(q.gravity)});
+                auto energies = [&](const Eigen::VectorXd& xe, const Eigen::VectorXd& ve) {
+                    StoredRopeTerms<3> tt;
+                    law.evaluate(xe, ve, xe[6], ve[6], tt);
+                    return tt;
+                };
+                const double hv = 0.1, h = 1e-5;
+                Eigen::MatrixXd S = t.mass.topLeftCorner(7, 7), Sfd(7, 7);
+                for (int a = 0; a < 7; ++a)
+                    for (int b = 0; b < 7; ++b) {
+                        auto T = [&](double da, double db) {
+                            Eigen::VectorXd v = xdot;
+                            v[cols[a]] += da;
+                            v[cols[b]] += db;
+                            return energies(x, v).kineticEnergy;
+                        };
+                        Sfd(a, b) = (T(hv, hv) - T(hv, -hv) - T(-hv, hv) + T(-hv, -hv)) / (4 * hv * hv);
+                    }
+                worstMass = std::max(worstMass, (Sfd - S).cwiseAbs().maxCoeff() / S.cwiseAbs().maxCoeff());
+                Eigen::VectorXd dLdx(7);
+                for (int a = 0; a < 7; ++a) {
+                    Eigen::VectorXd xp = x, xm = x;
+                    xp[cols[a]] += h;
+                    xm[cols[a]] -= h;
+                    const StoredRopeTerms<3> tp = energies(xp, xdot), tm = energies(xm, xdot);
+                    dLdx[a] = ((tp.kineticEnergy - tp.gravityEnergy) - (tm.kineticEnergy - tm.gravityEnergy)) / (2 * h);
+                }
+                auto momentum = [&](double eps) {
+                    Eigen::VectorXd xe = x;
+                    xe.head(7) += eps * xdot.head(7);
+                    return Eigen::VectorXd(energies(xe, xdot).mass.topLeftCorner(7, 7) * xdot.head(7));
+                };
+                const Eigen::VectorXd hfd = dLdx - (momentum(h) - momentum(-h)) / (2 * h);
+                worstForce = std::max(worstForce, (hfd - t.force.head(7)).cwiseAbs().maxCoeff() /
+                                                      t.force.head(7).cwiseAbs().maxCoeff());
+            }
+    std::printf("spatial stored rope: energies %.2e, mass %.2e, force %.2e (relative)\n", worstEnergy, worstMass,
+                worstForce);
+    EXPECT_LT(worstEnergy, 1e-7);
+    EXPECT_LT(worstMass, 1e-6);
+    EXPECT_LT(worstForce, 1e-6);
+}

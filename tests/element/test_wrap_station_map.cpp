@@ -1,8 +1,9 @@
-// WrapStationMap: a planar rope's tangent points and arc lengths from the anchor points and groove
+// WrapStationMap: a rope's tangent points and arc lengths from the anchor points and groove
 // centres that bodies carry. Its Jacobian and bias accelerations against finite differences
-// (point-to-circle, open and crossed circle-to-circle spans), the energy of a hook block hung in
-// four falls swinging under a ceiling sheave, and falls that hang vertical from sheaves a
-// diameter apart (with point sheaves they lean).
+// (point-to-circle, open and crossed circle-to-circle spans; planar, and spatial with tilted
+// grooves and fleet angles), the energy of a hook block hung in four falls swinging under a
+// ceiling sheave, and falls that hang vertical from sheaves a diameter apart (with point sheaves
+// they lean).
 #include "SimbodyReeving/element/WrapStationMap.h"
 
 #include "support/ExpectThrowMessage.h"
@@ -43,7 +44,8 @@ NodeWrap wrap(double R, int sense) {
 }
 
 // x(t) at stations Y + Ydot t + Yddot t^2 / 2.
-Eigen::VectorXd externalAt(const WrapStationMap& map, const Eigen::VectorXd& Y, const Eigen::VectorXd& Yd,
+template <int Dim>
+Eigen::VectorXd externalAt(const WrapStationMap<Dim>& map, const Eigen::VectorXd& Y, const Eigen::VectorXd& Yd,
                            const Eigen::VectorXd& Ydd, double t) {
     WrapStationMapData d;
     map.evaluate(Y + t * Yd + 0.5 * t * t * Ydd, Yd + t * Ydd, d);
@@ -100,12 +102,142 @@ TEST(WrapStationMap, JacobianAndBiasMatchFiniteDifferences) {
 
 namespace {
 
+NodeWrap wrap3(double R, int sense, const Eigen::Vector3d& axis) {
+    NodeWrap w = wrap(R, sense);
+    w.axis = axis.normalized();
+    return w;
+}
+
+}  // namespace
+
+// The spatial map (RopeModel<3>, each groove with its own axis): xdot = J Ydot and
+// xddot = J Yddot + b against the same 4th-order differences, for a sheave tilted out of the
+// rope's plane (fleet angles of several degrees at both of its tangent points), two sheaves with
+// different axes, and a gripping (Driven) sheave whose material coordinate is measured about its
+// tilted axis. Bounds as the planar test's (measured below).
+TEST(WrapStationMap, SpatialJacobianAndBiasMatchFiniteDifferences) {
+    const RopeProperties props{1.0, 1e6, 0.0};
+    const Eigen::Vector3d tilted = Eigen::Vector3d(0.12, 0.05, 1.0).normalized();
+    struct Layout {
+        std::vector<NodeWrap> wraps;
+        std::vector<MaterialNode> kinds;
+        std::vector<Eigen::Vector3d> stations;
+    };
+    const std::vector<Layout> layouts = {
+        {{NodeWrap{}, wrap3(0.3, 1, tilted), NodeWrap{}}, {}, {{-1.0, 0.0, 0.3}, {0.2, -2.0, 0.0}, {1.2, 0.1, -0.2}}},
+        {{NodeWrap{}, wrap3(0.3, 1, tilted), wrap3(0.25, 1, Eigen::Vector3d(-0.1, 0.0, 1.0)), NodeWrap{}},
+         {},
+         {{-1.0, 0.5, 0.2}, {0.0, -2.0, 0.0}, {2.0, -2.2, 0.1}, {3.0, 0.4, -0.3}}},
+        {{NodeWrap{}, wrap3(0.3, 1, tilted), NodeWrap{}},
+         {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed},
+         {{-1.0, 0.0, 0.3}, {0.2, -2.0, 0.0}, {1.2, 0.1, -0.2}}},
+    };
+    double worstRate = 0, worstAcceleration = 0, largestFleet = 0;
+    for (const Layout& layout : layouts) {
+        const Eigen::Vector3d g(0.0, -kG, 0.0);
+        std::vector<SpanModel<3>> spans;
+        for (std::size_t j = 0; j + 1 < layout.wraps.size(); ++j) spans.emplace_back(props, spanOptions(0, 0), g);
+        const RopeModel<3> rope(std::move(spans), 20.0, layout.kinds, layout.wraps);
+        const WrapStationMap<3> map(rope);
+        const int nY = map.numStationCoordinates();
+        Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY), Yd = Eigen::VectorXd::Zero(nY), Ydd = Eigen::VectorXd::Zero(nY);
+        for (std::size_t k = 0; k < layout.stations.size(); ++k) {
+            Y.segment<3>(3 * k) = layout.stations[k];
+            Yd.segment<3>(3 * k) = Eigen::Vector3d(0.3 + 0.1 * k, -0.2 + 0.15 * k, 0.1 - 0.05 * k);
+            Ydd.segment<3>(3 * k) = Eigen::Vector3d(-0.4 + 0.2 * k, 0.5 - 0.1 * k, 0.2 + 0.1 * k);
+        }
+        if (rope.numDrivenNodes() > 0) {  // the groove's surface coordinate
+            Y[nY - 1] = 1.7;
+            Yd[nY - 1] = 0.4;
+            Ydd[nY - 1] = -0.3;
+        }
+        WrapStationMapData d;
+        map.evaluate(Y, Yd, d);
+        const double h = 1e-3;
+        const Eigen::VectorXd x2m = externalAt(map, Y, Yd, Ydd, -2 * h), x1m = externalAt(map, Y, Yd, Ydd, -h);
+        const Eigen::VectorXd x1p = externalAt(map, Y, Yd, Ydd, h), x2p = externalAt(map, Y, Yd, Ydd, 2 * h);
+        const Eigen::VectorXd rate = (x2m - 8 * x1m + 8 * x1p - x2p) / (12 * h);
+        const Eigen::VectorXd acc = (-x2m + 16 * x1m - 30 * d.x + 16 * x1p - x2p) / (12 * h * h);
+        worstRate = std::max(worstRate, (rate - d.xdot).cwiseAbs().maxCoeff() / rate.cwiseAbs().maxCoeff());
+        const Eigen::VectorXd model = d.jacobian * Ydd + d.bias;
+        worstAcceleration = std::max(worstAcceleration, (acc - model).cwiseAbs().maxCoeff() / acc.cwiseAbs().maxCoeff());
+        largestFleet = std::max({largestFleet, d.startFleetAngles.cwiseAbs().maxCoeff(), d.endFleetAngles.cwiseAbs().maxCoeff()});
+        // The axis entries are the groove's own.
+        for (int k = 0; k < rope.numNodes(); ++k)
+            if (rope.isWrapped(k)) {
+                EXPECT_EQ(Eigen::Vector3d(d.x.segment<3>(rope.nodeCoordinateOffset(k) + RopeModel<3>::wrappedAxisOffset())),
+                          rope.grooveAxis(k));
+            }
+    }
+    std::printf("spatial map: rates %.2e, accelerations %.2e (relative); largest fleet angle %.1f deg\n", worstRate,
+                worstAcceleration, largestFleet * 180 / kPi);
+    EXPECT_GT(largestFleet, 3 * kPi / 180);
+    EXPECT_LT(worstRate, 1e-10);
+    EXPECT_LT(worstAcceleration, 1e-7);
+}
+
+// With every station in the plane z = 0 and every axis +z, the spatial map is the planar one: x,
+// J and b equal the planar map's (z rows and columns aside) to round-off (measured 0), and the
+// fleet angles are 0.
+TEST(WrapStationMap, SpatialMapInThePlaneIsThePlanarMap) {
+    const RopeProperties props{1.0, 1e6, 0.0};
+    const std::vector<NodeWrap> wraps{NodeWrap{}, wrap(0.3, 1), wrap(0.25, -1), NodeWrap{}};
+    const std::vector<MaterialNode> kinds{MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Sliding,
+                                          MaterialNode::Fixed};
+    const std::vector<Vector2d> stations{{-1.0, 0.0}, {0.0, -2.5}, {1.5, 0.3}, {3.2, -2.0}};
+    std::vector<SpanModel<2>> spans2;
+    std::vector<SpanModel<3>> spans3;
+    for (int j = 0; j < 3; ++j) {
+        spans2.emplace_back(props, spanOptions(0, 0), Vector2d(0.0, -kG));
+        spans3.emplace_back(props, spanOptions(0, 0), Eigen::Vector3d(0.0, -kG, 0.0));
+    }
+    const RopeModel<2> rope2(std::move(spans2), 20.0, kinds, wraps);
+    const RopeModel<3> rope3(std::move(spans3), 20.0, kinds, wraps);
+    Eigen::VectorXd Y2(9), Yd2(9), Y3 = Eigen::VectorXd::Zero(13), Yd3 = Eigen::VectorXd::Zero(13);
+    for (int k = 0; k < 4; ++k) {
+        Y2.segment<2>(2 * k) = stations[k];
+        Yd2.segment<2>(2 * k) = Vector2d(0.3 + 0.1 * k, -0.2 + 0.15 * k);
+        Y3.segment<2>(3 * k) = Y2.segment<2>(2 * k);
+        Yd3.segment<2>(3 * k) = Yd2.segment<2>(2 * k);
+    }
+    Y2[8] = Y3[12] = 0.9;
+    Yd2[8] = Yd3[12] = -0.2;
+    WrapStationMapData d2, d3;
+    WrapStationMap<2>(rope2).evaluate(Y2, Yd2, d2);
+    WrapStationMap<3>(rope3).evaluate(Y3, Yd3, d3);
+    // Row r of the planar x is row rowOf(r) of the spatial one; station column c is column colOf(c).
+    auto rowOf = [&](int r) {
+        for (int k = 0; k < 4; ++k) {
+            const int o2 = rope2.nodeCoordinateOffset(k), o3 = rope3.nodeCoordinateOffset(k);
+            const int size = rope2.isWrapped(k) ? RopeModel<2>::wrappedBlockSize() : 2;
+            if (r < o2 || r >= o2 + size) continue;
+            const int i = r - o2;
+            if (!rope2.isWrapped(k)) return o3 + i;
+            if (i == RopeModel<2>::wrappedArcLengthOffset()) return o3 + RopeModel<3>::wrappedArcLengthOffset();
+            return o3 + 3 * (i / 2) + i % 2;  // c, T_in, T_out: x and y of each
+        }
+        return rope3.numNodeCoordinates() + (r - rope2.numNodeCoordinates());
+    };
+    auto colOf = [](int c) { return c < 8 ? 3 * (c / 2) + c % 2 : 12; };
+    double worst = 0;
+    for (int r = 0; r < rope2.numExternalCoordinates(); ++r) {
+        worst = std::max({worst, std::abs(d2.x[r] - d3.x[rowOf(r)]), std::abs(d2.bias[r] - d3.bias[rowOf(r)])});
+        for (int c = 0; c < 9; ++c) worst = std::max(worst, std::abs(d2.jacobian(r, c) - d3.jacobian(rowOf(r), colOf(c))));
+    }
+    std::printf("spatial map in the plane vs planar map: %.2e\n", worst);
+    EXPECT_LT(worst, 1e-14);
+    EXPECT_EQ(d3.startFleetAngles.cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(d3.endFleetAngles.cwiseAbs().maxCoeff(), 0.0);
+}
+
+namespace {
+
 // A hook block hung in four falls: anchor (-R, 0) -> block sheave 1 (centre q) -> ceiling sheave
 // (2R, 0) -> block sheave 2 (centre q + (4R, 0)) -> anchor (5R, 0); the block translates (no
 // rotation), mass M.
 struct FourFallBlock {
     RopeModel<2> rope;
-    WrapStationMap map;
+    WrapStationMap<2> map;
     double R, M;
     RopeData<2> data;
     WrapStationMapData mapData;
@@ -278,8 +410,8 @@ TEST(WrapStationMap, RejectsBadStationsAndImpossibleTangents) {
     EXPECT_THROW_MESSAGE(map.evaluate(Y, Eigen::VectorXd::Zero(6), d), std::domain_error, "span 0 (nodes 0 and 1)");
     Y << -1.0, 0.0, 0.0, -2.0, 1.0, 0.0;  // down, under and up: counter-clockwise, against the sense -1
     const RopeModel<2> clockwise = makeRope(props, spanOptions(0, 0), 10.0, {NodeWrap{}, wrap(0.5, -1), NodeWrap{}});
-    EXPECT_THROW_MESSAGE(WrapStationMap(clockwise).evaluate(Y, Eigen::VectorXd::Zero(6), d), std::domain_error,
-                         "node 1: the rope's path turns counter-clockwise about the plane normal there (from node 0 "
+    EXPECT_THROW_MESSAGE(WrapStationMap<2>(clockwise).evaluate(Y, Eigen::VectorXd::Zero(6), d), std::domain_error,
+                         "node 1: the rope's path turns counter-clockwise about the groove's axis there (from node 0 "
                          "past the groove's centre to node 2) but its wrap sense is -1");
     Y[0] = NAN;
     EXPECT_THROW_MESSAGE(map.evaluate(Y, Eigen::VectorXd::Zero(6), d), std::invalid_argument, "must be finite");

@@ -131,7 +131,8 @@ TEST(WrappedSheaves, SwingingBlockConservesEnergy) {
     EXPECT_GT(maxX - minX, 0.5);
 }
 
-TEST(WrappedSheaves, RejectsWrappedSheavesOnSpatialRopesAndBadSenses) {
+// A spatial rope's wrapped sheave needs its groove's axis (none given here); a wrap sense must be +-1.
+TEST(WrappedSheaves, RejectsSpatialSheavesWithoutAnAxisAndBadSenses) {
     World w;
     const MobilizedBody::Planar block(w.matter.updGround(), Transform(),
                                       SimTK::Body::Rigid(MassProperties(10, Vec3(0), Inertia(1))), Transform());
@@ -143,7 +144,7 @@ TEST(WrappedSheaves, RejectsWrappedSheavesOnSpatialRopesAndBadSenses) {
     rope.unstretchedLength = 10;
     rope.sheaveModel = SheaveModel::Wrapped;
     EXPECT_THROW_MESSAGE(w.reeving.addRope(rope), std::invalid_argument,
-                         "SheaveModel::Wrapped is implemented for planar ropes only");
+                         "sheave 1 axis = (0, 0, 0) (|axis| = 0.000000) must be a unit vector");
     rope.planeNormal = Vec3(0, 0, 1);
     DeviationSheave bad{block, Vec3(0), 0.2};
     bad.wrapSense = 0;

@@ -133,6 +133,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     }
     arcIndex_.assign(N + 1, -1);
     nodeOffset_.assign(N + 2, 0);
+    grooveAxes_.assign(N + 1, Eigen::Vector3d::UnitZ());
     for (int k = 0; k <= N; ++k) {
         const NodeWrap& wrap = wraps[k];
         if (!std::isfinite(wrap.radius) || wrap.radius < 0) {
@@ -149,6 +150,16 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
                 throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
                                             " can be wrapped only as a Driven node (a winch drum): a fastened "
                                             "end's tangent point is its position");
+            if constexpr (Dim == 3) {
+                if (!wrap.axis.allFinite() || std::abs(wrap.axis.norm() - 1) > 1e-12) {
+                    std::ostringstream msg;
+                    msg.precision(17);
+                    msg << "RopeModel: node " << k << "'s groove axis (" << wrap.axis.transpose()
+                        << ") must be a finite unit vector (|n| = " << wrap.axis.norm() << ")";
+                    throw std::invalid_argument(msg.str());
+                }
+                grooveAxes_[k] = wrap.axis;
+            }
             arcIndex_[k] = static_cast<int>(arcs_.size());
             arcs_.emplace_back(spans_.front().properties(), wrap.radius, wrap.wrapSense, spans_.front().gravity());
             arcNode_.push_back(k);
@@ -445,10 +456,6 @@ void RopeModel<Dim>::arcCoordinates(int node, const Eigen::VectorXd& x, double s
 template <int Dim>
 const Eigen::VectorXd& RopeModel<Dim>::packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                     RopeData<Dim>& data, bool rates) const {
-    if (!arcs_.empty() && Dim != 2)
-        throw std::invalid_argument(
-            "RopeModel: a spatial rope with wrapped nodes takes all its external coordinates (the ...FromExternal "
-            "forms), not a matrix of node positions");
     if (nodes.cols() != numNodes()) {
         std::ostringstream msg;
         msg << "RopeModel: " << nodes.cols() << " node " << (rates ? "velocities" : "positions") << " given for "
@@ -479,21 +486,18 @@ const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& node
         if (nodeVelocities) packExternal(*nodeVelocities, *drivenSdot, data, true);
         return Y;
     }
-    if constexpr (Dim == 2) {
-        // Positions alone (a solve) go to a map of their own: the dynamics' J and b stay valid.
-        WrapStationMapData& m = nodeVelocities ? ws.stationMap : ws.stationPositionMap;
-        if (m.wrapAngles.size() == 0) {
-            const WrapStationMapData& other = nodeVelocities ? ws.stationPositionMap : ws.stationMap;
-            m.wrapAngles = other.wrapAngles;
-            m.arrivalAngles = other.arrivalAngles;
-        }
-        if (nodeVelocities)
-            WrapStationMap(*this).evaluate(Y, packExternal(*nodeVelocities, *drivenSdot, data, true), m);
-        else
-            WrapStationMap(*this).evaluatePositions(Y, m);
-        return m.x;
+    // Positions alone (a solve) go to a map of their own: the dynamics' J and b stay valid.
+    WrapStationMapData& m = nodeVelocities ? ws.stationMap : ws.stationPositionMap;
+    if (m.wrapAngles.size() == 0) {
+        const WrapStationMapData& other = nodeVelocities ? ws.stationPositionMap : ws.stationMap;
+        m.wrapAngles = other.wrapAngles;
+        m.arrivalAngles = other.arrivalAngles;
     }
-    return Y;  // (not reached: packExternal throws for spatial ropes with wrapped nodes)
+    if (nodeVelocities)
+        WrapStationMap<Dim>(*this).evaluate(Y, packExternal(*nodeVelocities, *drivenSdot, data, true), m);
+    else
+        WrapStationMap<Dim>(*this).evaluatePositions(Y, m);
+    return m.x;
 }
 
 template <int Dim>
@@ -661,6 +665,22 @@ double RopeModel<Dim>::wrapAngle(const RopeData<Dim>& data, int node) const {
 }
 
 template <int Dim>
+std::pair<double, double> RopeModel<Dim>::fleetAngles(const RopeData<Dim>& data, int span) const {
+    if (span < 0 || span >= numSpans())
+        throw std::invalid_argument("RopeModel::fleetAngles: span " + std::to_string(span) + " is outside 0.." +
+                                    std::to_string(numSpans() - 1));
+    if (arcs_.empty()) {
+        if (data.ws().packedX.size() != numExternalCoordinates())
+            throw std::invalid_argument("RopeModel::fleetAngles: data holds no evaluation from node positions");
+        return {0.0, 0.0};
+    }
+    const WrapStationMapData& m = data.ws().stationPositionMap;
+    if (m.startFleetAngles.size() != numSpans())
+        throw std::invalid_argument("RopeModel::fleetAngles: data holds no evaluation from node positions");
+    return {m.startFleetAngles[span], m.endFleetAngles[span]};
+}
+
+template <int Dim>
 double RopeModel<Dim>::surfaceCoordinate(const RopeData<Dim>& data, int node) const {
     if (node < 0 || node > numSpans() || drivenIndex_[node] < 0)
         throw std::invalid_argument("RopeModel::surfaceCoordinate: node " + std::to_string(node) +
@@ -743,7 +763,8 @@ detail::StoredRope<Dim> storedRopeLaw(const RopeModel<Dim>& model, int k, double
     const int o = model.nodeCoordinateOffset(k);
     if (model.isWrapped(k)) {
         const int tangent = o + (k == 0 ? RopeModel<Dim>::wrappedDepartureOffset() : RopeModel<Dim>::wrappedArrivalOffset());
-        law.setWrapped(model.arc(k).radius(), model.arc(k).wrapSense(), o + RopeModel<Dim>::wrappedCentreOffset(), tangent);
+        law.setWrapped(model.arc(k).radius(), model.arc(k).wrapSense(), o + RopeModel<Dim>::wrappedCentreOffset(), tangent,
+                       o + (Dim == 3 ? RopeModel<Dim>::wrappedAxisOffset() : 0));
     } else {
         law.setPointOffset(o);
     }
@@ -780,12 +801,8 @@ template <int Dim>
 void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                      const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     if (!arcs_.empty()) {
-        if constexpr (Dim == 2) {
-            spanCoordinatesFromExternal(j, mappedPositions(nodes, data), qm, data, q);
-            return;
-        }
-        throw std::invalid_argument("RopeModel::spanCoordinates: a spatial rope with wrapped nodes takes all its "
-                                    "external coordinates (spanCoordinatesFromExternal)");
+        spanCoordinatesFromExternal(j, mappedPositions(nodes, data), qm, data, q);
+        return;
     }
     assembleSpanCoordinates(*this, j, nodes.col(j), nodes.col(j + 1), data.materialCoordinates[j],
                             data.materialCoordinates[j + 1], qm, data, q);
@@ -794,50 +811,41 @@ void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen
 template <int Dim>
 const Eigen::VectorXd& RopeModel<Dim>::mappedPositions(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     detail::RopeWorkspace<Dim>& ws = data.scratch();
-    if constexpr (Dim == 2) {
-        const int np = Dim * numNodes();
-        Eigen::VectorXd& Y = ws.queryStations;
-        Y.setZero(np + numDriven_);
-        for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
-        for (const WrapStationMapData* m : {&ws.stationPositionMap, &ws.stationMap})
-            if (m->stations.size() == Y.size() && m->x.size() > 0 && m->stations.head(np) == Y.head(np)) return m->x;
-        ws.queryMap.wrapAngles = ws.stationMap.wrapAngles;  // continuity with the last evaluation
-        ws.queryMap.arrivalAngles = ws.stationMap.arrivalAngles;
-        WrapStationMap(*this).evaluatePositions(Y, ws.queryMap);
-        return ws.queryMap.x;
-    }
-    return ws.packedX;  // (not reached: spatial ropes with wrapped nodes take their x directly)
+    const int np = Dim * numNodes();
+    Eigen::VectorXd& Y = ws.queryStations;
+    Y.setZero(np + numDriven_);
+    for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
+    for (const WrapStationMapData* m : {&ws.stationPositionMap, &ws.stationMap})
+        if (m->stations.size() == Y.size() && m->x.size() > 0 && m->stations.head(np) == Y.head(np)) return m->x;
+    ws.queryMap.wrapAngles = ws.stationMap.wrapAngles;  // continuity with the last evaluation
+    ws.queryMap.arrivalAngles = ws.stationMap.arrivalAngles;
+    WrapStationMap<Dim>(*this).evaluatePositions(Y, ws.queryMap);
+    return ws.queryMap.x;
 }
 
 template <int Dim>
 WrapStationMapData RopeModel<Dim>::stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     WrapStationMapData m;
-    if constexpr (Dim == 2) {
-        const int nY = Dim * numNodes() + numDriven_;
-        Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY);
-        for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
-        m.wrapAngles = data.ws().stationMap.wrapAngles;  // continuity with the last evaluation
-        m.arrivalAngles = data.ws().stationMap.arrivalAngles;
-        WrapStationMap(*this).evaluatePositions(Y, m);
-    }
+    const int nY = Dim * numNodes() + numDriven_;
+    Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY);
+    for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
+    m.wrapAngles = data.ws().stationMap.wrapAngles;  // continuity with the last evaluation
+    m.arrivalAngles = data.ws().stationMap.arrivalAngles;
+    WrapStationMap<Dim>(*this).evaluatePositions(Y, m);
     return m;
 }
 
 template <int Dim>
 double RopeModel<Dim>::arcGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     if (arcs_.empty()) return 0.0;
-    if constexpr (Dim == 2) {
-        const Eigen::VectorXd& x = mappedPositions(nodes, data);
-        double u = 0;
-        typename GrooveArc<Dim>::Coordinates a;
-        for (std::size_t i = 0; i < arcs_.size(); ++i) {
-            arcCoordinates(arcNode_[i], x, data.materialCoordinates[arcNode_[i]], a);
-            u += arcs_[i].gravityEnergy(a);
-        }
-        return u;
+    const Eigen::VectorXd& x = mappedPositions(nodes, data);
+    double u = 0;
+    typename GrooveArc<Dim>::Coordinates a;
+    for (std::size_t i = 0; i < arcs_.size(); ++i) {
+        arcCoordinates(arcNode_[i], x, data.materialCoordinates[arcNode_[i]], a);
+        u += arcs_[i].gravityEnergy(a);
     }
-    throw std::invalid_argument("RopeModel::arcGravityEnergy: a spatial rope's arcs need their axes (use the "
-                                "...FromExternal forms' energies)");
+    return u;
 }
 
 template <int Dim>

@@ -1,5 +1,8 @@
 #include "StoredRope.h"
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -37,88 +40,95 @@ void StoredRope<Dim>::evaluatePoint(const Eigen::VectorXd& x, const Eigen::Vecto
     out.gravityEnergy = -m * gravity_.dot(r);
 }
 
-namespace {
-// "Up" in the plane (against gravity; +y without gravity) and its counter-clockwise normal.
-void planeUp(const Eigen::Vector2d& g, Eigen::Vector2d& up, Eigen::Vector2d& upPerp) {
-    const double gn = g.norm();
-    up = gn > 0 ? Eigen::Vector2d(-g / gn) : Eigen::Vector2d(0.0, 1.0);
-    upPerp = Eigen::Vector2d(-up[1], up[0]);
-}
-}  // namespace
-
 // The Lagrangian in q = (c, phi, s) (see the class comment), then carried to x = (c, T, s) by
-// phi = angle of T - c from up: P = dq/dx, and phi's quadratic-velocity term
-//     phiddot = (r x rddot) / |r|^2 - 2 (r . rdot)(r x rdot) / |r|^4,  r = T - c.
+// phi = atan2(w . r, up . r), r = T - c, up and w = n x up the groove plane's "up" and its normal
+// in the plane: P = dq/dx, and phi's quadratic-velocity term (a = up . r, b = w . r)
+//     phiddot = (a bddot - b addot) / (a^2 + b^2) - 2 (a adot + b bdot)(a bdot - b adot) / (a^2 + b^2)^2.
+// The groove's axis n is constant (a planar rope's +z; a spatial rope's from x, its rates not read).
 template <int Dim>
 void StoredRope<Dim>::evaluateWrapped(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, double s, double sdot,
                                       StoredRopeTerms<Dim>& out) const {
-    if constexpr (Dim != 2) {
-        (void)x, (void)xdot, (void)s, (void)sdot, (void)out;
-        throw std::invalid_argument("StoredRope: a wrapped drum's stored rope is built for planar ropes");
+    constexpr int nq = Dim + 2, nx = 2 * Dim + 1;
+    using V = Eigen::Matrix<double, Dim, 1>;
+    const double R = radius_, sigma = sense_, kappa = slope_, rhoA = rhoA_;
+    const double l = length(s), m = rhoA * l;
+    V up, w;
+    double gPlane = 0;  // |g| in the groove's plane
+    if constexpr (Dim == 2) {
+        const double gn = gravity_.norm();
+        up = gn > 0 ? V(-gravity_ / gn) : V(0.0, 1.0);
+        w = V(-up[1], up[0]);
+        gPlane = gn;
     } else {
-        using V2 = Eigen::Vector2d;
-        const double R = radius_, sigma = sense_, kappa = slope_, rhoA = rhoA_;
-        const double l = length(s), m = rhoA * l, gmag = gravity_.norm();
-        V2 up, upPerp;
-        planeUp(gravity_, up, upPerp);
-        const V2 c = x.segment<2>(centreOffset_), cdot = xdot.segment<2>(centreOffset_);
-        const V2 r = x.segment<2>(tangentOffset_) - c, rdot = xdot.segment<2>(tangentOffset_) - cdot;
-        const double rr = r.squaredNorm();
-        const double cross = r[0] * rdot[1] - r[1] * rdot[0];
-        const double phi = std::atan2(up[0] * r[1] - up[1] * r[0], up.dot(r));
-        const double phidot = cross / rr;
-        const double phiBias = -2 * r.dot(rdot) * cross / (rr * rr);
-        const double psiE = phi - sigma * kappa * l / R;
-        auto u = [&](double a) { return V2(std::cos(a) * up + std::sin(a) * upPerp); };
-        auto du = [&](double a) { return V2(-std::sin(a) * up + std::cos(a) * upPerp); };
-        const V2 D = u(phi) - u(psiE);
-        const double v = sdot - sigma * R * phidot;  // the drum's surface speed
-        const double psiEdot = -sigma * v / R;
-        const V2 Ddot = du(phi) * phidot - du(psiE) * psiEdot;
-
-        // Mass in q = (c0, c1, phi, s).
-        Eigen::Matrix4d Mq = Eigen::Matrix4d::Zero();
-        Mq(0, 0) = Mq(1, 1) = m;
-        Mq.block<2, 1>(0, 2) = rhoA * sigma * kappa * R * R * D;
-        Mq.block<2, 1>(0, 3) = -rhoA * kappa * R * D;
-        Mq(2, 2) = m * R * R;
-        Mq(2, 3) = -m * sigma * R;
-        Mq(3, 3) = m;
-        Mq.block<1, 2>(2, 0) = Mq.block<2, 1>(0, 2).transpose();
-        Mq.block<1, 2>(3, 0) = Mq.block<2, 1>(0, 3).transpose();
-        Mq(3, 2) = Mq(2, 3);
-        // h_q = dT/dq - dU/dq - (dp/dq) qdot.
-        const V2 dTdc = V2::Zero();
-        const double dTdphi = -rhoA * R * kappa * v * cdot.dot(du(phi) - du(psiE));
-        const double dTds = 0.5 * rhoA * kappa * (cdot.squaredNorm() + v * v) - rhoA * kappa * sigma * v * cdot.dot(du(psiE));
-        const V2 dUdc = -m * gravity_;
-        const double dUdphi = rhoA * gmag * sigma * kappa * R * R * (std::cos(phi) - std::cos(psiE));
-        const double dUds = -rhoA * kappa * gravity_.dot(c) + rhoA * gmag * kappa * R * std::cos(psiE);
-        const V2 Bc = rhoA * (kappa * sdot * cdot - R * kappa * v * Ddot);
-        const double Bs = rhoA * (kappa * sdot * v - R * kappa * cdot.dot(Ddot));
-        const double Bphi = -sigma * R * Bs;
-        Eigen::Vector4d hq;
-        hq.head<2>() = dTdc - dUdc - Bc;
-        hq[2] = dTdphi - dUdphi - Bphi;
-        hq[3] = dTds - dUds - Bs;
-        // Carried to x = (c0, c1, T0, T1, s).
-        Eigen::Matrix<double, 4, 5> P = Eigen::Matrix<double, 4, 5>::Zero();
-        P(0, 0) = P(1, 1) = 1;
-        const V2 dphidT(-r[1] / rr, r[0] / rr);
-        P.block<1, 2>(2, 2) = dphidT.transpose();
-        P.block<1, 2>(2, 0) = -dphidT.transpose();
-        P(3, 4) = 1;
-        Eigen::Vector4d beta(0, 0, phiBias, 0);
-        out.count = 5;
-        out.cols = {centreOffset_, centreOffset_ + 1, tangentOffset_, tangentOffset_ + 1, materialOffset_};
-        out.mass.setZero();
-        out.mass.template topLeftCorner<5, 5>().noalias() = P.transpose() * Mq * P;
-        out.force.setZero();
-        out.force.template head<5>().noalias() = P.transpose() * (hq - Mq * beta);
-        const Eigen::Vector4d qdot(cdot[0], cdot[1], phidot, sdot);
-        out.kineticEnergy = 0.5 * qdot.dot(Mq * qdot);
-        out.gravityEnergy = -m * gravity_.dot(c) + rhoA * gmag * sigma * kappa * R * R * (std::sin(phi) - std::sin(psiE));
+        const Eigen::Vector3d n = x.template segment<3>(axisOffset_).normalized();
+        const Eigen::Vector3d gp = gravity_ - n * n.dot(gravity_);
+        // (A groove whose axis is along gravity has no "up" in its plane: the station map refuses a
+        // grip there; any in-plane direction serves this law, whose gravity terms then vanish.)
+        up = gp.norm() > 1e-12 * std::max(1.0, gravity_.norm()) ? Eigen::Vector3d(-gp / gp.norm()) : n.unitOrthogonal();
+        w = n.cross(up);
+        gPlane = gp.norm();
     }
+    const V c = x.template segment<Dim>(centreOffset_), cdot = xdot.template segment<Dim>(centreOffset_);
+    const V r = x.template segment<Dim>(tangentOffset_) - c, rdot = xdot.template segment<Dim>(tangentOffset_) - cdot;
+    const double a = up.dot(r), b = w.dot(r), adot = up.dot(rdot), bdot = w.dot(rdot), rr = a * a + b * b;
+    const double phi = std::atan2(b, a);
+    const double phidot = (a * bdot - b * adot) / rr;
+    const double phiBias = -2 * (a * adot + b * bdot) * (a * bdot - b * adot) / (rr * rr);
+    const V dphidr = (a * w - b * up) / rr;
+    const double psiE = phi - sigma * kappa * l / R;
+    auto u = [&](double t) { return V(std::cos(t) * up + std::sin(t) * w); };
+    auto du = [&](double t) { return V(-std::sin(t) * up + std::cos(t) * w); };
+    const V D = u(phi) - u(psiE);
+    const double v = sdot - sigma * R * phidot;  // the drum's surface speed
+    const double psiEdot = -sigma * v / R;
+    const V Ddot = du(phi) * phidot - du(psiE) * psiEdot;
+
+    // Mass in q = (c, phi, s).
+    Eigen::Matrix<double, nq, nq> Mq = Eigen::Matrix<double, nq, nq>::Zero();
+    Mq.template topLeftCorner<Dim, Dim>().diagonal().setConstant(m);
+    Mq.template block<Dim, 1>(0, Dim) = rhoA * sigma * kappa * R * R * D;
+    Mq.template block<Dim, 1>(0, Dim + 1) = -rhoA * kappa * R * D;
+    Mq(Dim, Dim) = m * R * R;
+    Mq(Dim, Dim + 1) = -m * sigma * R;
+    Mq(Dim + 1, Dim + 1) = m;
+    Mq.template block<1, Dim>(Dim, 0) = Mq.template block<Dim, 1>(0, Dim).transpose();
+    Mq.template block<1, Dim>(Dim + 1, 0) = Mq.template block<Dim, 1>(0, Dim + 1).transpose();
+    Mq(Dim + 1, Dim) = Mq(Dim, Dim + 1);
+    // h_q = dT/dq - dU/dq - (dp/dq) qdot.
+    const double dTdphi = -rhoA * R * kappa * v * cdot.dot(du(phi) - du(psiE));
+    const double dTds = 0.5 * rhoA * kappa * (cdot.squaredNorm() + v * v) - rhoA * kappa * sigma * v * cdot.dot(du(psiE));
+    const V dUdc = -m * gravity_;
+    const double dUdphi = rhoA * gPlane * sigma * kappa * R * R * (std::cos(phi) - std::cos(psiE));
+    const double dUds = -rhoA * kappa * gravity_.dot(c) + rhoA * gPlane * kappa * R * std::cos(psiE);
+    const V Bc = rhoA * (kappa * sdot * cdot - R * kappa * v * Ddot);
+    const double Bs = rhoA * (kappa * sdot * v - R * kappa * cdot.dot(Ddot));
+    const double Bphi = -sigma * R * Bs;
+    Eigen::Matrix<double, nq, 1> hq;
+    hq.template head<Dim>() = -dUdc - Bc;
+    hq[Dim] = dTdphi - dUdphi - Bphi;
+    hq[Dim + 1] = dTds - dUds - Bs;
+    // Carried to x = (c, T, s).
+    Eigen::Matrix<double, nq, nx> P = Eigen::Matrix<double, nq, nx>::Zero();
+    P.template topLeftCorner<Dim, Dim>().setIdentity();
+    P.template block<1, Dim>(Dim, Dim) = dphidr.transpose();
+    P.template block<1, Dim>(Dim, 0) = -dphidr.transpose();
+    P(Dim + 1, 2 * Dim) = 1;
+    Eigen::Matrix<double, nq, 1> beta = Eigen::Matrix<double, nq, 1>::Zero();
+    beta[Dim] = phiBias;
+    out.count = nx;
+    for (int d = 0; d < Dim; ++d) {
+        out.cols[d] = centreOffset_ + d;
+        out.cols[Dim + d] = tangentOffset_ + d;
+    }
+    out.cols[2 * Dim] = materialOffset_;
+    out.mass.setZero();
+    out.mass.template topLeftCorner<nx, nx>().noalias() = P.transpose() * Mq * P;
+    out.force.setZero();
+    out.force.template head<nx>().noalias() = P.transpose() * (hq - Mq * beta);
+    Eigen::Matrix<double, nq, 1> qdot;
+    qdot << cdot, phidot, sdot;
+    out.kineticEnergy = 0.5 * qdot.dot(Mq * qdot);
+    out.gravityEnergy = -m * gravity_.dot(c) + rhoA * gPlane * sigma * kappa * R * R * (std::sin(phi) - std::sin(psiE));
 }
 
 template <int Dim>

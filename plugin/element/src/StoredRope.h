@@ -34,19 +34,21 @@ struct StoredRopeTerms {
 ///     T = 1/2 rhoA l (|rdot|^2 + sdot_k^2),   U = -rhoA l g . r.
 /// (At a point drum s_k is the drum's surface coordinate, so sdot_k is the drum's surface speed.)
 ///
-/// **Wrapped drum** (planar; the groove a circle of radius R about the centre c, the rope leaving
-/// it at the tangent point T, wrap sense sigma): the stored rope lies on the groove and turns with
-/// the drum. A material point s on it sits at the angle psi(s) = sigma (s - Y_s) / R from "up"
-/// (counter-clockwise, against gravity; +y without gravity), Y_s = s_k - sigma R phi the drum's
+/// **Wrapped drum** (the groove a circle of radius R about the centre c in the plane normal to
+/// its axis n, +z in a planar rope; the rope leaving it at the tangent point T, wrap sense sigma):
+/// the stored rope lies on the groove and turns with the drum. A material point s on it sits at
+/// the angle psi(s) = sigma (s - Y_s) / R from "up" (counter-clockwise about n, against gravity
+/// projected onto the groove's plane; +y without gravity), Y_s = s_k - sigma R phi the drum's
 /// surface coordinate at "up" and phi the tangent point's angle; its velocity is
 /// cdot - sigma v u'(psi), v = Ydot_s = sdot_k - sigma R phidot the drum's surface speed, whatever
 /// the tangent point does. Integrated over the stored material (from the tangent point to the
 /// far end at psi_e = phi - sigma kappa l / R):
 ///     T = 1/2 rhoA [l (|cdot|^2 + v^2) - 2 R kappa v cdot . (u(phi) - u(psi_e))],
 ///     U = -rhoA l g . c + rhoA |g| sigma kappa R^2 (sin phi - sin psi_e),
-/// u(psi) = cos psi up + sin psi up_perp. The last terms are the partial turn's: the energy of a
-/// full turn does not depend on where the drum stands. These are exact for a single layer of any
-/// number of turns in the groove's plane (no pitch across the drum).
+/// u(psi) = cos psi up + sin psi n x up, |g| the magnitude of gravity in the groove's plane. The
+/// last terms are the partial turn's: the energy of a full turn does not depend on where the drum
+/// stands. These are exact for a single layer of any number of turns in the groove's plane (no
+/// pitch across the drum). The axis is constant (a drum whose body keeps its orientation).
 template <int Dim>
 class StoredRope {
 public:
@@ -60,12 +62,13 @@ public:
         : node_(node), lengthAtZero_(lengthAtZero), slope_(slope), rhoA_(massPerLength), gravity_(gravity) {}
 
     /// Declares the drum wrapped: the groove's radius R [m] > 0 and wrap sense sigma (+-1), the
-    /// external coordinates of its centre and of its tangent point.
-    void setWrapped(double radius, int wrapSense, int centreOffset, int tangentOffset) {
+    /// external coordinates of its centre, of its tangent point and (Dim = 3) of its axis.
+    void setWrapped(double radius, int wrapSense, int centreOffset, int tangentOffset, int axisOffset = 0) {
         radius_ = radius;
         sense_ = wrapSense;
         centreOffset_ = centreOffset;
         tangentOffset_ = tangentOffset;
+        axisOffset_ = axisOffset;
     }
     /// The external coordinate of the node's position (a point drum).
     void setPointOffset(int offset) { centreOffset_ = offset; }
@@ -96,7 +99,7 @@ private:
     Vec gravity_;
     double radius_ = 0;
     int sense_ = 1;
-    int centreOffset_ = 0, tangentOffset_ = 0, materialOffset_ = 0;
+    int centreOffset_ = 0, tangentOffset_ = 0, axisOffset_ = 0, materialOffset_ = 0;
 };
 
 }  // namespace SimbodyReeving::detail

@@ -1,31 +1,45 @@
 #include "SimbodyReeving/element/WrapStationMap.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace SimbodyReeving {
 namespace {
-Eigen::Vector3d lift(const Eigen::Vector2d& v) { return Eigen::Vector3d(v[0], v[1], 0.0); }
+// A planar rope's points and vectors in 3D (z = 0); a spatial rope's as they are.
+template <int Dim>
+Eigen::Vector3d lift(const Eigen::Matrix<double, Dim, 1>& v) {
+    if constexpr (Dim == 2)
+        return Eigen::Vector3d(v[0], v[1], 0.0);
+    else
+        return v;
+}
 }  // namespace
 
-Eigen::Vector2d WrapStationMap::upDirection() const {
-    const Eigen::Vector2d g = rope_->span(0).gravity();
-    return g.norm() > 0 ? Eigen::Vector2d(-g / g.norm()) : Eigen::Vector2d(0.0, 1.0);
+template <int Dim>
+Eigen::Vector3d WrapStationMap<Dim>::upDirection() const {
+    const Eigen::Vector3d g = lift<Dim>(rope_->span(0).gravity());
+    return g.norm() > 0 ? Eigen::Vector3d(-g / g.norm()) : Eigen::Vector3d(0.0, 1.0, 0.0);
 }
 
-void WrapStationMap::evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates,
+template <int Dim>
+void WrapStationMap<Dim>::evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates,
                               WrapStationMapData& data) const {
     evaluateMap(stations, &stationRates, data);
 }
 
-void WrapStationMap::evaluatePositions(const Eigen::VectorXd& stations, WrapStationMapData& data) const {
+template <int Dim>
+void WrapStationMap<Dim>::evaluatePositions(const Eigen::VectorXd& stations, WrapStationMapData& data) const {
     evaluateMap(stations, nullptr, data);
 }
 
-void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::VectorXd* ratesOrNull,
-                                 WrapStationMapData& data) const {
-    const RopeModel<2>& rope = *rope_;
+template <int Dim>
+void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eigen::VectorXd* ratesOrNull,
+                                      WrapStationMapData& data) const {
+    using Model = RopeModel<Dim>;
+    const Model& rope = *rope_;
     const bool withRates = ratesOrNull != nullptr;
     const Eigen::VectorXd& stationRates = withRates ? *ratesOrNull : stations;
     const int N = rope.numSpans(), nY = numStationCoordinates(), nx = rope.numExternalCoordinates();
@@ -56,6 +70,8 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     } guard{data.wrapAngles, data.arrivalAngles, previous};
     const bool warm = static_cast<int>(data.tangencies.size()) == N;
     data.tangencies.resize(N);
+    data.startFleetAngles.setZero(N);
+    data.endFleetAngles.setZero(N);
     data.stations = stations;
     data.x.setZero(nx);
     if (withRates) {
@@ -66,29 +82,37 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         data.jacobian.resize(0, 0);
         data.xdot.resize(0);
     }
-    auto station = [&](int k) { return Eigen::Vector2d(stations.segment<2>(2 * k)); };
-    auto end = [&](int k) {
-        if (!rope.isWrapped(k)) return TangencyEnd::point(lift(station(k)));
+    auto station = [&](int k) { return Vec(stations.template segment<Dim>(Dim * k)); };
+    auto groove = [&](int k) {
         GrooveCircle g;
-        g.centre = lift(station(k));
+        g.centre = lift<Dim>(station(k));
+        g.axis = rope.grooveAxis(k);
         g.radius = rope.arc(k).radius();
         g.wrapSense = rope.arc(k).wrapSense();
-        return TangencyEnd::circle(g);
+        return g;
     };
-    // Node blocks: a point's position and a groove's centre are stations.
+    auto end = [&](int k) {
+        if (!rope.isWrapped(k)) return TangencyEnd::point(lift<Dim>(station(k)));
+        return TangencyEnd::circle(groove(k));
+    };
+    // Node blocks: a point's position and a groove's centre are stations; a spatial groove's axis
+    // is its own (constant).
     for (int k = 0; k <= N; ++k) {
-        const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? RopeModel<2>::wrappedCentreOffset() : 0);
-        data.x.segment<2>(o) = station(k);
-        if (withRates) data.jacobian.block<2, 2>(o, 2 * k).setIdentity();
+        const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? Model::wrappedCentreOffset() : 0);
+        data.x.template segment<Dim>(o) = station(k);
+        if (withRates) data.jacobian.template block<Dim, Dim>(o, Dim * k).setIdentity();
+        if constexpr (Dim == 3)
+            if (rope.isWrapped(k))
+                data.x.template segment<3>(rope.nodeCoordinateOffset(k) + Model::wrappedAxisOffset()) = rope.grooveAxis(k);
     }
     for (int d = 0; d < rope.numDrivenNodes(); ++d) {
-        data.x[nodeRows + d] = stations[2 * (N + 1) + d];
-        if (withRates) data.jacobian(nodeRows + d, 2 * (N + 1) + d) = 1.0;
+        data.x[nodeRows + d] = stations[Dim * (N + 1) + d];
+        if (withRates) data.jacobian(nodeRows + d, Dim * (N + 1) + d) = 1.0;
     }
     // A wrapped node's arc length l = R alpha, alpha = sigma (phi_out - phi_in): its Jacobian row
     // and bias gather R sigma phi_out's from the span it starts (k) and -R sigma phi_in's from the
     // span it ends (k - 1).
-    auto arcRow = [&](int k) { return rope.nodeCoordinateOffset(k) + RopeModel<2>::wrappedArcLengthOffset(); };
+    auto arcRow = [&](int k) { return rope.nodeCoordinateOffset(k) + Model::wrappedArcLengthOffset(); };
     auto arcScale = [&](int k) { return rope.arc(k).radius() * rope.arc(k).wrapSense(); };
     TangencyJacobian Jt;
     TangencyRates rates;
@@ -98,10 +122,10 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
             const SpanTangency t = computeSpanTangency(a, b, warm ? &data.tangencies[j] : nullptr);
             data.tangencies[j] = t;
             if (withRates) {
-                computeTangencyJacobian(a, b, t, Jt, false);  // planar: the grooves' axes stay +z
+                computeTangencyJacobian(a, b, t, Jt, false);  // the grooves' axes do not turn
                 EndMotion ma, mb;
-                ma.velocity = lift(stationRates.segment<2>(2 * j));
-                mb.velocity = lift(stationRates.segment<2>(2 * (j + 1)));
+                ma.velocity = lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * j)));
+                mb.velocity = lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * (j + 1))));
                 computeTangencyRates(a, b, t, ma, mb, rates);
             }
         } catch (const std::domain_error& e) {
@@ -110,23 +134,25 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
             throw std::domain_error(msg.str());
         }
         const SpanTangency& t = data.tangencies[j];
-        // Jt rows [T1 (3), T2 (3), phi1, phi2], columns [p1 (3), n1 (3), p2 (3), n2 (3)]: the plane's
-        // x, y of the points and the stations of nodes j (columns 0, 1) and j + 1 (6, 7).
+        data.startFleetAngles[j] = t.startFleetAngle;
+        data.endFleetAngles[j] = t.endFleetAngle;
+        // Jt rows [T1 (3), T2 (3), phi1, phi2], columns [p1 (3), n1 (3), p2 (3), n2 (3)]: the first
+        // Dim coordinates of the points and the stations of nodes j (columns 0..) and j + 1 (6..).
         auto rowsOver = [&](int row, double scale, int r) {
-            data.jacobian.block<1, 2>(r, 2 * j) += scale * Jt.block<1, 2>(row, 0);
-            data.jacobian.block<1, 2>(r, 2 * (j + 1)) += scale * Jt.block<1, 2>(row, 6);
+            data.jacobian.template block<1, Dim>(r, Dim * j) += scale * Jt.template block<1, Dim>(row, 0);
+            data.jacobian.template block<1, Dim>(r, Dim * (j + 1)) += scale * Jt.template block<1, Dim>(row, 6);
         };
         // A wrapped end (a drum, Driven) has one tangent point, T_in = T_out, and no arc (l = 0):
         // the rope beyond it is the drum's stored rope. Its material coordinate there is
         // Y_s + sigma R phi, phi the tangent point's angle.
         if (rope.isWrapped(j)) {
             const bool drum = j == 0;
-            for (int offset : {RopeModel<2>::wrappedDepartureOffset(), RopeModel<2>::wrappedArrivalOffset()}) {
-                if (!drum && offset == RopeModel<2>::wrappedArrivalOffset()) continue;
+            for (int offset : {Model::wrappedDepartureOffset(), Model::wrappedArrivalOffset()}) {
+                if (!drum && offset == Model::wrappedArrivalOffset()) continue;
                 const int o = rope.nodeCoordinateOffset(j) + offset;
-                data.x.segment<2>(o) = t.start.head<2>();
+                data.x.template segment<Dim>(o) = t.start.template head<Dim>();
                 if (withRates) {
-                    for (int d = 0; d < 2; ++d) {
+                    for (int d = 0; d < Dim; ++d) {
                         rowsOver(d, 1.0, o + d);
                         data.bias[o + d] = rates.startAcceleration[d];
                     }
@@ -140,12 +166,12 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         }
         if (rope.isWrapped(j + 1)) {
             const bool drum = j + 1 == N;
-            for (int offset : {RopeModel<2>::wrappedArrivalOffset(), RopeModel<2>::wrappedDepartureOffset()}) {
-                if (!drum && offset == RopeModel<2>::wrappedDepartureOffset()) continue;
+            for (int offset : {Model::wrappedArrivalOffset(), Model::wrappedDepartureOffset()}) {
+                if (!drum && offset == Model::wrappedDepartureOffset()) continue;
                 const int o = rope.nodeCoordinateOffset(j + 1) + offset;
-                data.x.segment<2>(o) = t.end.head<2>();
+                data.x.template segment<Dim>(o) = t.end.template head<Dim>();
                 if (withRates) {
-                    for (int d = 0; d < 2; ++d) {
+                    for (int d = 0; d < Dim; ++d) {
                         rowsOver(3 + d, 1.0, o + d);
                         data.bias[o + d] = rates.endAcceleration[d];
                     }
@@ -171,19 +197,20 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     // against the distance to its neighbour); from there alpha is continued, and a wrap angle
     // falling through 0 (the rope leaving the groove) is for the caller to stop at.
     auto pathPoint = [&](int j) {
-        if (j == 0 && rope.isWrapped(0)) return Eigen::Vector2d(data.tangencies[0].start.head<2>());
-        if (j == N && rope.isWrapped(N)) return Eigen::Vector2d(data.tangencies[N - 1].end.head<2>());
-        return station(j);
+        if (j == 0 && rope.isWrapped(0)) return Eigen::Vector3d(data.tangencies[0].start);
+        if (j == N && rope.isWrapped(N)) return Eigen::Vector3d(data.tangencies[N - 1].end);
+        return lift<Dim>(station(j));
     };
     for (int k = 1; k < N && !previous; ++k) {
         if (!rope.isWrapped(k)) continue;
-        const Eigen::Vector2d in = station(k) - pathPoint(k - 1), out = pathPoint(k + 1) - station(k);
-        const double turn = in[0] * out[1] - in[1] * out[0];
+        const Eigen::Vector3d c = lift<Dim>(station(k));
+        const Eigen::Vector3d in = c - pathPoint(k - 1), out = pathPoint(k + 1) - c;
+        const double turn = rope.grooveAxis(k).dot(in.cross(out));
         const int sigma = rope.arc(k).wrapSense();
         if (sigma * turn < -1e-9 * in.norm() * out.norm()) {
             std::ostringstream msg;
             msg << "WrapStationMap: node " << k << ": the rope's path turns " << (turn > 0 ? "counter-clockwise" : "clockwise")
-                << " about the plane normal there (from node " << k - 1 << " past the groove's centre to node " << k + 1
+                << " about the groove's axis there (from node " << k - 1 << " past the groove's centre to node " << k + 1
                 << ") but its wrap sense is " << (sigma > 0 ? "+1" : "-1");
             throw std::domain_error(msg.str());
         }
@@ -191,11 +218,8 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     // Arc lengths l = R alpha, alpha = sigma (phi_out - phi_in) (continuous with the previous alpha).
     for (int k = 1; k < N; ++k) {
         if (!rope.isWrapped(k)) continue;
-        const GrooveArc<2>& arc = rope.arc(k);
-        GrooveCircle g;
-        g.centre = lift(station(k));
-        g.radius = arc.radius();
-        g.wrapSense = arc.wrapSense();
+        const GrooveArc<Dim>& arc = rope.arc(k);
+        const GrooveCircle g = groove(k);
         const double alpha = previous ? wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial,
                                                   data.wrapAngles[k])
                                       : wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial);
@@ -204,7 +228,8 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
     }
     // A wrapped Driven node grips the rope on its groove: the material coordinate at the arriving
     // tangent point is s_in = Y_s + sigma R phi_in, phi_in the tangent point's angle about the
-    // centre, counter-clockwise from "up" (against gravity in the plane; +y without gravity) and
+    // centre, counter-clockwise about the groove's axis n from "up" (against gravity, projected
+    // onto the groove's plane; +y without gravity) and
     // continuous with the previous evaluation's, so the departing span starts at
     // Y_s + sigma R phi_out = s_in + l (the rope does not slide on the groove). Its Jacobian row and
     // bias were gathered with the spans' (phi_in's row of the span arriving there).
@@ -212,8 +237,17 @@ void WrapStationMap::evaluateMap(const Eigen::VectorXd& stations, const Eigen::V
         if (rope.drivenIndex(k) < 0 || !rope.isWrapped(k)) continue;
         // (A drum at the rope's start: the tangent point where span 0 leaves it.)
         const Eigen::Vector3d& radial = k > 0 ? data.tangencies[k - 1].endRadial : data.tangencies[0].startRadial;
-        const Eigen::Vector2d up = upDirection();
-        const double measured = std::atan2(up[0] * radial[1] - up[1] * radial[0], up[0] * radial[0] + up[1] * radial[1]);
+        const Eigen::Vector3d n = rope.grooveAxis(k);
+        Eigen::Vector3d up = upDirection();
+        up -= n * n.dot(up);
+        if (up.norm() < 1e-9) {
+            std::ostringstream msg;
+            msg << "WrapStationMap: node " << k << ": the groove's axis is along gravity: a gripping groove needs an "
+                << "\"up\" in its plane to measure the rope's grip from";
+            throw std::domain_error(msg.str());
+        }
+        up.normalize();
+        const double measured = std::atan2(n.dot(up.cross(radial)), up.dot(radial));
         double phi = measured;
         if (previous) phi = data.arrivalAngles[k] + std::remainder(measured - data.arrivalAngles[k], 2 * M_PI);
         data.arrivalAngles[k] = phi;
@@ -288,8 +322,9 @@ void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A,
     }
 }
 
-void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData,
-                                     Eigen::MatrixXd& SY) const {
+template <int Dim>
+void WrapStationMap<Dim>::stationNodeMass(const WrapStationMapData& map, const RopeData<Dim>& ropeData,
+                                          Eigen::MatrixXd& SY) const {
     const int nx = rope_->numExternalCoordinates();
     if (ropeData.nodeMass.rows() != nx || ropeData.nodeMass.cols() != nx)
         throw std::invalid_argument("WrapStationMap::stationNodeMass: the rope's nodeMass is not formed (" +
@@ -301,8 +336,9 @@ void WrapStationMap::stationNodeMass(const WrapStationMapData& map, const RopeDa
     multiplyByStationJacobianTransposed(map, SJ, SY);
 }
 
-void WrapStationMap::stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData,
-                                      Eigen::VectorXd& hY) const {
+template <int Dim>
+void WrapStationMap<Dim>::stationNodeForce(const WrapStationMapData& map, const RopeData<Dim>& ropeData,
+                                           Eigen::VectorXd& hY) const {
     const int nx = rope_->numExternalCoordinates();
     Eigen::VectorXd f = ropeData.nodeForce;
     if (ropeData.nodeMass.rows() == nx && ropeData.nodeMass.cols() == nx) {
@@ -314,5 +350,8 @@ void WrapStationMap::stationNodeForce(const WrapStationMapData& map, const RopeD
     }
     multiplyByStationJacobianTransposed(map, f, hY);
 }
+
+template class WrapStationMap<2>;
+template class WrapStationMap<3>;
 
 }  // namespace SimbodyReeving

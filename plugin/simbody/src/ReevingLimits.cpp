@@ -37,12 +37,7 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
         for (int j = 0; j < r.numSpans(); ++j) {
             // The span's material: s_{j+1} - s_j less the arc on a wrapped node j (its start is
             // s_j + l_j).
-            double length = sv[j + 1] - sv[j];
-            if (r.planar && r.wraps[j].radius > 0) {
-                const Eigen::VectorXd& q = pc.ropes[i].planar.spanCoordinates(j);
-                const SpanModel<2>& span = r.planarModel->span(j);
-                length = q[span.s2Index()] - q[span.s1Index()];
-            }
+            const double length = sv[j + 1] - spanStartMaterial(s, r, j);
             const double m = length - r.spec.minimumSpanLength;
             if (m < margin) {
                 margin = m;
@@ -58,9 +53,8 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
         // A wrapped sheave whose wrap angle falls to zero: the rope leaves its groove (the tangent
         // points meet; past them the rope would wrap the groove backwards).
         for (int k = 1; k + 1 < r.numNodes(); ++k) {
-            if (!(r.planar && r.wraps[k].radius > 0)) continue;
-            const double arc = pc.ropes[i].planar.spanCoordinates(k)[r.planarModel->span(k).s1Index()] -
-                               pc.ropes[i].planar.materialCoordinates[k];
+            if (!(r.wraps[k].radius > 0)) continue;
+            const double arc = spanStartMaterial(s, r, k) - sv[k];
             if (arc < margin) {
                 margin = arc;
                 if (which)

@@ -50,6 +50,15 @@ std::vector<Vec3> ReevingSubsystem::Guts::sample(const State& s, int rope, int s
     return out;
 }
 
+double ReevingSubsystem::Guts::spanStartMaterial(const State& s, const RopeRecord& r, int span) const {
+    const RopeCache& c = positionCache(s).ropes[r.index];
+    if (!(r.wraps[span].radius > 0))
+        return (r.planar ? c.planar.materialCoordinates : c.spatial.materialCoordinates)[span];
+    // A span leaving a wrapped sheave starts past its arc.
+    if (r.planar) return c.planar.spanCoordinates(span)[r.planarModel->span(span).s1Index()];
+    return c.spatial.spanCoordinates(span)[spatialModel(s, r).span(span).s1Index()];
+}
+
 std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s, int rope, int span) const {
     const Guts& g = getGuts();
     const RopeRecord& r = ropeAt(g, rope);
@@ -57,11 +66,7 @@ std::pair<double, double> ReevingSubsystem::getSpanMaterialRange(const State& s,
         invalid("span index = " + std::to_string(span) + " is outside 0.." + std::to_string(r.numSpans() - 1));
     const RopeCache& c = g.positionCache(s).ropes[rope];
     const Eigen::VectorXd& sv = r.planar ? c.planar.materialCoordinates : c.spatial.materialCoordinates;
-    if (r.planar && r.wraps[span].radius > 0) {  // a span leaving a wrapped sheave starts past its arc
-        const Eigen::VectorXd& q = c.planar.spanCoordinates(span);
-        return {q[r.planarModel->span(span).s1Index()], sv[span + 1]};
-    }
-    return {sv[span], sv[span + 1]};
+    return {g.spanStartMaterial(s, r, span), sv[span + 1]};
 }
 
 double ReevingSubsystem::getArcLength(const State& s, int rope, int node) const {
@@ -70,9 +75,19 @@ double ReevingSubsystem::getArcLength(const State& s, int rope, int node) const 
     if (node < 0 || node >= r.numNodes())
         invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
     // (A wrapped drum, an end node, has no arc: the rope beyond its tangent point is stored rope.)
-    if (!r.planar || !(r.wraps[node].radius > 0) || node == 0 || node + 1 == r.numNodes()) return 0.0;
+    if (!(r.wraps[node].radius > 0) || node == 0 || node + 1 == r.numNodes()) return 0.0;
     const RopeCache& c = g.positionCache(s).ropes[rope];
-    return getSpanMaterialRange(s, rope, node).first - c.planar.materialCoordinates[node];
+    return g.spanStartMaterial(s, r, node) - (r.planar ? c.planar.materialCoordinates : c.spatial.materialCoordinates)[node];
+}
+
+std::pair<double, double> ReevingSubsystem::getFleetAngles(const State& s, int rope, int span) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    if (span < 0 || span >= r.numSpans())
+        invalid("span index = " + std::to_string(span) + " is outside 0.." + std::to_string(r.numSpans() - 1));
+    const RopeCache& c = g.positionCache(s).ropes[rope];
+    if (r.planar) return {0.0, 0.0};
+    return g.spatialModel(s, r).fleetAngles(c.spatial, span);
 }
 
 namespace {
@@ -190,18 +205,22 @@ std::vector<Vec3> ReevingSubsystem::sampleArc(const State& s, int rope, int node
     const RopeRecord& r = ropeAt(g, rope);
     if (node < 0 || node >= r.numNodes())
         invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
-    if (!(r.planar && r.wraps[node].radius > 0) || node == 0 || node + 1 == r.numNodes())
+    if (!(r.wraps[node].radius > 0) || node == 0 || node + 1 == r.numNodes())
         invalid("sampleArc: rope '" + r.spec.name + "' node " + std::to_string(node) +
                 " is not a wrapped sheave (SheaveModel::Wrapped): it has no arc");
     if (numPoints < 2) invalid("sampleArc: numPoints = " + std::to_string(numPoints) + " must be >= 2");
     const RopeCache& c = g.positionCache(s).ropes.at(rope);
-    // The centre in the rope plane (the plane sample() draws the spans in: through the start node).
+    // The centre: in the rope plane for a planar rope (the plane sample() draws the spans in:
+    // through the start node); the station itself for a spatial one. The groove's axis n: the
+    // plane normal, or the sheave's own.
     const Eigen::Vector3d station = c.nodes3.col(node);
-    const Eigen::Vector3d centre = station - r.normal * (r.normal.dot(station) - r.normal.dot(c.nodes3.col(0)));
+    const Eigen::Vector3d centre =
+        r.planar ? Eigen::Vector3d(station - r.normal * (r.normal.dot(station) - r.normal.dot(c.nodes3.col(0)))) : station;
+    const Eigen::Vector3d n = r.planar ? r.normal : r.wraps[node].axis;
     // The arc starts where span k - 1 ends and turns about sigma n (GrooveArc's kinematics):
     // r(theta) = c + cos(theta) d + sin(theta) (sigma n x d), theta in [0, alpha].
     const Eigen::Vector3d d = toEigen(g.sample(s, rope, node - 1, 2).back()) - centre;
-    const Eigen::Vector3d w = (static_cast<double>(r.wraps[node].wrapSense) * r.normal).cross(d);
+    const Eigen::Vector3d w = (static_cast<double>(r.wraps[node].wrapSense) * n).cross(d);
     const double alpha = getArcLength(s, rope, node) / r.wraps[node].radius;
     std::vector<Vec3> out;
     out.reserve(numPoints);

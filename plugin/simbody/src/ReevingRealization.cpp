@@ -497,7 +497,7 @@ int ReevingSubsystem::Guts::calcDecorativeGeometryAndAppendImpl(const State& s, 
         // The rope on the grooves of wrapped sheaves, in the colour of the axial force where it
         // arrives (the end of the span before; the tension equality makes it the departing span's).
         for (int k = 1; k + 1 < r.numNodes(); ++k) {
-            if (!(r.planar && r.wraps[k].radius > 0)) continue;
+            if (!(r.wraps[k].radius > 0)) continue;
             const std::vector<Vec3> p = rv.sampleArc(s, rope, k, decorationPoints);
             const double arrival = rv.getAxialForce(s, rope, k - 1, rv.getSpanMaterialRange(s, rope, k - 1).second);
             const Vec3 colour = forceColour(reference > 0 ? arrival / reference : 0.0);
@@ -525,7 +525,7 @@ std::shared_ptr<const RopeModel<3>> ReevingSubsystem::Guts::makeSpatialModel(
     std::vector<SpanModel<3>> spans;
     for (int j = 0; j < r.numSpans(); ++j)
         spans.emplace_back(r.spec.properties, r.spanOptions[j], toEigen(gravity_), references[j]);
-    auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds);
+    auto model = std::make_shared<RopeModel<3>>(std::move(spans), r.spec.unstretchedLength, r.materialKinds, r.wraps);
     r.addStoredRope(*model);
     model->setStationaryNodes(r.stationaryNodes());
     return model;

@@ -174,9 +174,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     // Wrapped deviation sheaves: the groove's radius and the rope's wrap sense about the plane normal.
     r.wraps.assign(r.numNodes(), NodeWrap{});
     if (spec.sheaveModel == SheaveModel::Wrapped) {
-        if (!r.planar)
-            invalid(who + "SheaveModel::Wrapped is implemented for planar ropes only (give RopeSpec::planeNormal)");
-        const SimTK::UnitVec3 normal(spec.planeNormal);
+        const Vec3 normal = r.planar ? Vec3(SimTK::UnitVec3(spec.planeNormal)) : Vec3(0);
         for (int k = 0; k < r.numNodes(); ++k) {
             const RopeNode& n = r.nodeSpec(k);
             const std::string name = nodeKindName(n.kind);
@@ -209,11 +207,14 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             if (probeRope.numModalCoordinates() != r.numModal)
                 throw std::logic_error("ReevingSubsystem: modal coordinate count mismatch (internal)");
         } else {
+            std::vector<SpanModel<3>> spans;
             for (int j = 0; j < r.numSpans(); ++j) {
-                const SpanModel<3> probe(spec.properties, r.spanOptions[j], gravity);  // validates options
-                r.numModal += probe.numModalCoordinates();
-                r.numModal -= probe.numCondensedModes();  // condensed: not states
+                spans.emplace_back(spec.properties, r.spanOptions[j], gravity);  // validates options
+                r.numModal += spans.back().numModalCoordinates();
+                r.numModal -= spans.back().numCondensedModes();  // condensed: not states
             }
+            // Validates the rope as a chain (material kinds, wraps) now rather than at its first realization.
+            const RopeModel<3> probeRope(std::move(spans), spec.unstretchedLength, r.materialKinds, r.wraps);
         }
     } catch (const std::invalid_argument& e) {
         const std::string msg = e.what();

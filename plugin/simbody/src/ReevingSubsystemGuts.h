@@ -469,6 +469,9 @@ public:
 
     // ---- sampling (ReevingQueries.cpp) -----------------------------------------------------
     std::vector<SimTK::Vec3> sample(const SimTK::State& s, int rope, int span, int numPoints) const;
+    /// The material coordinate where span j starts [m] (Stage::Position): s_j, or past the arc of a
+    /// wrapped sheave at node j (s_j + l_j), from the span's coordinates.
+    double spanStartMaterial(const SimTK::State& s, const detail::RopeRecord& r, int span) const;
 
     // ---- helpers -------------------------------------------------------------------------
     /// The rope cache, valid for the current Z (see realizeSubsystemPositionImpl); velocity-level parts

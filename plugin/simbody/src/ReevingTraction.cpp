@@ -398,13 +398,14 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
         getGuts().positionCache(s);
         return getGuts().tractionWrapAngle(s, r, r.driven[driven]);
     }
+    if (node > 0 && node + 1 < r.numNodes() && r.wraps[node].radius > 0)
+        return getArcLength(s, rope, node) / r.wraps[node].radius;
     if (r.planar && node > 0 && node + 1 < r.numNodes()) {
-        if (r.wraps[node].radius > 0) return getArcLength(s, rope, node) / r.wraps[node].radius;
         const RopeCache& c = getGuts().positionCache(s).ropes[rope];  // a point sheave: its chords' angle
         return c.planarModel->wrapAngle(c.planar, node);
     }
     invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
-            " is neither a TractionSheave nor a sheave of a planar rope: it has no wrap angle");
+            " is neither a TractionSheave, a wrapped sheave nor a sheave of a planar rope: it has no wrap angle");
 }
 
 double ReevingSubsystem::getFrictionPower(const State& s, int rope, int node) const {

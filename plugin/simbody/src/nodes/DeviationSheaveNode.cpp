@@ -16,14 +16,26 @@ void DeviationSheaveNode::addMaterialRelation(NodeSite& site) {
     site.rope.materialKinds[site.node] = MaterialNode::Sliding;
 }
 
-NodeWrap DeviationSheaveNode::wrap(const NodeSite& site, const SimTK::UnitVec3&) {
+NodeWrap DeviationSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     const RopeNode& n = site.spec;
+    const std::string name = "rope '" + site.rope.spec.name + "': sheave " + std::to_string(site.node);
     if (n.sense != 1 && n.sense != -1)
-        invalid("rope '" + site.rope.spec.name + "': sheave " + std::to_string(site.node) +
-                " wrap sense = " + std::to_string(n.sense) + " must be +1 or -1");
+        invalid(name + " wrap sense = " + std::to_string(n.sense) + " must be +1 or -1");
     NodeWrap w;
     w.radius = n.radius;
     w.wrapSense = n.sense;
+    if (planeNormal.norm() > 0) return w;  // planar: the groove turns about the plane normal
+    // Spatial: the groove's axis, a body direction, fixed in Ground while the body keeps Ground's
+    // orientation.
+    const SimTK::Vec3& a = n.axis;
+    if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])) || std::abs(a.norm() - 1) > 1e-12)
+        invalid(name + " axis = " + str(a) + " (|axis| = " + std::to_string(a.norm()) +
+                ") must be a unit vector: a spatial rope's wrapped sheave turns the rope about it");
+    if (!keepsGroundOrientation(n.body))
+        invalid(name + ": with SheaveModel::Wrapped on a spatial rope its body must keep Ground's orientation "
+                       "(Ground, or a Slider, Translation or Weld with aligned frames on such a body): sheaves on "
+                       "turning bodies are not built yet for spatial ropes");
+    w.axis = toEigen(a);
     return w;
 }
 

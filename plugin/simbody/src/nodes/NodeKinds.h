@@ -9,7 +9,8 @@
 ///   - addMaterialRelation(site): how the rope's material coordinate at the node is determined
 ///     (RopeRecord::materialKinds: Fixed, Sliding or Driven; a Driven node's DrivenNode record:
 ///     s = s_ref + dsdTheta theta, a drum's stored rope, a traction sheave's friction);
-///   - wrap(site, normal): its groove with SheaveModel::Wrapped (NodeWrap; radius 0: a point);
+///   - wrap(site, planeNormal): its groove with SheaveModel::Wrapped (NodeWrap; radius 0: a
+///     point); planeNormal is the planar rope's, zero for a spatial rope;
 ///   - kTensionEquality: the node's constraint row is the frictionless tension equality (its
 ///     residual counts in getMaxConstraintError);
 ///   - draw(drawing): its Visualizer decoration (NodeDrawing.h).
@@ -38,13 +39,17 @@ struct NodeSite {
 /// "what = value must be must" for messages.
 std::string mustBe(const std::string& what, double value, const char* must);
 
+/// True if body b keeps Ground's orientation: Ground, or a Slider, Translation or Weld whose
+/// inboard and outboard frames are aligned, on such a body.
+bool keepsGroundOrientation(const SimTK::MobilizedBody& b);
+
 /// An end fastened to a body: s fixed (0 at the start, L at the end). Ends only.
 struct AnchorNode {
     static constexpr const char* kName = "Anchor";
     static constexpr bool kAtEnds = true, kInPath = false, kTensionEquality = false;
     static void validate(const NodeSite&) {}
     static void addMaterialRelation(NodeSite& site);
-    static NodeWrap wrap(const NodeSite&, const SimTK::UnitVec3&) { return {}; }
+    static NodeWrap wrap(const NodeSite&, const SimTK::Vec3&) { return {}; }
     static void draw(const NodeDrawing& drawing);
 };
 
@@ -54,7 +59,7 @@ struct DeviationSheaveNode {
     static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = true;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
-    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
 };
 
@@ -64,7 +69,7 @@ struct WinchDrumNode {
     static constexpr bool kAtEnds = true, kInPath = false, kTensionEquality = false;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
-    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
 };
 
@@ -74,7 +79,7 @@ struct TurningSheaveNode {
     static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
-    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
 };
 
@@ -85,7 +90,7 @@ struct TractionSheaveNode {
     static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
-    static NodeWrap wrap(const NodeSite& site, const SimTK::UnitVec3& normal);
+    static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
 };
 

@@ -7,11 +7,7 @@
 namespace SimbodyReeving {
 namespace detail {
 
-namespace {
-
-// True if body b keeps Ground's orientation: Ground, or a Slider, Translation or Weld whose
-// inboard and outboard frames are aligned, on such a body.
-bool alignedWithGround(const SimTK::MobilizedBody& b) {
+bool keepsGroundOrientation(const SimTK::MobilizedBody& b) {
     if (b.isGround()) return true;
     using SimTK::MobilizedBody;
     if (!MobilizedBody::Slider::isInstanceOf(b) && !MobilizedBody::Translation::isInstanceOf(b) &&
@@ -20,10 +16,8 @@ bool alignedWithGround(const SimTK::MobilizedBody& b) {
     const SimTK::Rotation& inboard = b.getDefaultInboardFrame().R();
     const SimTK::Rotation& outboard = b.getDefaultOutboardFrame().R();
     if (std::abs(std::abs((~inboard * outboard).convertRotationToAngleAxis()[0])) > 1e-14) return false;
-    return alignedWithGround(b.getParentMobilizedBody());
+    return keepsGroundOrientation(b.getParentMobilizedBody());
 }
-
-}  // namespace
 
 std::string mustBe(const std::string& what, double value, const char* must) {
     std::ostringstream o;
@@ -51,22 +45,30 @@ RopeRecord::DrivenNode drivenNodeOf(NodeSite& site) {
     return d;
 }
 
-NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::UnitVec3& normal) {
+NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal) {
     const RopeNode& n = site.spec;
     const std::string name =
         "rope '" + site.rope.spec.name + "': " + kindName + " at node " + std::to_string(site.node);
-    if (!alignedWithGround(n.body.getParentMobilizedBody()))
+    if (!keepsGroundOrientation(n.body.getParentMobilizedBody()))
         invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
                        "(Slider, Translation or Weld with aligned frames, on such a body): the rope's grip on the "
                        "groove is measured from Ground's angles");
     const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
+    const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
+    NodeWrap w;
+    w.radius = n.radius;
+    if (!(planeNormal.norm() > 0)) {
+        // A spatial rope: the groove turns about the pin axis (in Ground: the parent keeps Ground's
+        // orientation), and the rope wraps it against the sense a positive pin angle moves it.
+        w.axis = Eigen::Vector3d(axis[0], axis[1], axis[2]);
+        w.wrapSense = dsdTheta > 0 ? -1 : 1;
+        return w;
+    }
+    const SimTK::UnitVec3 normal(planeNormal);
     const double alignment = SimTK::dot(axis, normal);
     if (std::abs(std::abs(alignment) - 1) > 1e-12)
         invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
                 " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
-    const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
-    NodeWrap w;
-    w.radius = n.radius;
     w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
     return w;
 }

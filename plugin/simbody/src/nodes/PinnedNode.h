@@ -24,7 +24,7 @@ RopeRecord::DrivenNode drivenNodeOf(NodeSite& site);
 /// Ground's orientation (the tangent points' angles are measured in Ground).
 /// kindName names the node in the messages ("rope 'r': TurningSheave at node 1: ...").
 /// @throws std::invalid_argument if the parent turns or the pin axis is off the plane normal.
-NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::UnitVec3& normal);
+NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal);
 
 }  // namespace detail
 }  // namespace SimbodyReeving

@@ -33,8 +33,8 @@ void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
     d.momentumSlip = site.spec.slipModel == TractionSlip::RopeMomentum;
 }
 
-NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::UnitVec3& normal) {
-    return grippingSheaveWrap(site, kName, normal);
+NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
+    return grippingSheaveWrap(site, kName, planeNormal);
 }
 
 }  // namespace detail

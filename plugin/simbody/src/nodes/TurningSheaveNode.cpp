@@ -20,8 +20,8 @@ void TurningSheaveNode::addMaterialRelation(NodeSite& site) {
     site.rope.driven.push_back(d);
 }
 
-NodeWrap TurningSheaveNode::wrap(const NodeSite& site, const SimTK::UnitVec3& normal) {
-    return grippingSheaveWrap(site, kName, normal);
+NodeWrap TurningSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
+    return grippingSheaveWrap(site, kName, planeNormal);
 }
 
 }  // namespace detail

@@ -30,10 +30,10 @@ void WinchDrumNode::addMaterialRelation(NodeSite& site) {
     site.rope.driven.push_back(d);
 }
 
-NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::UnitVec3& normal) {
+NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus sigma R
     // phi); the stored rope is the rest.
-    return grippingSheaveWrap(site, kName, normal);
+    return grippingSheaveWrap(site, kName, planeNormal);
 }
 
 }  // namespace detail

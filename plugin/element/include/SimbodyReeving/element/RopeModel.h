@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace SimbodyReeving {
@@ -61,7 +62,8 @@ enum class MaterialNode {
 /// the tangent point T_out with the material coordinate s_k + l (s_k the node's material
 /// coordinate, at T_in). The tangent points, the groove's centre (and axis in 3D) and l are
 /// external coordinates given by the caller, as a point node's position is (the wrap geometry
-/// computes them from the bodies, computeSpanTangency and wrapAngle). A wrapped interior node may be
+/// computes them from the bodies, computeSpanTangency and wrapAngle; WrapStationMap from the
+/// node stations, the NodeMatrix forms below). A wrapped interior node may be
 /// Sliding (a frictionless sheave: s_k solved from the tension equality), Driven (a sheave that
 /// grips the rope: s_k given, WrapStationMap carries it around the groove with the sheave's
 /// rotation) or Slipping (a traction sheave in slip; its capstan law may follow the arc,
@@ -71,8 +73,12 @@ struct NodeWrap {
     /// R [m] of the rope's centre line on the groove; 0 (the default): a point node. A wrapped
     /// end node must be Driven; R finite and >= 0.
     double radius = 0;
-    /// sigma: +1 or -1 (GrooveCircle::wrapSense).
+    /// sigma: +1 or -1 (GrooveCircle::wrapSense): the sense the rope turns about the axis.
     int wrapSense = 1;
+    /// n [-]: the groove's unit axis in a spatial rope (Dim = 3), in the frame of the node
+    /// positions; a finite unit vector (|n| within 1e-12 of 1). A planar rope's grooves turn
+    /// about +z, and this field is not read.
+    Eigen::Vector3d axis{0.0, 0.0, 1.0};
 };
 
 template <int Dim>
@@ -218,8 +224,8 @@ public:
     /// @param wraps one NodeWrap per node (N + 1); empty: every node a point.
     /// @throws std::invalid_argument for no spans, spans with different rope properties, L not
     ///         finite and > 0, nodeKinds or wraps of the wrong size, a Fixed interior node or a
-    ///         Sliding end, a wrapped end node that is not Driven, a wrap radius not finite and >= 0 or a wrap sense
-    ///         other than +1 or -1.
+    ///         Sliding end, a wrapped end node that is not Driven, a wrap radius not finite and >= 0, a wrap sense
+    ///         other than +1 or -1, or (Dim = 3) a wrapped node's axis that is not a finite unit vector.
     RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
               std::vector<NodeWrap> wraps = {});
 
@@ -242,6 +248,8 @@ public:
     /// wrapped node, [c, T_in, T_out, n (Dim = 3 only), l] at the offsets below.
     int nodeCoordinateOffset(int node) const { return nodeOffset_[node]; }
     bool isWrapped(int node) const { return arcIndex_[node] >= 0; }          ///< NodeWrap::radius > 0
+    /// The groove's unit axis n of node k (NodeWrap::axis in a spatial rope; +z in a planar one).
+    const Eigen::Vector3d& grooveAxis(int node) const { return grooveAxes_[node]; }
     int numWrappedNodes() const { return static_cast<int>(arcs_.size()); }  ///< nodes with a groove arc
     /// The rope on the groove of wrapped node k (its mass, radius and sense).
     /// @throws std::invalid_argument if node is not wrapped.
@@ -259,9 +267,18 @@ public:
 
     /// Declares rope stored at a Driven end node (a winch drum): its length is
     ///     l = lengthAtZero + s_0 (start node) or l = lengthAtZero - s_N (end node) [m]
-    /// (hauling material out of the spans stores it), held as a ring of radius R at the node
-    /// moving with it, so it has
+    /// (hauling material out of the spans stores it). At a point drum it is held as a ring at the
+    /// node moving with it at the rope's rate there (the drum's surface speed):
     ///     T_stored = 1/2 rhoA l (|rdot_k|^2 + sdot_k^2),   U_stored = -rhoA l g . r_k.
+    /// At a wrapped drum (NodeWrap) it lies on the groove and turns with the drum, whatever the
+    /// tangent point does: with c the groove's centre, v = sdot_k - sigma R phidot the drum's
+    /// surface speed (phi the tangent point's angle from "up") and psi_e = phi -+ sigma l / R the
+    /// angle of its far end,
+    ///     T_stored = 1/2 rhoA [l (|cdot|^2 + v^2) -+ 2 R v cdot . (u(phi) - u(psi_e))],
+    ///     U_stored = -rhoA l g . c +- rhoA |g| sigma R^2 (sin phi - sin psi_e)
+    /// (upper signs at the rope's start; u(psi) the groove's radial direction at angle psi): the
+    /// integrals over the stored material of one layer, the partial turn's terms included (planar
+    /// ropes).
     /// Without it the material would vanish from the model at the drum, carrying its potential
     /// energy -rhoA g . r_k per metre out through the span's generalized force on s_k: a drum torque
     /// that depends on the height datum. With it the torque is datum-free, the stored rope's weight
@@ -308,6 +325,12 @@ public:
     /// slip over a Slipping node's groove (0 at a Driven node), sdot_k - surfaceRate its slip rate.
     /// @throws std::invalid_argument as surfaceCoordinate.
     double surfaceRate(const RopeData<Dim>& data, int node) const;
+    /// The fleet angles [rad] of span j at its start and its end in the geometry of data's last
+    /// evaluation from node positions or stations (WrapStationMapData::startFleetAngles): the angle
+    /// between the span and the groove's plane of a wrapped node there, 0 at point nodes and in a
+    /// planar rope.
+    /// @throws std::invalid_argument if span is out of range or data holds no such evaluation.
+    std::pair<double, double> fleetAngles(const RopeData<Dim>& data, int span) const;
     double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa_0 of a Slipping node (else 1)
     double slipAngleExponent(int node) const { return slipExponent_[node]; }  ///< c [1/rad] of a Slipping node (else 0)
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
@@ -318,10 +341,8 @@ public:
     void setStationaryNodes(const std::vector<bool>& stationary);
     /// Gravity energy of the stored rope at these node positions and material coordinates [J].
     double storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
-    /// Gravity energy of the rope on the groove arcs [J] at these stations (a planar rope with
-    /// wrapped nodes; see the class comment on stations) and data's material coordinates; 0
-    /// without wrapped nodes.
-    /// @throws std::invalid_argument for a spatial rope with wrapped nodes.
+    /// Gravity energy of the rope on the groove arcs [J] at these stations (a rope with wrapped
+    /// nodes: WrapStationMap) and data's material coordinates; 0 without wrapped nodes.
     double arcGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
     /// Number of modal state coordinates (all spans' modes, less the condensed axial amplitudes of
     /// QuasiStatic spans): the length of the qm vectors below.
@@ -360,10 +381,10 @@ public:
     /// As above for ropes without Driven nodes.
     void solveDependentCoordinates(const NodeMatrix& nodes, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
     /// As above, with all external coordinates x (numExternalCoordinates(): the node blocks, then
-    /// the Driven material coordinates): the form ropes with wrapped nodes take. The NodeMatrix
-    /// forms are for ropes of point nodes and pack x from their arguments.
-    /// @throws std::invalid_argument if x has the wrong size, or a NodeMatrix form is called on a
-    ///         rope with wrapped nodes.
+    /// the Driven material coordinates). The NodeMatrix forms pack x from their arguments for a
+    /// rope of point nodes, and map it from the node stations (WrapStationMap) for a rope with
+    /// wrapped nodes.
+    /// @throws std::invalid_argument if x has the wrong size.
     void solveDependentCoordinatesFromExternal(const Eigen::VectorXd& x, const Eigen::VectorXd& qm,
                                                RopeData<Dim>& data) const;
 
@@ -465,7 +486,7 @@ private:
     const Eigen::VectorXd& packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS, RopeData<Dim>& data,
                                         bool rates) const;
     /// The external coordinates from the NodeMatrix forms' arguments: packed as they are for a
-    /// rope of point nodes; for a planar rope with wrapped nodes, mapped from the stations
+    /// rope of point nodes; for a rope with wrapped nodes, mapped from the stations
     /// (WrapStationMap, rates optional) into data's scratch.
     const Eigen::VectorXd& stationsToExternal(const NodeMatrix& nodes, const NodeMatrix* nodeVelocities,
                                               const Eigen::VectorXd& drivenS, const Eigen::VectorXd* drivenSdot,
@@ -479,7 +500,7 @@ private:
     /// The station map's positions at these stations (WrapStationMap::evaluatePositions: no J, b),
     /// its wrap angles continued from data's.
     WrapStationMapData stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
-    /// The external coordinates x of a planar rope with wrapped nodes at these node stations (the
+    /// The external coordinates x of a rope with wrapped nodes at these node stations (the
     /// driven entries aside): the last solve's or dynamics' map when its stations are these, else
     /// a positions-only map in data's scratch.
     const Eigen::VectorXd& mappedPositions(const NodeMatrix& nodes, const RopeData<Dim>& data) const;
@@ -518,6 +539,7 @@ private:
     std::vector<GrooveArc<Dim>> arcs_;
     std::vector<int> arcIndex_, arcNode_;  // node -> arc index or -1; arc -> node
     std::vector<int> nodeOffset_;          // node -> first external coordinate of its block
+    std::vector<Eigen::Vector3d> grooveAxes_;  // node -> its groove's axis (+z at point nodes and in 2D)
     int numNodeCoordinates_ = 0;
     std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1

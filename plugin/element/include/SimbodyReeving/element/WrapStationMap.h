@@ -1,9 +1,10 @@
 #pragma once
 /// @file
-/// A planar rope's external coordinates as functions of its node stations (pure C++/Eigen): the
-/// tangent points and arc lengths of its wrapped nodes from the anchor points and groove centres
-/// that bodies carry, with their Jacobian and bias accelerations, and the rope's effective mass
-/// and force carried over to the stations.
+/// A rope's external coordinates as functions of its node stations (pure C++/Eigen): the tangent
+/// points and arc lengths of its wrapped nodes from the anchor points and groove centres that
+/// bodies carry, with their Jacobian and bias accelerations, and the rope's effective mass and
+/// force carried over to the stations. Planar ropes (RopeModel<2>) and spatial ones (RopeModel<3>,
+/// the grooves' axes NodeWrap::axis).
 
 #include "SimbodyReeving/element/RopeModel.h"
 #include "SimbodyReeving/element/WrapGeometry.h"
@@ -31,9 +32,14 @@ struct WrapStationMapData {
     /// previous values the next evaluation keeps alpha continuous with (wrapAngle).
     Eigen::VectorXd wrapAngles;
     /// Per node: phi_in [rad] at a wrapped Driven node, the arriving tangent point's angle about
-    /// the groove's centre, counter-clockwise from "up" (against the rope's gravity; +y without
-    /// gravity), continuous with the previous evaluation's (0 at other nodes).
+    /// the groove's centre, counter-clockwise about the groove's axis from "up" (against the
+    /// rope's gravity, projected onto the groove's plane; +y without gravity), continuous with the
+    /// previous evaluation's (0 at other nodes).
     Eigen::VectorXd arrivalAngles;
+    /// Per span: the fleet angle gamma [rad] at its start (SpanTangency; 0 at a point end and in a
+    /// planar rope), the angle between the span and the groove's plane there.
+    Eigen::VectorXd startFleetAngles;
+    Eigen::VectorXd endFleetAngles;  ///< per span: the fleet angle gamma [rad] at its end (as startFleetAngles)
 };
 
 /// out = J X, over J's row bands (map.jacobianRowStart, jacobianRowWidth).
@@ -52,20 +58,24 @@ void multiplyByStationJacobianTransposed(const WrapStationMapData& map, const Ei
 void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A, const WrapStationMapData& map,
                                      Eigen::MatrixXd& out);
 
-/// A planar rope's external coordinates as functions of the stations its bodies carry.
+/// A rope's external coordinates as functions of the stations its bodies carry.
 ///
-/// The rope's (RopeModel<2>) external coordinates x follow from its stations
-///     Y = [p_0, ..., p_N (2 each), s at the Driven nodes],
+/// The rope's (RopeModel<Dim>) external coordinates x follow from its stations
+///     Y = [p_0, ..., p_N (Dim each), s at the Driven nodes],
 /// p_k the position of an end or point node, and the groove centre c_k of a wrapped node
 /// (NodeWrap): what the bodies carry. Each span's ends follow from its two nodes by the wrap
-/// geometry (computeSpanTangency: point-to-circle and circle-to-circle, open or crossed, the groove
-/// axis the plane's normal +z, the sense the node's NodeWrap::wrapSense), and each wrapped node's
+/// geometry (computeSpanTangency: point-to-circle and circle-to-circle, open or crossed; the groove
+/// axis the plane's normal +z in a planar rope, NodeWrap::axis in a spatial one, where a span may
+/// leave a groove's plane at a fleet angle; the sense the node's NodeWrap::wrapSense), and each wrapped node's
 /// arc length from its two tangent points, l = R alpha (wrapAngle, continuous from the previous
 /// evaluation's alpha). So x = Phi(Y), xdot = J Ydot and xddot = J Yddot + b, with J and b from the
-/// tangency's analytic first and second time derivatives (computeTangencyRates).
+/// tangency's analytic first and second time derivatives (computeTangencyRates). A spatial
+/// wrapped node's axis entries of x are its NodeWrap::axis, constant: the grooves' bodies keep
+/// their orientation (their J rows and b are zero).
 ///
 /// At a wrapped Driven node (a sheave that grips the rope: it does not slide on the groove) the
-/// station Y_s is the material coordinate at the groove's "up" point (against gravity), so the
+/// station Y_s is the material coordinate at the groove's "up" point (against gravity, projected
+/// onto the groove's plane in 3D), so the
 /// rope's material coordinate where it arrives on the groove is s_k = Y_s + sigma R phi_in, phi_in
 /// the arriving tangent point's angle from "up" (WrapStationMapData::arrivalAngles), and the
 /// departing span starts at s_k + l = Y_s + sigma R phi_out. For a sheave turning by theta about
@@ -81,15 +91,17 @@ void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A,
 /// f = S xddot - h, so on the stations J^T f = S_Y Yddot - h_Y): stationNodeMass and
 /// stationNodeForce. Lagrange's equations in Y follow by the chain rule, so the rope's T + U stays
 /// the invariant it is in x.
+template <int Dim>
 class WrapStationMap {
 public:
+    using Vec = Eigen::Matrix<double, Dim, 1>;  ///< a point or vector [m]
     /// @param rope the rope whose nodes are mapped (it must outlive the map); without wrapped nodes
     ///        the map is the identity.
-    explicit WrapStationMap(const RopeModel<2>& rope) : rope_(&rope) {}
+    explicit WrapStationMap(const RopeModel<Dim>& rope) : rope_(&rope) {}
 
-    const RopeModel<2>& rope() const { return *rope_; }  ///< the mapped rope
-    /// Number of station coordinates: 2 (N + 1) + RopeModel::numDrivenNodes().
-    int numStationCoordinates() const { return 2 * rope_->numNodes() + rope_->numDrivenNodes(); }
+    const RopeModel<Dim>& rope() const { return *rope_; }  ///< the mapped rope
+    /// Number of station coordinates: Dim (N + 1) + RopeModel::numDrivenNodes().
+    int numStationCoordinates() const { return Dim * rope_->numNodes() + rope_->numDrivenNodes(); }
 
     /// x, xdot, J and b at the stations Y and their rates Ydot. data.wrapAngles, when it holds a
     /// value per node, is the previous evaluation's (alpha stays continuous through full turns);
@@ -100,7 +112,8 @@ public:
     ///         without previous wrap angles (where alpha starts), when the path through a wrapped
     ///         node's neighbours and centre turns against its wrap sense (the sense given the wrong
     ///         way). With previous ones alpha is continued and may fall below 0 (the rope leaving
-    ///         the groove: ReevingSubsystem ends a run there).
+    ///         the groove: ReevingSubsystem ends a run there). In 3D also when a wrapped Driven
+    ///         node's axis is along gravity (its grip has no "up" in the groove's plane).
     void evaluate(const Eigen::VectorXd& stations, const Eigen::VectorXd& stationRates, WrapStationMapData& data) const;
     /// x (and the tangencies and wrap angles) alone, at the stations Y: what a solve of the
     /// positions or a query needs. data.jacobian, data.bias and data.xdot are left empty.
@@ -109,15 +122,18 @@ public:
 
     /// S_Y = J^T S J from the rope's formed nodeMass (RopeData::formNodeMass).
     /// @throws std::invalid_argument if ropeData holds no formed nodeMass of the map's size.
-    void stationNodeMass(const WrapStationMapData& map, const RopeData<2>& ropeData, Eigen::MatrixXd& SY) const;
+    void stationNodeMass(const WrapStationMapData& map, const RopeData<Dim>& ropeData, Eigen::MatrixXd& SY) const;
     /// h_Y = J^T (h - S b) (S b by RopeModel::multiplyByNodeMass, S need not be formed).
-    void stationNodeForce(const WrapStationMapData& map, const RopeData<2>& ropeData, Eigen::VectorXd& hY) const;
+    void stationNodeForce(const WrapStationMapData& map, const RopeData<Dim>& ropeData, Eigen::VectorXd& hY) const;
 
 private:
-    Eigen::Vector2d upDirection() const;  // -g / |g| in the plane, +y without gravity
+    Eigen::Vector3d upDirection() const;  // -g / |g|, +y without gravity
     void evaluateMap(const Eigen::VectorXd& stations, const Eigen::VectorXd* stationRates,
                      WrapStationMapData& data) const;
-    const RopeModel<2>* rope_;
+    const RopeModel<Dim>* rope_;
 };
+
+extern template class WrapStationMap<2>;
+extern template class WrapStationMap<3>;
 
 }  // namespace SimbodyReeving

@@ -65,7 +65,13 @@ enum class SheaveModel {
     /// on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
     /// TractionSheave nodes of planar ropes (a TurningSheave's or TractionSheave's wrap sense follows
     /// from its sense and pin axis, see TurningSheave; a TractionSheave without a given wrap angle
-    /// then takes the geometry's, see TractionSheave) and WinchDrum nodes (see WinchDrum).
+    /// then takes the geometry's, see TractionSheave) and WinchDrum nodes (see WinchDrum). On a
+    /// spatial rope (no plane normal) it applies to DeviationSheave nodes, each with its groove's
+    /// axis (DeviationSheave::axis), and to TurningSheave and WinchDrum nodes, whose grooves turn
+    /// about their pin axes: the spans arrive and leave at the 3D tangent points, out of the
+    /// groove's plane by their fleet angles (getFleetAngles), and the arc lies in that plane (a
+    /// gripping groove's material coordinate is measured from "up", gravity projected onto its
+    /// plane: its axis must not be vertical). TractionSheave nodes stay planar.
     Wrapped,
 };
 
@@ -126,6 +132,10 @@ struct RopeNode {
     double frictionCoefficient = 0;  ///< TractionSheave: mu [-], >= 0
     double wrapAngle = 0;            ///< TractionSheave: alpha [rad], in [0, 20 pi]; 0: from the geometry
     TractionSlip slipModel = TractionSlip::CapstanConstraint;  ///< TractionSheave: how it slips
+    /// DeviationSheave of a spatial rope with SheaveModel::Wrapped: the groove's axis n in the body
+    /// frame [-], a unit vector (|n| within 1e-12 of 1); the rope's wrap sense is about it. Not
+    /// read for planar ropes (their grooves turn about the plane normal).
+    SimTK::Vec3 axis{0};
 
     RopeNode() = default;
     /// An Anchor at `station` of `body`.
@@ -153,13 +163,21 @@ struct DeviationSheave {
     SimTK::MobilizedBody body;  ///< the body carrying the sheave (Ground allowed)
     SimTK::Vec3 centre{0};      ///< the sheave's centre in the body's frame [m]
     double radius = 0;          ///< [m], > 0
-    /// With SheaveModel::Wrapped: +1 if the rope turns counter-clockwise about the plane normal on
-    /// the groove (running from the rope's start to its end), -1 clockwise.
+    /// With SheaveModel::Wrapped: +1 if the rope turns counter-clockwise about the plane normal
+    /// (a spatial rope: about `axis`) on the groove (running from the rope's start to its end), -1
+    /// clockwise.
     int wrapSense = 1;
+    /// With SheaveModel::Wrapped on a spatial rope: the groove's axis in the body's frame [-], a
+    /// unit vector. The body must keep Ground's orientation (Ground, or a Slider, Translation or
+    /// Weld with aligned frames on such a body): the groove's plane stays put while the rope
+    /// arrives and leaves at any fleet angle (the angle between a span and that plane). Not read
+    /// for planar ropes.
+    SimTK::Vec3 axis{0};
     /// The RopeNode of kind DeviationSheave.
     operator RopeNode() const {
         RopeNode n(body, centre, radius);
         n.sense = wrapSense;
+        n.axis = axis;
         return n;
     }
 };
@@ -176,9 +194,9 @@ struct DeviationSheave {
 /// that plus sigma R phi (phi the tangent point's angle from the top, sigma = -sign(dsdTheta)
 /// (pin axis . n)), and the stored rope, ropeOnDrum + s_0 (ropeOnDrum + L - s_N), counts the rope
 /// up to the tangent point: ropeOnDrum is the rope stored up to the top at pin angle 0. The pin's
-/// parent must keep Ground's orientation (as for a wrapped TurningSheave). The stored rope's ring
-/// moves at the tangent point's material rate (the drum's surface speed, plus R phidot while the
-/// tangent point moves round the drum).
+/// parent must keep Ground's orientation (as for a wrapped TurningSheave). The stored rope lies on
+/// the groove and turns with the drum (its kinetic and gravity energies are those of one layer of
+/// it, the partial turn included; RopeModel::setStoredRope), whatever the tangent point does.
 struct WinchDrum {
     SimTK::MobilizedBody body;  ///< the drum: a MobilizedBody::Pin
     double radius = 0;          ///< R [m], > 0
@@ -473,12 +491,12 @@ public:
     /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position; alpha as getWrapAngle).
     double getTractionLimit(const SimTK::State& state, int rope, int node) const;
     /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
-    /// uses (the given one, else the current geometry's as below); at any other sheave of a planar
-    /// rope the current geometry's: l / R with l = getArcLength with SheaveModel::Wrapped, the
-    /// turning angle between the chords of the two spans at a point sheave (pi - the angle between
-    /// them at the node; RopeModel::wrapAngle).
+    /// uses (the given one, else the current geometry's as below); at any other sheave the current
+    /// geometry's: l / R with l = getArcLength with SheaveModel::Wrapped (planar or spatial), the
+    /// turning angle between the chords of the two spans at a point sheave of a planar rope (pi -
+    /// the angle between them at the node; RopeModel::wrapAngle).
     /// @throws std::invalid_argument if rope or node is out of range, or the node is an end node
-    ///         or a sheave of a spatial rope other than a TractionSheave with a given angle.
+    ///         or a point sheave of a spatial rope other than a TractionSheave with a given angle.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
     /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node and at a wrapped
@@ -487,6 +505,12 @@ public:
     /// of the rope on its drums.
     /// @throws std::invalid_argument if rope or node is out of range.
     double getArcLength(const SimTK::State& state, int rope, int node) const;
+    /// The fleet angles gamma [rad] of a span (Stage::Position): at its start and at its end, the
+    /// angle between the span and the groove's plane of the wrapped sheave it leaves or reaches
+    /// (positive towards the groove's axis), asin(u . n) with u the span's direction; 0 at point
+    /// nodes and anchors and on planar ropes (the span lies in every groove's plane).
+    /// @throws std::invalid_argument if rope or span is out of range.
+    std::pair<double, double> getFleetAngles(const SimTK::State& state, int rope, int span) const;
     /// Friction power dissipated in the groove [W] (Stage::Velocity; 0 in stick): (P_a - P_b) v >= 0
     /// with TractionSlip::CapstanConstraint; with TractionSlip::RopeMomentum sigma F v - c Ydot
     /// (its friction's power plus that of the end-force correction c, see TractionSlip).
