@@ -164,9 +164,11 @@ TEST(WrappedTurningSheave, AtwoodMachineConservesEnergy) {
     EXPECT_LT(worst, 1e-10 * KE0);
 }
 
-// Bad input: a wrapped TurningSheave whose pin's parent turns (here a rocker on a pin), or whose
-// pin axis is not the plane's normal. A parent that only translates (a Slider carriage) is fine.
-TEST(WrappedTurningSheave, RejectsPinsOffGroundOrAcrossThePlane) {
+// Bad input: a wrapped TurningSheave whose pin axis is not the plane's normal, a wrapped
+// TractionSheave whose pin's parent turns (here a rocker on a pin). A TurningSheave may sit on the
+// rocker (its groove turns with it: test_wrapped_sheave_on_turning_body.cpp), and on a parent that
+// only translates (a Slider carriage).
+TEST(WrappedTurningSheave, RejectsPinsAcrossThePlaneAndTractionOnTurningParents) {
     SimTK::MultibodySystem system;
     SimTK::SimbodyMatterSubsystem matter(system);
     ReevingSubsystem reeving(system, Vec3(0, -kG, 0));
@@ -184,14 +186,20 @@ TEST(WrappedTurningSheave, RejectsPinsOffGroundOrAcrossThePlane) {
     spec.unstretchedLength = 6.5;
     spec.planeNormal = Vec3(0, 0, 1);
     spec.sheaveModel = SheaveModel::Wrapped;
-    spec.sheaves = {TurningSheave{onCarriage, 0.2, 3.3, 1}};
+    TractionSheave traction;
+    traction.body = onCarriage;
+    traction.radius = 0.2;
+    traction.frictionCoefficient = 0.2;
+    spec.sheaves = {traction};
     EXPECT_THROW_MESSAGE(reeving.addRope(spec), std::invalid_argument,
-                         "TurningSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground or "
+                         "TractionSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground or "
                          "translate without turning");
     spec.sheaves = {TurningSheave{tilted, 0.2, 3.3, 1}};
     EXPECT_THROW_MESSAGE(reeving.addRope(spec), std::invalid_argument,
                          "TurningSheave at node 1: with SheaveModel::Wrapped its pin axis (1, 0, 0) must be along the "
                          "rope's plane normal (0, 0, 1)");
     spec.sheaves = {TurningSheave{onSlider, 0.2, 3.3, 1}};
+    EXPECT_NO_THROW(reeving.addRope(spec));
+    spec.sheaves = {TurningSheave{onCarriage, 0.2, 3.3, 1}};
     EXPECT_NO_THROW(reeving.addRope(spec));
 }

@@ -109,8 +109,10 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                     const auto [a, d] = rowOwner_[col];
                     const Vec3 dir = toSimTK(mobileNodes_[a].directions.col(d));
                     ws.bodyForcesUnit[mobileNodes_[a].bodyIndex] += SpatialVec(ws.nodeOffsets[a] % dir, dir);
+                } else if (const MobileAngle& ma = mobileAngles_[col - ns]; ma.absolute) {
+                    ws.bodyForcesUnit[ma.bodyIndex] += SpatialVec(ma.dsdTheta * ma.axis, Vec3(0));
                 } else {
-                    ws.mobilityForcesUnit[ws.angleU[col - ns]] += mobileAngles_[col - ns].dsdTheta;
+                    ws.mobilityForcesUnit[ws.angleU[col - ns]] += ma.dsdTheta;
                 }
                 matter().calcAcceleration(s, ws.mobilityForcesUnit, ws.bodyForcesUnit, ws.udot, ws.A_GB);
                 couplingAccelerations(pc, ws.A_GB, ws.udot, ws.aUnit);
@@ -180,7 +182,13 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             const Vec3 force = -toSimTK(mn.directions.leftCols(mn.dims) * ws.f.segment(mn.row, mn.dims));
             bodyForces[mn.bodyIndex] += SpatialVec(ws.nodeOffsets[a] % force, force);
         }
-        for (int a = 0; a < na; ++a) mobilityForces[ws.angleU[a]] -= mobileAngles_[a].dsdTheta * ws.f[ns + a];
+        for (int a = 0; a < na; ++a) {
+            const MobileAngle& ma = mobileAngles_[a];
+            if (ma.absolute)  // a torque about the groove's axis on the sheave itself
+                bodyForces[ma.bodyIndex] += SpatialVec(-ma.dsdTheta * ws.f[ns + a] * ma.axis, Vec3(0));
+            else
+                mobilityForces[ws.angleU[a]] -= ma.dsdTheta * ws.f[ns + a];
+        }
     }
 
     productCoupling_ = products;
@@ -283,8 +291,9 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
     const int k = static_cast<int>(ws.U.size());
     ws.JU.setZero(n, k);
     ws.udotUnit.resize(nu);
-    for (int a = 0; a < na; ++a)  // driven rows: dsdTheta at the pin's mobility
-        ws.JU(ns + a, std::lower_bound(ws.U.begin(), ws.U.end(), ws.angleU[a]) - ws.U.begin()) = mobileAngles_[a].dsdTheta;
+    for (int a = 0; a < na; ++a)  // driven rows: dsdTheta at the pin's mobility (absolute rows below)
+        if (!mobileAngles_[a].absolute)
+            ws.JU(ns + a, std::lower_bound(ws.U.begin(), ws.U.end(), ws.angleU[a]) - ws.U.begin()) = mobileAngles_[a].dsdTheta;
     if (k <= n) {
         ws.MinvUU.resize(k, k);
         ws.generalizedForce.resize(nu);
@@ -298,6 +307,9 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
                 for (int d = 0; d < mn.dims; ++d)
                     ws.JU(mn.row + d, c) = mn.directions(0, d) * v[0] + mn.directions(1, d) * v[1] + mn.directions(2, d) * v[2];
             }
+            for (int a = 0; a < na; ++a)  // absolute driven rows: dsdTheta (axis . omega) of the sheave
+                if (const MobileAngle& ma = mobileAngles_[a]; ma.absolute)
+                    ws.JU(ns + a, c) = ma.dsdTheta * SimTK::dot(ma.axis, ws.bodyVelocities[ma.bodyIndex][0]);
             matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
             for (int r = 0; r < k; ++r) ws.MinvUU(r, c) = ws.udotUnit[ws.U[r]];
             ws.generalizedForce[ws.U[c]] = 0;
@@ -317,6 +329,14 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
         matter().multiplyBySystemJacobianTranspose(s, ws.bodyForces, ws.generalizedForce);
         for (int c = 0; c < k; ++c) ws.JU(r, c) = ws.generalizedForce[ws.U[c]];
         ws.bodyForces[mn.bodyIndex] = SpatialVec(Vec3(0), Vec3(0));
+    }
+    for (int a = 0; a < na; ++a) {  // absolute driven rows: a unit torque about the axis
+        const MobileAngle& ma = mobileAngles_[a];
+        if (!ma.absolute) continue;
+        ws.bodyForces[ma.bodyIndex] = SpatialVec(ma.dsdTheta * ma.axis, Vec3(0));
+        matter().multiplyBySystemJacobianTranspose(s, ws.bodyForces, ws.generalizedForce);
+        for (int c = 0; c < k; ++c) ws.JU(ns + a, c) = ws.generalizedForce[ws.U[c]];
+        ws.bodyForces[ma.bodyIndex] = SpatialVec(Vec3(0), Vec3(0));
     }
     ws.generalizedForce.resize(nu);
     ws.responseU.resize(k);
@@ -365,8 +385,11 @@ void ReevingSubsystem::Guts::couplingAccelerations(const PositionCache& pc, cons
         const Eigen::Vector3d a3 = toEigen(A[1] + A[0] % p + w % (w % p));
         a.segment(mn.row, mn.dims).noalias() = mn.directions.leftCols(mn.dims).transpose() * a3;
     }
-    for (size_t d = 0; d < mobileAngles_.size(); ++d)
-        a[ns + static_cast<Eigen::Index>(d)] = mobileAngles_[d].dsdTheta * udot[ws.angleU[d]];
+    for (size_t d = 0; d < mobileAngles_.size(); ++d) {
+        const MobileAngle& ma = mobileAngles_[d];
+        a[ns + static_cast<Eigen::Index>(d)] = ma.absolute ? ma.dsdTheta * SimTK::dot(ma.axis, A_GB[ma.bodyIndex][0])
+                                                           : ma.dsdTheta * udot[ws.angleU[d]];
+    }
 }
 
 }  // namespace SimbodyReeving

@@ -72,6 +72,20 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
                              " ran out of rope";
             }
         }
+        // A wrapped gripping groove on a turning parent: the parent's turn about the groove's axis
+        // is measured in (-pi, pi]; the run ends before it passes half a turn (as an arc of the
+        // groove [m]: R (pi - |turn|)).
+        for (const RopeRecord::DrivenNode& d : r.driven) {
+            if (!d.absoluteAngle || r.nodeSpec(d.node).body.getParentMobilizedBody().isGround()) continue;
+            const double turn = r.wraps[d.node].radius * (SimTK::Pi - std::abs(parentTurn(s, r, d)));
+            if (turn < margin) {
+                margin = turn;
+                if (which)
+                    *which = "rope '" + r.spec.name + "': the parent of the wrapped sheave or drum at node " +
+                             std::to_string(d.node) + " turned half a turn about its axis (its turn is measured within "
+                             "half a turn of Ground's orientation)";
+            }
+        }
     }
     return margin;
 }

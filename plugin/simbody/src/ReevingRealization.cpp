@@ -144,8 +144,13 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     for (size_t i = 0; i < ropes.size(); ++i)
         for (size_t d = 0; d < ropes[i].driven.size(); ++d) {
             const RopeRecord::DrivenNode& dn = ropes[i].driven[d];
-            self.mobileAngles_.push_back({static_cast<int>(i), static_cast<int>(d),
-                                          &ropes[i].nodeSpec(dn.node).body, dn.dsdTheta});
+            MobileAngle ma{static_cast<int>(i), static_cast<int>(d), &ropes[i].nodeSpec(dn.node).body, dn.dsdTheta};
+            if (dn.absoluteAngle) {
+                ma.absolute = true;
+                ma.axis = dn.axis;
+                ma.bodyIndex = ma.body->getMobilizedBodyIndex();
+            }
+            self.mobileAngles_.push_back(ma);
         }
     const int numMobile = static_cast<int>(mobileNodes_.size());
     for (size_t i = 0; i < ropes.size(); ++i) {
@@ -666,9 +671,27 @@ void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord&
             continue;
         }
         const double sRef = r.driven[d].traction ? (*traction)[r.driven[d].tractionIndex].sStick : r.driven[d].sRef;
+        if (r.driven[d].absoluteAngle) {  // the sheave's own angle: the pin's plus its parent's turn
+            const SimTK::Vec3& axis = r.driven[d].axis;
+            sDriven[d] = sRef + r.driven[d].dsdTheta * (pin.getOneQ(s, 0) + parentTurn(s, r, r.driven[d]));
+            if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * SimTK::dot(axis, pin.getBodyAngularVelocity(s));
+            continue;
+        }
         sDriven[d] = sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
         if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * pin.getOneU(s, 0);
     }
+}
+
+double ReevingSubsystem::Guts::parentTurn(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
+    const MobilizedBody& pin = r.nodeSpec(d.node).body;
+    const MobilizedBody& parent = pin.getParentMobilizedBody();
+    if (parent.isGround()) return 0.0;
+    // The parent's rotation R_GP about the pin axis a (a planar rope: R_GP turns about a alone):
+    // the angle from e to R_GP e, e perpendicular to a.
+    const SimTK::UnitVec3 a(d.axis);
+    const SimTK::UnitVec3 e = a.perp();
+    const SimTK::Vec3 turned = parent.getBodyRotation(s) * e;
+    return std::atan2(SimTK::dot(a, SimTK::cross(SimTK::Vec3(e), turned)), SimTK::dot(SimTK::Vec3(e), turned));
 }
 
 }  // namespace SimbodyReeving

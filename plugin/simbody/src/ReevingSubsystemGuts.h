@@ -78,6 +78,11 @@ struct RopeRecord {
         // TractionSlip::RopeMomentum: in slip the driven entry is the state Y (Z at
         // slipZOffset + 2 tractionIndex, its rate after it), not sStick + dsdTheta theta.
         bool momentumSlip = false;
+        // A wrapped gripping groove (TurningSheave, WinchDrum) of a planar rope: its angle is the
+        // sheave body's own about the pin axis (the pin angle plus the parent's rotation about
+        // that axis, parentTurn), so a parent that turns carries the rope on the groove with it.
+        bool absoluteAngle = false;
+        SimTK::Vec3 axis{0, 0, 1};  // absoluteAngle: the pin axis in Ground (+- the plane normal)
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
@@ -193,7 +198,7 @@ struct CouplingWorkspace {
     Eigen::VectorXd productWeights;  // [-z; 1]: rdd = [J_U | a0] productWeights (product route)
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     std::vector<int> U;                    // mobilities (u indices), ascending
-    std::vector<int> angleU;               // per MobileAngle: its pin's u index
+    std::vector<int> angleU;               // per MobileAngle: its pin's u index (-1: an absolute row)
     std::vector<SimTK::Vec3> nodeOffsets;  // per MobileNode: R_GB station [m], in Ground
     SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
     SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit, bodyVelocities, bodyForces;
@@ -242,6 +247,12 @@ struct MobileAngle {
     int rope = 0, driven = 0;
     const SimTK::MobilizedBody* body = nullptr;
     double dsdTheta = 0;
+    /// The row is dsdTheta times the sheave body's angular velocity about `axis` (Ground; a planar
+    /// rope's wrapped gripping groove, DrivenNode::absoluteAngle) instead of its pin's rate; its
+    /// force is then a torque about the axis on the body.
+    bool absolute = false;
+    SimTK::Vec3 axis{0, 0, 1};
+    int bodyIndex = 0;  ///< the body's MobilizedBodyIndex (absolute rows)
 };
 
 /// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
@@ -456,6 +467,10 @@ public:
     void mobilityLambda(const SimTK::State& s, detail::CouplingWorkspace& ws) const;
 
     /// Material coordinates (and rates) of rope r's driven nodes in state s.
+    /// The rotation [rad] of driven node d's pin parent about the pin axis, measured from Ground's
+    /// orientation in (-pi, pi] (0 for a parent that keeps Ground's orientation): what turns a
+    /// wrapped gripping groove's pin angle into its own (DrivenNode::absoluteAngle).
+    double parentTurn(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
     void drivenCoordinates(const SimTK::State& s, const detail::RopeRecord& r, Eigen::VectorXd& sDriven,
                            Eigen::VectorXd* sDrivenDot) const;
 

@@ -45,14 +45,17 @@ RopeRecord::DrivenNode drivenNodeOf(NodeSite& site) {
     return d;
 }
 
-NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal) {
+NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal,
+                            bool turningParent) {
     const RopeNode& n = site.spec;
     const std::string name =
         "rope '" + site.rope.spec.name + "': " + kindName + " at node " + std::to_string(site.node);
-    if (!keepsGroundOrientation(n.body.getParentMobilizedBody()))
+    const bool planar = planeNormal.norm() > 0;
+    if (!(turningParent && planar) && !keepsGroundOrientation(n.body.getParentMobilizedBody()))
         invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
-                       "(Slider, Translation or Weld with aligned frames, on such a body): the rope's grip on the "
-                       "groove is measured from Ground's angles");
+                       "(Slider, Translation or Weld with aligned frames, on such a body)" +
+                (planar ? std::string(": a TractionSheave's grip on the groove is measured from Ground's angles")
+                        : std::string(": on a spatial rope the groove's axis is fixed in Ground")));
     const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
     const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
     NodeWrap w;
@@ -70,6 +73,11 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
         invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
                 " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
     w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
+    if (turningParent) {  // the sheave's own angle about its axis: its pin's plus its parent's turn
+        RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
+        d.absoluteAngle = true;
+        d.axis = (alignment > 0 ? 1.0 : -1.0) * SimTK::Vec3(normal);
+    }
     return w;
 }
 

@@ -20,11 +20,15 @@ RopeRecord::DrivenNode drivenNodeOf(NodeSite& site);
 /// A TurningSheave, TractionSheave or WinchDrum with SheaveModel::Wrapped grips the rope on its
 /// groove (a traction sheave while it sticks): s = s_ref + dsdTheta theta is the material
 /// coordinate at the groove's top (WrapStationMap), so the wrap sense is sigma = -sign(dsdTheta)
-/// (pin axis . n). Its pin must turn about the plane normal, relative to a parent that keeps
-/// Ground's orientation (the tangent points' angles are measured in Ground).
+/// (pin axis . n). On a planar rope its pin must turn about the plane normal; with turningParent
+/// (TurningSheave, WinchDrum of a planar rope) the parent may turn too, about that normal, and
+/// theta is the sheave's own angle (its pin's plus the parent's turn, DrivenNode::absoluteAngle);
+/// otherwise (a TractionSheave, a spatial rope) the parent must keep Ground's orientation.
 /// kindName names the node in the messages ("rope 'r': TurningSheave at node 1: ...").
-/// @throws std::invalid_argument if the parent turns or the pin axis is off the plane normal.
-NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal);
+/// @throws std::invalid_argument if the parent turns where it may not or the pin axis is off the
+///         plane normal.
+NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal,
+                            bool turningParent);
 
 }  // namespace detail
 }  // namespace SimbodyReeving

@@ -34,7 +34,7 @@ void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
 }
 
 NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
-    return grippingSheaveWrap(site, kName, planeNormal);
+    return grippingSheaveWrap(site, kName, planeNormal, false);
 }
 
 }  // namespace detail

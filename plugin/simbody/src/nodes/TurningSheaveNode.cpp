@@ -21,7 +21,7 @@ void TurningSheaveNode::addMaterialRelation(NodeSite& site) {
 }
 
 NodeWrap TurningSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
-    return grippingSheaveWrap(site, kName, planeNormal);
+    return grippingSheaveWrap(site, kName, planeNormal, true);
 }
 
 }  // namespace detail

@@ -33,7 +33,7 @@ void WinchDrumNode::addMaterialRelation(NodeSite& site) {
 NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus sigma R
     // phi); the stored rope is the rest.
-    return grippingSheaveWrap(site, kName, planeNormal);
+    return grippingSheaveWrap(site, kName, planeNormal, true);
 }
 
 }  // namespace detail

@@ -193,8 +193,9 @@ struct DeviationSheave {
 /// theta) is then the material coordinate at the drum's top (against gravity), the rope leaves at
 /// that plus sigma R phi (phi the tangent point's angle from the top, sigma = -sign(dsdTheta)
 /// (pin axis . n)), and the stored rope, ropeOnDrum + s_0 (ropeOnDrum + L - s_N), counts the rope
-/// up to the tangent point: ropeOnDrum is the rope stored up to the top at pin angle 0. The pin's
-/// parent must keep Ground's orientation (as for a wrapped TurningSheave). The stored rope lies on
+/// up to the tangent point: ropeOnDrum is the rope stored up to the top at pin angle 0. Its parent
+/// may turn about the plane normal (a drum on a rotating superstructure), as a wrapped
+/// TurningSheave's (theta is then the drum's own angle, see there). The stored rope lies on
 /// the groove and turns with the drum (its kinetic and gravity energies are those of one layer of
 /// it, the partial turn included; RopeModel::setStoredRope), whatever the tangent point does.
 struct WinchDrum {
@@ -226,9 +227,13 @@ struct WinchDrum {
 /// the groove at s = s_ref + sense R theta + sigma R phi_in and leaves it at
 /// s_ref + sense R theta + sigma R phi_out (phi the tangent points' angles from the top,
 /// counter-clockwise about the plane normal n; WrapStationMap). Its wrap sense is
-/// sigma = -sense (pin axis . n): the rope must turn on the groove that way. The pin's parent must
-/// keep Ground's orientation (Ground, or a Slider, Translation or Weld with aligned frames on such a
-/// body: a trolley) and its axis be along n (addRope throws otherwise).
+/// sigma = -sense (pin axis . n): the rope must turn on the groove that way, and the pin axis must be
+/// along n (addRope throws otherwise). The pin's parent may turn about n (a jib head sheave on a
+/// luffing boom): theta is then the sheave's own angle, its pin angle plus the parent's turn about
+/// the pin axis from Ground's orientation (within half a turn: a run ends with a message when the
+/// parent passes it), so the rope on the groove turns with the parent too. On a spatial rope the
+/// groove turns about the pin axis, and the parent must keep Ground's orientation (Ground, or a
+/// Slider, Translation or Weld with aligned frames on such a body: a trolley).
 struct TurningSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
@@ -406,9 +411,11 @@ public:
     ///         radius, rope length or minimumSpanLength, bad rope properties or mode counts, a span
     ///         override index out of range, non-finite plane normal, gravity out of the rope plane
     ///         (gravity given to the constructor; with the system's gravity, realizeTopology checks
-    ///         the plane and throws std::logic_error); with SheaveModel::Wrapped, a spatial rope, a
-    ///         wrap sense not +-1, or a TurningSheave, TractionSheave or WinchDrum whose pin's
-    ///         parent turns relative to Ground or whose pin axis is not the plane normal.
+    ///         the plane and throws std::logic_error); with SheaveModel::Wrapped, a
+    ///         wrap sense not +-1, a TractionSheave (or a TurningSheave or WinchDrum of a spatial
+    ///         rope) whose pin's parent turns relative to Ground, a planar rope's TurningSheave,
+    ///         TractionSheave or WinchDrum whose pin axis is not the plane normal, or a spatial
+    ///         rope's DeviationSheave without a unit axis or on a body that turns.
     int addRope(const RopeSpec& spec);
 
     /// Number of ropes added.
