@@ -339,3 +339,31 @@ TEST(SpatialWrappedSheave, HeldDrumWithALoadSwingingInSpace) {
     EXPECT_LT(worstRoll, 1e-9);
     EXPECT_LT(drift, 1e-9 * kinetic0);
 }
+
+// A load thrown out of the groove's plane so hard (12 m/s) that its fall swings towards the
+// sheave's axis: the run ends where the fall's fleet angle reaches 85 degrees (short of the
+// tangency's singularity at 90), with a message naming the rope, span and node, and the state
+// there kept (its fleet angle 85 degrees to 1e-6 rad: the event's localization).
+TEST(SpatialWrappedSheave, RunEndsWhereAFleetAngleReaches85Degrees) {
+    Options o;
+    o.properties = {0.6205, 16.5e6, 0.0};
+    Scene sc(o);
+    ASSERT_LE(sc.reeving->findStaticEquilibrium(sc.state, 1e-12), 1e-12);
+    sc.load.setUToFitLinearVelocity(sc.state, Vec3(0, 0, 12));
+    RungeKuttaMersonIntegrator integ(sc.system);
+    integ.setAccuracy(1e-8);
+    TimeStepper ts(sc.system, integ);
+    ts.initialize(sc.state);
+    const Integrator::SuccessfulStepStatus status = ts.stepTo(5.0);
+    const State& s = integ.getState();
+    sc.system.realize(s, Stage::Position);
+    const double fleet = sc.reeving->getFleetAngles(s, 0, 1).first;
+    std::printf("run ended at t = %.4f s: %s (fleet angle %.6f deg)\n", s.getTime(), sc.reeving->getLimitReached().c_str(),
+                fleet * 180 / Pi);
+    EXPECT_EQ(status, Integrator::EndOfSimulation);
+    EXPECT_LT(s.getTime(), 5.0);
+    EXPECT_NE(sc.reeving->getLimitReached().find("rope 'rope' span 1: its fleet angle at node 1 reached 85 degrees"),
+              std::string::npos)
+        << sc.reeving->getLimitReached();
+    EXPECT_NEAR(std::abs(fleet), 85 * Pi / 180, 1e-6);
+}

@@ -53,7 +53,8 @@ struct Atwood {
     std::unique_ptr<ReevingSubsystem> reeving;
     double L = 0;
 
-    Atwood(double m1, double m2, double J, double R, double x1, double x2, double rhoA, double EA) {
+    Atwood(double m1, double m2, double J, double R, double x1, double x2, double rhoA, double EA,
+           bool spatial = false) {
         a = std::make_unique<MobilizedBody::Slider>(matter.Ground(), vertical(Vec3(-R, -x1, 0)), pointMass(m1),
                                                     vertical(Vec3(0)));
         b = std::make_unique<MobilizedBody::Slider>(matter.Ground(), vertical(Vec3(R, -x2, 0)), pointMass(m2),
@@ -70,6 +71,7 @@ struct Atwood {
         } else {
             DeviationSheave d{matter.Ground(), Vec3(0), R};
             d.wrapSense = -1;
+            d.axis = Vec3(0, 0, 1);  // (read for a spatial rope)
             spec.sheaves = {d};
         }
         spec.end = RopeAnchor{*b, Vec3(0)};
@@ -77,7 +79,7 @@ struct Atwood {
         spec.unstretchedLength = L;
         spec.spanDefaults.axialModes = 0;
         spec.spanDefaults.transverseModes = 0;
-        spec.planeNormal = Vec3(0, 0, 1);
+        spec.planeNormal = spatial ? Vec3(0) : Vec3(0, 0, 1);  // spatial: the groove turns about the pin axis
         spec.sheaveModel = SheaveModel::Wrapped;
         reeving->addRope(spec);
         system.realizeTopology();
@@ -114,10 +116,13 @@ TEST(WrappedTurningSheave, RopeOnTheGrooveTurnsWithTheSheave) {
 // with J = 0.5 kg m^2 (J / R^2 = 5.6 kg) and a frictionless DeviationSheave: measured 2.0e-6 and
 // 1.0e-6 relative (the stiff rope's bounce, about 1e-6 m); bound 1e-4 (the acceptance's; 50x).
 // Without the arc's rope in the inertia y would be off by about 1.5e-2, without J / R^2 by 8.6e-2.
+// The same with the rope spatial (no plane normal: two transverse directions, the grooves'
+// axes their pin's or +z): the same bound.
 TEST(WrappedTurningSheave, AtwoodMachineHasTheArcsRopeAndTheSheavesInertia) {
     const double m1 = 30, m2 = 20, R = 0.3, x1 = 5.0, x2 = 3.0, rhoA = 1.0, EA = 1e9;
+    for (bool spatial : {false, true})
     for (double J : {0.5, -1.0}) {
-        Atwood m(m1, m2, J, R, x1, x2, rhoA, EA);
+        Atwood m(m1, m2, J, R, x1, x2, rhoA, EA, spatial);
         State s = m.system.getDefaultState();
         SimTK::RungeKuttaMersonIntegrator integ(m.system);
         integ.setAccuracy(1e-10);
@@ -132,10 +137,10 @@ TEST(WrappedTurningSheave, AtwoodMachineHasTheArcsRopeAndTheSheavesInertia) {
             const double expected = F0 / k * (std::cosh(std::sqrt(k / M) * t) - 1);
             worst = std::max(worst, std::abs(y - expected) / expected);
         }
-        std::printf("[ wrapped turning sheave ] J = %.1f: initial acceleration F0 / M = %.6f m/s^2, m2's rise "
+        std::printf("[ wrapped turning sheave ] %s J = %.1f: initial acceleration F0 / M = %.6f m/s^2, m2's rise "
                     "against the formula: %.2e relative at worst\n",
-                    J, F0 / M, worst);
-        EXPECT_LT(worst, 1e-4) << "J = " << J;
+                    spatial ? "spatial" : "planar", J, F0 / M, worst);
+        EXPECT_LT(worst, 1e-4) << "J = " << J << (spatial ? " spatial" : " planar");
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include "ReevingSubsystemGuts.h"
 
+#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -72,6 +73,27 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
                              " ran out of rope";
             }
         }
+        // A span of a spatial rope whose fleet angle at a wrapped node reaches kMaxFleetAngle: near
+        // 90 degrees the span runs along the groove's axis, where it has no tangent point (as an
+        // arc of the groove [m]: R (cos gamma - cos gamma_max)).
+        if (!r.planar)
+            for (int j = 0; j < r.numSpans(); ++j) {
+                const auto [atStart, atEnd] = spatialModel(s, r).fleetAngles(pc.ropes[i].spatial, j);
+                for (const auto& [gamma, k] : {std::pair<double, int>{atStart, j}, {atEnd, j + 1}}) {
+                    if (!(r.wraps[k].radius > 0)) continue;
+                    const double m = r.wraps[k].radius * (std::cos(gamma) - std::cos(kMaxFleetAngle));
+                    if (m < margin) {
+                        margin = m;
+                        if (which) {
+                            std::ostringstream o;
+                            o << "rope '" << r.spec.name << "' span " << j << ": its fleet angle at node " << k
+                              << " reached " << kMaxFleetAngle * 180 / SimTK::Pi
+                              << " degrees (the span turns towards the groove's axis, where it has no tangent point)";
+                            *which = o.str();
+                        }
+                    }
+                }
+            }
         // A wrapped gripping groove on a turning parent: the parent's turn about the groove's axis
         // is measured in (-pi, pi]; the run ends before it passes half a turn (as an arc of the
         // groove [m]: R (pi - |turn|)).

@@ -420,6 +420,9 @@ public:
     /// transition would otherwise leave the event's direction to round-off.
     static constexpr double kTractionHysteresis = 1e-9;
     static constexpr double kSlipRateHysteresis = 1e-9;  // [m/s]
+    /// The largest fleet angle [rad] a span of a spatial rope may reach at a wrapped node: 85
+    /// degrees; past it the run ends (limitMargin), short of the tangency's singularity at 90.
+    static constexpr double kMaxFleetAngle = 85.0 * 3.14159265358979323846 / 180.0;
 
     /// The spatial rope r's model in state s; if the state has none yet, builds it from the chords
     /// of `nodes` (the state's configuration) and stores it in the state (see SpatialFrames).

@@ -336,7 +336,9 @@ struct RopeSpec {
     /// Shortest unstretched span length the run accepts [m], > 0: a span whose material length
     /// reaches it (two-blocking: the hook block at the trolley sheaves; a drum hauling the last
     /// span in) ends the run cleanly, as does a drum running out of rope or, with
-    /// SheaveModel::Wrapped, a sheave's wrap angle falling to 0 (the rope leaving its groove): the
+    /// SheaveModel::Wrapped, a sheave's wrap angle falling to 0 (the rope leaving its groove) or,
+    /// on a spatial rope, a span's fleet angle at a groove reaching 85 degrees (towards the groove's
+    /// axis, where the span has no tangent point): the
     /// subsystem's event handler requests termination (Integrator::EventHandlerRequestedTermination)
     /// and getLimitReached() names the rope, span, drum or sheave and the time.
     double minimumSpanLength = 0.2;
@@ -545,8 +547,8 @@ public:
     /// @throws std::invalid_argument if rope or node is out of range or the node is not a WinchDrum.
     double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;
     /// The rope limit that ended the last run ("" if none): a span reaching
-    /// RopeSpec::minimumSpanLength, a drum running out of rope or a wrapped sheave's wrap angle
-    /// reaching 0, with rope, span or node, and time.
+    /// RopeSpec::minimumSpanLength, a drum running out of rope, a wrapped sheave's wrap angle
+    /// reaching 0 or a span's fleet angle reaching 85 degrees, with rope, span or node, and time.
     /// Cleared when a state is realized to Stage::Instance afresh (an integrator's initialize).
     const std::string& getLimitReached() const;
 
