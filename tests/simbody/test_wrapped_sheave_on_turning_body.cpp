@@ -40,7 +40,9 @@ struct LuffingBoom {
     // The boom luffs from 0.6 rad by `turn` [rad] over `time` [s], smoothly from rest to rest:
     // its angle 0.6 + turn / 2 (1 - cos(pi t / time)) (the pin's q = -turn / 2 cos(pi t / time)
     // after an inboard frame turned by 0.6 + turn / 2).
-    LuffingBoom(double turn, double time) {
+    // spatial: the rope has no plane normal and comes from an anchor 0.4 m off the boom's plane
+    // (a fleet angle where it arrives on the tip sheave).
+    LuffingBoom(double turn, double time, bool spatial = false) {
         boom = MobilizedBody::Pin(matter.Ground(), Transform(Rotation(0.6 + 0.5 * turn, ZAxis)),
                                   Body::Rigid(MassProperties(800, Vec3(0.5 * kBoom, 0, 0), Inertia(Vec3(1, 7201, 7201)))),
                                   Transform());
@@ -53,11 +55,12 @@ struct LuffingBoom {
         meter = std::make_unique<sr::MotionWorkMeter>(system);
         sr::RopeSpec rope;
         rope.sheaveModel = sr::SheaveModel::Wrapped;
-        rope.planeNormal = Vec3(0, 0, 1);
+        rope.planeNormal = spatial ? Vec3(0) : Vec3(0, 0, 1);
+        const Vec3 anchor(0, 0.8, spatial ? 0.4 : 0.0);
         rope.properties = {0.6205, kEA, 0.0};
         rope.spanDefaults.axialModes = 0;  // straight spans of uniform strain: their material is
         rope.spanDefaults.transverseModes = 0;  // their length over their stretch
-        rope.start = sr::RopeAnchor{matter.Ground(), Vec3(0, 0.8, 0)};
+        rope.start = sr::RopeAnchor{matter.Ground(), anchor};
         sr::TurningSheave tip;
         tip.body = sheave;
         tip.radius = kR;
@@ -65,10 +68,10 @@ struct LuffingBoom {
         rope.end = sr::RopeAnchor{load, Vec3(0)};
         // The tip at 6 (cos 0.6, sin 0.6) = (4.95, 3.39); the load 5 m under its far side.
         const Vec3 tipPoint(kBoom * std::cos(0.6), kBoom * std::sin(0.6), 0);
-        rope.unstretchedLength = (tipPoint + Vec3(0, kR, 0) - Vec3(0, 0.8, 0)).norm() + 0.5 * Pi * kR + 5.0;
+        rope.unstretchedLength = (tipPoint + Vec3(0, kR, 0) - anchor).norm() + 0.5 * Pi * kR + 5.0;
         // s_ref: the material at the groove's top when the sheave's own angle is 0 (its pin's plus
         // the boom's turn, 0.6 rad at the start): the anchor's span about taut then.
-        tip.materialCoordinateAtZeroAngle = (tipPoint + Vec3(0, kR, 0) - Vec3(0, 0.8, 0)).norm() - tip.sense * kR * 0.6;
+        tip.materialCoordinateAtZeroAngle = (tipPoint + Vec3(0, kR, 0) - anchor).norm() - tip.sense * kR * 0.6;
         rope.sheaves = {tip};
         reeving->addRope(rope);
         system.realizeTopology();
@@ -116,9 +119,12 @@ double ropeLengthFromGeometry(const LuffingBoom& b, const State& s) {
 // followed the pin angle alone would let the rope slide R times the boom's turn, 0.09 m); the
 // rope's length from the geometry equals its unstretched length (both spans stay taut; measured
 // 3e-16, bound 1e-14 relative); T + U changes by the drive's work (measured 2e-10 J of 1.2e4 J,
-// bound 1e-12 of the work).
+// bound 1e-12 of the work). The same with a spatial rope from an anchor off the boom's plane
+// (a fleet angle of several degrees at the tip sheave, whose axis turns about itself as the boom
+// luffs).
 TEST(WrappedSheaveOnTurningBody, JibHeadSheaveCarriesTheRopeWithTheBoom) {
-    LuffingBoom b(0.3, 6.0);
+  for (bool spatial : {false, true}) {
+    LuffingBoom b(0.3, 6.0, spatial);
     ASSERT_LE(b.reeving->findStaticEquilibrium(b.state, 1e-12), 1e-12);
     RungeKuttaMersonIntegrator integ(b.system);
     integ.setAccuracy(1e-10);
@@ -142,11 +148,15 @@ TEST(WrappedSheaveOnTurningBody, JibHeadSheaveCarriesTheRopeWithTheBoom) {
         energy = std::max(energy, std::abs(b.reeving->calcMechanicalEnergy(s) - e0 - work));
         lift = b.load.getBodyOriginLocation(s)[1] - y0;
     }
-    std::printf("luffing boom, jib head sheave: rope point on the groove moved %.2e m; rope length from the "
+    std::printf("luffing boom (%s rope), jib head sheave: rope point on the groove moved %.2e m; rope length from the "
                 "geometry %.2e of L; E - E0 - W %.2e J of W = %.1f J; load lifted %.3f m\n",
-                slide, length, energy, work, lift);
+                spatial ? "spatial" : "planar", slide, length, energy, work, lift);
+    if (spatial) {
+        EXPECT_GT(std::abs(b.reeving->getFleetAngles(integ.getState(), 0, 0).second), 3 * Pi / 180);
+    }
     EXPECT_GT(lift, 1.0);
     EXPECT_LT(slide, 1e-13);
     EXPECT_LT(length, 1e-14);
     EXPECT_LT(energy, 1e-12 * std::abs(work));
+}
 }

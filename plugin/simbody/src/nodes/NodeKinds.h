@@ -43,6 +43,15 @@ std::string mustBe(const std::string& what, double value, const char* must);
 /// inboard and outboard frames are aligned, on such a body.
 bool keepsGroundOrientation(const SimTK::MobilizedBody& b);
 
+/// Body b's orientation in Ground with every mobilizer of its chain at its reference (q = 0 of the
+/// Pins, Sliders, Translations and Planars that keepsDirection accepts): the product of each
+/// mobilizer's R_PF R_MB^T down the chain.
+SimTK::Rotation referenceOrientation(const SimTK::MobilizedBody& b);
+
+/// True if every motion of body b's chain keeps the Ground direction `direction` fixed: each
+/// mobilizer is a Slider, Translation or Weld, or a Pin or Planar turning about that direction.
+bool keepsDirection(const SimTK::MobilizedBody& b, const SimTK::Vec3& direction);
+
 /// An end fastened to a body: s fixed (0 at the start, L at the end). Ends only.
 struct AnchorNode {
     static constexpr const char* kName = "Anchor";

@@ -19,6 +19,28 @@ bool keepsGroundOrientation(const SimTK::MobilizedBody& b) {
     return keepsGroundOrientation(b.getParentMobilizedBody());
 }
 
+SimTK::Rotation referenceOrientation(const SimTK::MobilizedBody& b) {
+    if (b.isGround()) return SimTK::Rotation();
+    return referenceOrientation(b.getParentMobilizedBody()) * b.getDefaultInboardFrame().R() *
+           ~b.getDefaultOutboardFrame().R();
+}
+
+bool keepsDirection(const SimTK::MobilizedBody& b, const SimTK::Vec3& direction) {
+    if (b.isGround()) return true;
+    using SimTK::MobilizedBody;
+    const MobilizedBody& parent = b.getParentMobilizedBody();
+    if (MobilizedBody::Slider::isInstanceOf(b) || MobilizedBody::Translation::isInstanceOf(b) ||
+        MobilizedBody::Weld::isInstanceOf(b))
+        return keepsDirection(parent, direction);
+    if (MobilizedBody::Pin::isInstanceOf(b) || MobilizedBody::Planar::isInstanceOf(b)) {
+        // Both turn about their inboard frame's z (fixed in the parent, which keeps `direction`).
+        const SimTK::Vec3 turn = referenceOrientation(parent) * b.getDefaultInboardFrame().R().z();
+        if (SimTK::cross(turn, direction).norm() > 1e-12 * direction.norm()) return false;
+        return keepsDirection(parent, direction);
+    }
+    return false;
+}
+
 std::string mustBe(const std::string& what, double value, const char* must) {
     std::ostringstream o;
     o << what << " = " << value << " must be " << must;
@@ -50,33 +72,40 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
     const RopeNode& n = site.spec;
     const std::string name =
         "rope '" + site.rope.spec.name + "': " + kindName + " at node " + std::to_string(site.node);
-    const bool planar = planeNormal.norm() > 0;
-    if (!(turningParent && planar) && !keepsGroundOrientation(n.body.getParentMobilizedBody()))
+    const SimTK::MobilizedBody& parent = n.body.getParentMobilizedBody();
+    if (!turningParent && !keepsGroundOrientation(parent))
         invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
-                       "(Slider, Translation or Weld with aligned frames, on such a body)" +
-                (planar ? std::string(": a TractionSheave's grip on the groove is measured from Ground's angles")
-                        : std::string(": on a spatial rope the groove's axis is fixed in Ground")));
-    const SimTK::UnitVec3 axis = n.body.getDefaultInboardFrame().R().z();
+                       "(Slider, Translation or Weld with aligned frames, on such a body): a TractionSheave's grip on "
+                       "the groove is measured from Ground's angles");
+    // The pin axis in Ground (its parent's turns, if any, are about it).
+    const SimTK::UnitVec3 axis(referenceOrientation(parent) * n.body.getDefaultInboardFrame().R().z());
+    if (turningParent && !keepsDirection(parent, axis))
+        invalid(name + ": with SheaveModel::Wrapped its pin's parent may turn only about the pin axis " +
+                str(SimTK::Vec3(axis)) +
+                " (its chain of Pin or Planar mobilizers about that axis, Sliders, Translations and Welds): the "
+                "groove's axis must stay put");
     const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
     NodeWrap w;
     w.radius = n.radius;
+    SimTK::Vec3 grooveAxis = axis;
     if (!(planeNormal.norm() > 0)) {
-        // A spatial rope: the groove turns about the pin axis (in Ground: the parent keeps Ground's
-        // orientation), and the rope wraps it against the sense a positive pin angle moves it.
+        // A spatial rope: the groove turns about the pin axis, and the rope wraps it against the
+        // sense a positive pin angle moves it.
         w.axis = Eigen::Vector3d(axis[0], axis[1], axis[2]);
         w.wrapSense = dsdTheta > 0 ? -1 : 1;
-        return w;
+    } else {
+        const SimTK::UnitVec3 normal(planeNormal);
+        const double alignment = SimTK::dot(axis, normal);
+        if (std::abs(std::abs(alignment) - 1) > 1e-12)
+            invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
+                    " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
+        w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
+        grooveAxis = (alignment > 0 ? 1.0 : -1.0) * SimTK::Vec3(normal);
     }
-    const SimTK::UnitVec3 normal(planeNormal);
-    const double alignment = SimTK::dot(axis, normal);
-    if (std::abs(std::abs(alignment) - 1) > 1e-12)
-        invalid(name + ": with SheaveModel::Wrapped its pin axis " + str(SimTK::Vec3(axis)) +
-                " must be along the rope's plane normal " + str(SimTK::Vec3(normal)));
-    w.wrapSense = (alignment > 0) == (dsdTheta > 0) ? -1 : 1;
     if (turningParent) {  // the sheave's own angle about its axis: its pin's plus its parent's turn
         RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
         d.absoluteAngle = true;
-        d.axis = (alignment > 0 ? 1.0 : -1.0) * SimTK::Vec3(normal);
+        d.axis = grooveAxis;
     }
     return w;
 }
