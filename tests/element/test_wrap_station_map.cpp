@@ -176,6 +176,157 @@ TEST(WrapStationMap, SpatialJacobianAndBiasMatchFiniteDifferences) {
     EXPECT_LT(worstAcceleration, 1e-7);
 }
 
+// Grooves whose axes turn with their bodies (NodeWrap::turningAxis, a sheave on a slewing or
+// luffing boom; a frictionless one and one that grips the rope): each turning node's axis station a = c + n moves with its centre c while n turns
+// about a fixed direction e by theta(t) = w t + w' t^2 / 2, so ndot = thetadot e x n and
+// nddot = thetaddot e x n + thetadot^2 e x (e x n) exactly (a rigid body's motion: |n| stays 1).
+// xdot = J Ydot and xddot = J Yddot + b against 4th-order differences of x(t) (h = 1e-3 s) for a
+// turning sheave between two points and for a turning sheave next to a fixed-axis one (their
+// circle-to-circle tangent), fleet angles of several degrees. Bounds as the fixed-axis test's.
+TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
+    const RopeProperties props{1.0, 1e6, 0.0};
+    struct Turning {
+        int node;
+        Eigen::Vector3d about;  // e
+        double rate, acceleration;
+    };
+    struct Layout {
+        std::vector<NodeWrap> wraps;
+        std::vector<Eigen::Vector3d> stations;
+        std::vector<Turning> turning;
+        std::vector<MaterialNode> kinds;
+    };
+    auto turningWrap = [](double R, int sense, const Eigen::Vector3d& axis) {
+        NodeWrap w = wrap3(R, sense, axis);
+        w.turningAxis = true;
+        return w;
+    };
+    const Eigen::Vector3d tilted = Eigen::Vector3d(0.12, 0.05, 1.0).normalized();
+    const std::vector<Layout> layouts = {
+        {{NodeWrap{}, turningWrap(0.3, 1, tilted), NodeWrap{}},
+         {{-1.0, 0.0, 0.3}, {0.2, -2.0, 0.0}, {1.2, 0.1, -0.2}},
+         {{1, Eigen::Vector3d(0.0, 1.0, 0.0), 0.7, -0.4}},
+         {}},
+        {{NodeWrap{}, turningWrap(0.3, 1, tilted), wrap3(0.25, 1, Eigen::Vector3d(-0.1, 0.0, 1.0)), NodeWrap{}},
+         {{-1.0, 0.5, 0.2}, {0.0, -2.0, 0.0}, {2.0, -2.2, 0.1}, {3.0, 0.4, -0.3}},
+         {{1, Eigen::Vector3d(0.3, 0.8, -0.2).normalized(), -0.5, 0.9}},
+         {}},
+        // A gripping (Driven) groove whose axis turns: its material coordinate is measured from
+        // "up" projected onto the turning groove plane.
+        {{NodeWrap{}, turningWrap(0.3, 1, tilted), NodeWrap{}},
+         {{-1.0, 0.0, 0.3}, {0.2, -2.0, 0.0}, {1.2, 0.1, -0.2}},
+         {{1, Eigen::Vector3d(0.6, 0.3, 0.2).normalized(), 0.8, -0.6}},
+         {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed}},
+    };
+    double worstRate = 0, worstAcceleration = 0, largestFleet = 0;
+    for (const Layout& layout : layouts) {
+        const Eigen::Vector3d g(0.0, -kG, 0.0);
+        std::vector<SpanModel<3>> spans;
+        for (std::size_t j = 0; j + 1 < layout.wraps.size(); ++j) spans.emplace_back(props, spanOptions(0, 0), g);
+        const RopeModel<3> rope(std::move(spans), 20.0, layout.kinds, layout.wraps);
+        ASSERT_EQ(rope.numStations(), rope.numNodes() + static_cast<int>(layout.turning.size()));
+        const WrapStationMap<3> map(rope);
+        const int nY = map.numStationCoordinates();
+        // Stations, rates and accelerations at time t: centres on quadratic paths, axis stations
+        // a = c + n(t).
+        auto at = [&](double t, Eigen::VectorXd& Y, Eigen::VectorXd& Yd, Eigen::VectorXd& Ydd) {
+            Y.setZero(nY);
+            Yd.setZero(nY);
+            Ydd.setZero(nY);
+            for (std::size_t k = 0; k < layout.stations.size(); ++k) {
+                const Eigen::Vector3d v(0.3 + 0.1 * k, -0.2 + 0.15 * k, 0.1 - 0.05 * k);
+                const Eigen::Vector3d a(-0.4 + 0.2 * k, 0.5 - 0.1 * k, 0.2 + 0.1 * k);
+                Y.segment<3>(3 * k) = layout.stations[k] + t * v + 0.5 * t * t * a;
+                Yd.segment<3>(3 * k) = v + t * a;
+                Ydd.segment<3>(3 * k) = a;
+            }
+            for (const Turning& tu : layout.turning) {
+                const double theta = tu.rate * t + 0.5 * tu.acceleration * t * t, thetadot = tu.rate + tu.acceleration * t;
+                const Eigen::Vector3d n = Eigen::AngleAxisd(theta, tu.about) * rope.grooveAxis(tu.node);
+                const Eigen::Vector3d nd = thetadot * tu.about.cross(n);
+                const Eigen::Vector3d ndd = tu.acceleration * tu.about.cross(n) + thetadot * thetadot * tu.about.cross(tu.about.cross(n));
+                const int a = rope.axisStation(tu.node), c = tu.node;
+                Y.segment<3>(3 * a) = Y.segment<3>(3 * c) + n;
+                Yd.segment<3>(3 * a) = Yd.segment<3>(3 * c) + nd;
+                Ydd.segment<3>(3 * a) = Ydd.segment<3>(3 * c) + ndd;
+            }
+            if (rope.numDrivenNodes() > 0) {  // the groove's surface coordinate
+                Y[nY - 1] = 1.7 + 0.4 * t - 0.15 * t * t;
+                Yd[nY - 1] = 0.4 - 0.3 * t;
+                Ydd[nY - 1] = -0.3;
+            }
+        };
+        auto xAt = [&](double t) {
+            Eigen::VectorXd Y, Yd, Ydd;
+            at(t, Y, Yd, Ydd);
+            WrapStationMapData d;
+            map.evaluate(Y, Yd, d);
+            return d.x;
+        };
+        Eigen::VectorXd Y, Yd, Ydd;
+        at(0.0, Y, Yd, Ydd);
+        WrapStationMapData d;
+        map.evaluate(Y, Yd, d);
+        const double h = 1e-3;
+        const Eigen::VectorXd x2m = xAt(-2 * h), x1m = xAt(-h), x1p = xAt(h), x2p = xAt(2 * h);
+        const Eigen::VectorXd rate = (x2m - 8 * x1m + 8 * x1p - x2p) / (12 * h);
+        const Eigen::VectorXd acc = (-x2m + 16 * x1m - 30 * d.x + 16 * x1p - x2p) / (12 * h * h);
+        worstRate = std::max(worstRate, (rate - d.xdot).cwiseAbs().maxCoeff() / rate.cwiseAbs().maxCoeff());
+        const Eigen::VectorXd model = d.jacobian * Ydd + d.bias;
+        worstAcceleration = std::max(worstAcceleration, (acc - model).cwiseAbs().maxCoeff() / acc.cwiseAbs().maxCoeff());
+        largestFleet = std::max({largestFleet, d.startFleetAngles.cwiseAbs().maxCoeff(), d.endFleetAngles.cwiseAbs().maxCoeff()});
+        // The axis entries are the stations' difference, and they move.
+        for (const Turning& tu : layout.turning) {
+            const int o = rope.nodeCoordinateOffset(tu.node) + RopeModel<3>::wrappedAxisOffset();
+            EXPECT_EQ(Eigen::Vector3d(d.x.segment<3>(o)),
+                      Eigen::Vector3d(Y.segment<3>(3 * rope.axisStation(tu.node)) - Y.segment<3>(3 * tu.node)));
+            EXPECT_GT(d.xdot.segment<3>(o).norm(), 0.1);
+        }
+    }
+    std::printf("turning axes: rates %.2e, accelerations %.2e (relative); largest fleet angle %.1f deg\n", worstRate,
+                worstAcceleration, largestFleet * 180 / kPi);
+    EXPECT_GT(largestFleet, 3 * kPi / 180);
+    EXPECT_LT(worstRate, 1e-10);
+    EXPECT_LT(worstAcceleration, 1e-7);
+}
+
+// A turning groove axis: for wrapped interior Sliding and Driven nodes of spatial ropes; the node
+// arguments then carry the axis stations (N + 1 + i).
+TEST(WrapStationMap, TurningGrooveAxesAreForWrappedInteriorNodesOfSpatialRopes) {
+    const RopeProperties props{1.0, 1e6, 0.0};
+    const Eigen::Vector3d g(0.0, -kG, 0.0);
+    auto spans3 = [&]() {
+        std::vector<SpanModel<3>> spans;
+        for (int j = 0; j < 2; ++j) spans.emplace_back(props, spanOptions(0, 0), g);
+        return spans;
+    };
+    NodeWrap turning = wrap3(0.3, 1, Eigen::Vector3d::UnitZ());
+    turning.turningAxis = true;
+    NodeWrap point;
+    point.turningAxis = true;
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {}, {NodeWrap{}, point, NodeWrap{}}), std::invalid_argument,
+                         "needs a wrapped node");
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed},
+                                      {NodeWrap{}, turning, NodeWrap{}}),
+                         std::invalid_argument, "not for a slipping traction sheave");
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed},
+                                      {turning, NodeWrap{}, NodeWrap{}}),
+                         std::invalid_argument, "nor for a drum");
+    std::vector<SpanModel<2>> planar;
+    for (int j = 0; j < 2; ++j) planar.emplace_back(props, spanOptions(0, 0), Vector2d(0.0, -kG));
+    EXPECT_THROW_MESSAGE(RopeModel<2>(std::move(planar), 20.0, {}, {NodeWrap{}, turning, NodeWrap{}}),
+                         std::invalid_argument, "needs a spatial rope");
+    const RopeModel<3> rope(spans3(), 20.0, {}, {NodeWrap{}, turning, NodeWrap{}});
+    EXPECT_EQ(rope.numStations(), 4);
+    EXPECT_EQ(rope.axisStation(1), 3);
+    EXPECT_EQ(rope.axisStation(0), -1);
+    RopeData<3> data;
+    Eigen::Matrix3Xd nodes(3, 3);
+    nodes << -1.0, 0.0, 1.0, 0.0, -2.0, 0.0, 0.0, 0.0, 0.0;
+    EXPECT_THROW_MESSAGE(rope.solveDependentCoordinates(nodes, Eigen::VectorXd(), data), std::invalid_argument,
+                         "3 node positions given for 3 nodes and 1 axis stations");
+}
+
 // With every station in the plane z = 0 and every axis +z, the spatial map is the planar one: x,
 // J and b equal the planar map's (z rows and columns aside) to round-off (measured 0), and the
 // fleet angles are 0.

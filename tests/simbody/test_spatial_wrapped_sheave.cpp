@@ -238,8 +238,10 @@ TEST(SpatialWrappedSheave, InThePlaneReproducesThePlanarRope) {
 }
 
 // Bad input, one clear error at addRope: a groove axis of zero length or not a unit vector, a
-// wrapped sheave on a body that turns, a TractionSheave on a spatial rope.
-TEST(SpatialWrappedSheave, RejectsBadAxesTurningBodiesAndSpatialTraction) {
+// TractionSheave on a spatial rope, a WinchDrum whose pin's parent turns about another axis than
+// the pin's. (A DeviationSheave on such a body and a TurningSheave on such a parent are accepted:
+// their axes turn with it.)
+TEST(SpatialWrappedSheave, RejectsBadAxesSpatialTractionAndDrumsOnTurningParents) {
     for (const Vec3& axis : {Vec3(0), Vec3(0, 0, 2), Vec3(NaN, 0, 1)}) {
         Options o;
         o.axis = axis;
@@ -248,7 +250,9 @@ TEST(SpatialWrappedSheave, RejectsBadAxesTurningBodiesAndSpatialTraction) {
     MultibodySystem system;
     SimbodyMatterSubsystem matter(system);
     sr::ReevingSubsystem reeving(system, Vec3(0, -kG, 0));
-    MobilizedBody::Pin pin(matter.Ground(), Transform(), Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))), Transform());
+    // A pin turning about Ground's x: a groove whose axis is z would turn with it.
+    const Transform aboutX(Rotation(0.5 * Pi, YAxis), Vec3(0));
+    MobilizedBody::Pin pin(matter.Ground(), aboutX, Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))), aboutX);
     sr::RopeSpec rope;
     rope.sheaveModel = sr::SheaveModel::Wrapped;
     rope.properties = {0.6, 1e6, 0.0};
@@ -258,7 +262,22 @@ TEST(SpatialWrappedSheave, RejectsBadAxesTurningBodiesAndSpatialTraction) {
     sheave.axis = Vec3(0, 0, 1);
     rope.sheaves = {sheave};
     rope.end = sr::RopeAnchor{matter.Ground(), Vec3(3, -5, 0)};
-    EXPECT_THROW_MESSAGE(reeving.addRope(rope), std::invalid_argument, "its body must keep Ground's orientation");
+    EXPECT_NO_THROW(reeving.addRope(rope));
+    // A sheave pinned about z on the pin above: its parent turns about x.
+    MobilizedBody::Pin grip(pin, Transform(), Body::Rigid(MassProperties(1, Vec3(0), Inertia(1))), Transform());
+    sr::TurningSheave turning;
+    turning.body = grip;
+    turning.radius = kR;
+    rope.sheaves = {turning};
+    EXPECT_NO_THROW(reeving.addRope(rope));
+    sr::WinchDrum drum;
+    drum.body = grip;
+    drum.radius = kR;
+    rope.sheaves = {};
+    rope.start = drum;
+    EXPECT_THROW_MESSAGE(reeving.addRope(rope), std::invalid_argument,
+                         "a winch drum's parent may turn only about the pin axis");
+    rope.start = sr::RopeAnchor{matter.Ground(), Vec3(-3, 0, 0)};
     sr::TractionSheave traction;
     traction.body = pin;
     traction.radius = kR;

@@ -134,6 +134,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     arcIndex_.assign(N + 1, -1);
     nodeOffset_.assign(N + 2, 0);
     grooveAxes_.assign(N + 1, Eigen::Vector3d::UnitZ());
+    axisStation_.assign(N + 1, -1);
     for (int k = 0; k <= N; ++k) {
         const NodeWrap& wrap = wraps[k];
         if (!std::isfinite(wrap.radius) || wrap.radius < 0) {
@@ -145,6 +146,9 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             throw std::invalid_argument("RopeModel: node " + std::to_string(k) + "'s wrapSense = " +
                                         std::to_string(wrap.wrapSense) + " must be +1 or -1");
         nodeOffset_[k] = numNodeCoordinates_;
+        if (wrap.turningAxis && !(wrap.radius > 0))
+            throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
+                                        ": NodeWrap::turningAxis needs a wrapped node (radius > 0)");
         if (wrap.radius > 0) {
             if ((k == 0 || k == N) && nodeKind_[k] != MaterialNode::Driven)
                 throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
@@ -159,6 +163,18 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
                     throw std::invalid_argument(msg.str());
                 }
                 grooveAxes_[k] = wrap.axis;
+                if (wrap.turningAxis) {
+                    if (nodeKind_[k] == MaterialNode::Slipping || k == 0 || k == N)
+                        throw std::invalid_argument(
+                            "RopeModel: node " + std::to_string(k) +
+                            ": a turning groove axis (NodeWrap::turningAxis) is built for Sliding and Driven interior "
+                            "nodes (not for a slipping traction sheave, nor for a drum: its stored rope's law "
+                            "takes the groove's axis fixed)");
+                    axisStation_[k] = N + 1 + numAxisStations_++;
+                }
+            } else if (wrap.turningAxis) {
+                throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
+                                            ": NodeWrap::turningAxis needs a spatial rope (RopeModel<3>)");
             }
             arcIndex_[k] = static_cast<int>(arcs_.size());
             arcs_.emplace_back(spans_.front().properties(), wrap.radius, wrap.wrapSense, spans_.front().gravity());
@@ -456,10 +472,11 @@ void RopeModel<Dim>::arcCoordinates(int node, const Eigen::VectorXd& x, double s
 template <int Dim>
 const Eigen::VectorXd& RopeModel<Dim>::packExternal(const NodeMatrix& nodes, const Eigen::VectorXd& drivenS,
                                                     RopeData<Dim>& data, bool rates) const {
-    if (nodes.cols() != numNodes()) {
+    if (nodes.cols() != numStations()) {
         std::ostringstream msg;
         msg << "RopeModel: " << nodes.cols() << " node " << (rates ? "velocities" : "positions") << " given for "
             << numNodes() << " nodes";
+        if (numAxisStations_ > 0) msg << " and " << numAxisStations_ << " axis stations";
         throw std::invalid_argument(msg.str());
     }
     if (drivenS.size() != numDriven_) {
@@ -470,8 +487,8 @@ const Eigen::VectorXd& RopeModel<Dim>::packExternal(const NodeMatrix& nodes, con
         throw std::invalid_argument(msg.str());
     }
     Eigen::VectorXd& x = rates ? data.ws().packedXdot : data.ws().packedX;
-    x.resize(Dim * numNodes() + numDriven_);
-    for (int k = 0; k <= numSpans(); ++k) x.template segment<Dim>(Dim * k) = nodes.col(k);
+    x.resize(Dim * numStations() + numDriven_);
+    for (int k = 0; k < numStations(); ++k) x.template segment<Dim>(Dim * k) = nodes.col(k);
     x.tail(numDriven_) = drivenS;
     return x;
 }
@@ -811,10 +828,10 @@ void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen
 template <int Dim>
 const Eigen::VectorXd& RopeModel<Dim>::mappedPositions(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     detail::RopeWorkspace<Dim>& ws = data.scratch();
-    const int np = Dim * numNodes();
+    const int np = Dim * numStations();
     Eigen::VectorXd& Y = ws.queryStations;
     Y.setZero(np + numDriven_);
-    for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
+    for (int k = 0; k < numStations(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
     for (const WrapStationMapData* m : {&ws.stationPositionMap, &ws.stationMap})
         if (m->stations.size() == Y.size() && m->x.size() > 0 && m->stations.head(np) == Y.head(np)) return m->x;
     ws.queryMap.wrapAngles = ws.stationMap.wrapAngles;  // continuity with the last evaluation
@@ -826,9 +843,9 @@ const Eigen::VectorXd& RopeModel<Dim>::mappedPositions(const NodeMatrix& nodes, 
 template <int Dim>
 WrapStationMapData RopeModel<Dim>::stationMapAt(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     WrapStationMapData m;
-    const int nY = Dim * numNodes() + numDriven_;
+    const int nY = Dim * numStations() + numDriven_;
     Eigen::VectorXd Y = Eigen::VectorXd::Zero(nY);
-    for (int k = 0; k < numNodes(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
+    for (int k = 0; k < numStations(); ++k) Y.template segment<Dim>(Dim * k) = nodes.col(k);
     m.wrapAngles = data.ws().stationMap.wrapAngles;  // continuity with the last evaluation
     m.arrivalAngles = data.ws().stationMap.arrivalAngles;
     WrapStationMap<Dim>(*this).evaluatePositions(Y, m);

@@ -82,11 +82,22 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         data.jacobian.resize(0, 0);
         data.xdot.resize(0);
     }
+    const int numStations = rope.numStations();
     auto station = [&](int k) { return Vec(stations.template segment<Dim>(Dim * k)); };
+    // The groove's axis: its own, or (turning with its body) from the centre to the axis station.
+    auto axis = [&](int k) -> Eigen::Vector3d {
+        if (rope.axisStation(k) < 0) return rope.grooveAxis(k);
+        return lift<Dim>(Vec(station(rope.axisStation(k)) - station(k)));
+    };
+    auto axisRate = [&](int k) -> Eigen::Vector3d {
+        if (rope.axisStation(k) < 0) return Eigen::Vector3d::Zero();
+        const int a = rope.axisStation(k);
+        return lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * a) - stationRates.template segment<Dim>(Dim * k)));
+    };
     auto groove = [&](int k) {
         GrooveCircle g;
         g.centre = lift<Dim>(station(k));
-        g.axis = rope.grooveAxis(k);
+        g.axis = axis(k);
         g.radius = rope.arc(k).radius();
         g.wrapSense = rope.arc(k).wrapSense();
         return g;
@@ -96,18 +107,24 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         return TangencyEnd::circle(groove(k));
     };
     // Node blocks: a point's position and a groove's centre are stations; a spatial groove's axis
-    // is its own (constant).
+    // is its own (constant) or turns with its body (n = a - c).
     for (int k = 0; k <= N; ++k) {
         const int o = rope.nodeCoordinateOffset(k) + (rope.isWrapped(k) ? Model::wrappedCentreOffset() : 0);
         data.x.template segment<Dim>(o) = station(k);
         if (withRates) data.jacobian.template block<Dim, Dim>(o, Dim * k).setIdentity();
         if constexpr (Dim == 3)
-            if (rope.isWrapped(k))
-                data.x.template segment<3>(rope.nodeCoordinateOffset(k) + Model::wrappedAxisOffset()) = rope.grooveAxis(k);
+            if (rope.isWrapped(k)) {
+                const int on = rope.nodeCoordinateOffset(k) + Model::wrappedAxisOffset();
+                data.x.template segment<3>(on) = axis(k);
+                if (withRates && rope.axisStation(k) >= 0) {
+                    data.jacobian.template block<3, 3>(on, 3 * rope.axisStation(k)).setIdentity();
+                    data.jacobian.template block<3, 3>(on, 3 * k) = -Eigen::Matrix3d::Identity();
+                }
+            }
     }
     for (int d = 0; d < rope.numDrivenNodes(); ++d) {
-        data.x[nodeRows + d] = stations[Dim * (N + 1) + d];
-        if (withRates) data.jacobian(nodeRows + d, Dim * (N + 1) + d) = 1.0;
+        data.x[nodeRows + d] = stations[Dim * numStations + d];
+        if (withRates) data.jacobian(nodeRows + d, Dim * numStations + d) = 1.0;
     }
     // A wrapped node's arc length l = R alpha, alpha = sigma (phi_out - phi_in): its Jacobian row
     // and bias gather R sigma phi_out's from the span it starts (k) and -R sigma phi_in's from the
@@ -122,10 +139,13 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
             const SpanTangency t = computeSpanTangency(a, b, warm ? &data.tangencies[j] : nullptr);
             data.tangencies[j] = t;
             if (withRates) {
-                computeTangencyJacobian(a, b, t, Jt, false);  // the grooves' axes do not turn
+                // (The axis columns only where a groove's axis turns.)
+                computeTangencyJacobian(a, b, t, Jt, rope.axisStation(j) >= 0 || rope.axisStation(j + 1) >= 0);
                 EndMotion ma, mb;
                 ma.velocity = lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * j)));
                 mb.velocity = lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * (j + 1))));
+                ma.axisRate = axisRate(j);
+                mb.axisRate = axisRate(j + 1);
                 computeTangencyRates(a, b, t, ma, mb, rates);
             }
         } catch (const std::domain_error& e) {
@@ -138,9 +158,17 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         data.endFleetAngles[j] = t.endFleetAngle;
         // Jt rows [T1 (3), T2 (3), phi1, phi2], columns [p1 (3), n1 (3), p2 (3), n2 (3)]: the first
         // Dim coordinates of the points and the stations of nodes j (columns 0..) and j + 1 (6..).
+        // A turning axis n = a - c: its columns (3.. and 9..) go to the axis station (+) and the
+        // centre (-).
         auto rowsOver = [&](int row, double scale, int r) {
             data.jacobian.template block<1, Dim>(r, Dim * j) += scale * Jt.template block<1, Dim>(row, 0);
             data.jacobian.template block<1, Dim>(r, Dim * (j + 1)) += scale * Jt.template block<1, Dim>(row, 6);
+            for (const auto& [node, column] : {std::pair<int, int>{j, 3}, std::pair<int, int>{j + 1, 9}}) {
+                const int as = rope.axisStation(node);
+                if (as < 0) continue;
+                data.jacobian.template block<1, Dim>(r, Dim * as) += scale * Jt.template block<1, Dim>(row, column);
+                data.jacobian.template block<1, Dim>(r, Dim * node) -= scale * Jt.template block<1, Dim>(row, column);
+            }
         };
         // A wrapped end (a drum, Driven) has one tangent point, T_in = T_out, and no arc (l = 0):
         // the rope beyond it is the drum's stored rope. Its material coordinate there is
@@ -205,7 +233,7 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         if (!rope.isWrapped(k)) continue;
         const Eigen::Vector3d c = lift<Dim>(station(k));
         const Eigen::Vector3d in = c - pathPoint(k - 1), out = pathPoint(k + 1) - c;
-        const double turn = rope.grooveAxis(k).dot(in.cross(out));
+        const double turn = axis(k).dot(in.cross(out));
         const int sigma = rope.arc(k).wrapSense();
         if (sigma * turn < -1e-9 * in.norm() * out.norm()) {
             std::ostringstream msg;
@@ -237,7 +265,7 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         if (rope.drivenIndex(k) < 0 || !rope.isWrapped(k)) continue;
         // (A drum at the rope's start: the tangent point where span 0 leaves it.)
         const Eigen::Vector3d& radial = k > 0 ? data.tangencies[k - 1].endRadial : data.tangencies[0].startRadial;
-        const Eigen::Vector3d n = rope.grooveAxis(k);
+        const Eigen::Vector3d n = axis(k);
         Eigen::Vector3d up = upDirection();
         up -= n * n.dot(up);
         if (up.norm() < 1e-9) {
@@ -251,7 +279,21 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         double phi = measured;
         if (previous) phi = data.arrivalAngles[k] + std::remainder(measured - data.arrivalAngles[k], 2 * M_PI);
         data.arrivalAngles[k] = phi;
-        data.x[nodeRows + rope.drivenIndex(k)] += arcScale(k) * phi;
+        const int row = nodeRows + rope.drivenIndex(k);
+        data.x[row] += arcScale(k) * phi;
+        // A turning axis turns "up"'s projection u too: phi, measured from u, changes at
+        // phidot = (n x e) . edot - (n x u) . udot, the tangency's rate (gathered above) plus
+        // a (n x g_up) . ndot / (1 - a^2), a = n . g_up (g_up = -g / |g|); its time derivative adds
+        // adot (n x g_up) . ndot (1 + a^2) / (1 - a^2)^2 to the bias.
+        if (withRates && rope.axisStation(k) >= 0) {
+            const Eigen::Vector3d gUp = upDirection(), ndot = axisRate(k);
+            const double a = n.dot(gUp), q = 1 - a * a, adot = ndot.dot(gUp);
+            const Eigen::Vector3d nxu = n.cross(gUp);
+            const Eigen::Matrix<double, 1, Dim> kappa = (arcScale(k) * a / q * nxu).template head<Dim>().transpose();
+            data.jacobian.template block<1, Dim>(row, Dim * rope.axisStation(k)) += kappa;
+            data.jacobian.template block<1, Dim>(row, Dim * k) -= kappa;
+            data.bias[row] += arcScale(k) * adot * nxu.dot(ndot) * (1 + a * a) / (q * q);
+        }
     }
     if (withRates) {
         // Row bands: the first and last non-zero column of each row.

@@ -81,6 +81,17 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         for (int a = 0; a < m; ++a) ws.nodeOffsets[a] = pc.bodyX[mobileNodes_[a].slot].R() * mobileNodes_[a].station;
         ws.angleU.resize(na);
         for (int a = 0; a < na; ++a) ws.angleU[a] = static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s));
+        // Absolute rows: the axis (turning with the sheave's parent: m of turningGripAxis) and
+        // its bias mdot . omega.
+        ws.angleAxes.resize(na);
+        ws.angleBias.assign(na, 0.0);
+        for (int a = 0; a < na; ++a) {
+            const MobileAngle& ma = mobileAngles_[a];
+            ws.angleAxes[a] = ma.axis;
+            if (ma.turningAxis)
+                turningGripAxis(ma.body->getBodyRotation(s) * ma.bodyAxis, ma.body->getBodyAngularVelocity(s), gripUp(),
+                                ws.angleAxes[a], ws.angleBias[a]);
+        }
         // Free accelerations a0 under every force applied so far (prescribed motion included).
         // Without an enabled constraint calcAcceleration is the tree operator itself.
         const bool constrained = anyConstraintEnabled(s);
@@ -110,7 +121,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                     const Vec3 dir = toSimTK(mobileNodes_[a].directions.col(d));
                     ws.bodyForcesUnit[mobileNodes_[a].bodyIndex] += SpatialVec(ws.nodeOffsets[a] % dir, dir);
                 } else if (const MobileAngle& ma = mobileAngles_[col - ns]; ma.absolute) {
-                    ws.bodyForcesUnit[ma.bodyIndex] += SpatialVec(ma.dsdTheta * ma.axis, Vec3(0));
+                    ws.bodyForcesUnit[ma.bodyIndex] += SpatialVec(ma.dsdTheta * ws.angleAxes[col - ns], Vec3(0));
                 } else {
                     ws.mobilityForcesUnit[ws.angleU[col - ns]] += ma.dsdTheta;
                 }
@@ -185,7 +196,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
         for (int a = 0; a < na; ++a) {
             const MobileAngle& ma = mobileAngles_[a];
             if (ma.absolute)  // a torque about the groove's axis on the sheave itself
-                bodyForces[ma.bodyIndex] += SpatialVec(-ma.dsdTheta * ws.f[ns + a] * ma.axis, Vec3(0));
+                bodyForces[ma.bodyIndex] += SpatialVec(-ma.dsdTheta * ws.f[ns + a] * ws.angleAxes[a], Vec3(0));
             else
                 mobilityForces[ws.angleU[a]] -= ma.dsdTheta * ws.f[ns + a];
         }
@@ -238,7 +249,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             const int zy = r.slipZOffset + 2 * d.tractionIndex;
             zdot[zy] = zdot[zy + 1] = 0;
             if (inMomentumSlip(s, r, d)) {
-                const int external = r.dim() * r.numNodes() + static_cast<int>(&d - r.driven.data());
+                const int external = r.drivenExternal(static_cast<int>(&d - r.driven.data()));
                 zdot[zy] = z[zy + 1];
                 zdot[zy + 1] = c.externalAccelerations[external];
                 for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
@@ -309,7 +320,7 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
             }
             for (int a = 0; a < na; ++a)  // absolute driven rows: dsdTheta (axis . omega) of the sheave
                 if (const MobileAngle& ma = mobileAngles_[a]; ma.absolute)
-                    ws.JU(ns + a, c) = ma.dsdTheta * SimTK::dot(ma.axis, ws.bodyVelocities[ma.bodyIndex][0]);
+                    ws.JU(ns + a, c) = ma.dsdTheta * SimTK::dot(ws.angleAxes[a], ws.bodyVelocities[ma.bodyIndex][0]);
             matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
             for (int r = 0; r < k; ++r) ws.MinvUU(r, c) = ws.udotUnit[ws.U[r]];
             ws.generalizedForce[ws.U[c]] = 0;
@@ -333,7 +344,7 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
     for (int a = 0; a < na; ++a) {  // absolute driven rows: a unit torque about the axis
         const MobileAngle& ma = mobileAngles_[a];
         if (!ma.absolute) continue;
-        ws.bodyForces[ma.bodyIndex] = SpatialVec(ma.dsdTheta * ma.axis, Vec3(0));
+        ws.bodyForces[ma.bodyIndex] = SpatialVec(ma.dsdTheta * ws.angleAxes[a], Vec3(0));
         matter().multiplyBySystemJacobianTranspose(s, ws.bodyForces, ws.generalizedForce);
         for (int c = 0; c < k; ++c) ws.JU(ns + a, c) = ws.generalizedForce[ws.U[c]];
         ws.bodyForces[ma.bodyIndex] = SpatialVec(Vec3(0), Vec3(0));
@@ -387,8 +398,9 @@ void ReevingSubsystem::Guts::couplingAccelerations(const PositionCache& pc, cons
     }
     for (size_t d = 0; d < mobileAngles_.size(); ++d) {
         const MobileAngle& ma = mobileAngles_[d];
-        a[ns + static_cast<Eigen::Index>(d)] = ma.absolute ? ma.dsdTheta * SimTK::dot(ma.axis, A_GB[ma.bodyIndex][0])
-                                                           : ma.dsdTheta * udot[ws.angleU[d]];
+        a[ns + static_cast<Eigen::Index>(d)] =
+            ma.absolute ? ma.dsdTheta * (SimTK::dot(ws.angleAxes[d], A_GB[ma.bodyIndex][0]) + ws.angleBias[d])
+                        : ma.dsdTheta * udot[ws.angleU[d]];
     }
 }
 

@@ -171,7 +171,7 @@ double ReevingSubsystem::getDrivenNodeTorque(const State& s, int rope, int node)
         throw std::logic_error("ReevingSubsystem::getDrivenNodeTorque: realize the state to Stage::Dynamics first");
     const RopeCache& c = g.positionCache(s).ropes[rope];
     const Eigen::VectorXd reaction = g.ropeReaction(s, r, c);
-    return d.dsdTheta * reaction[r.dim() * r.numNodes() + r.drivenIndex(node)];
+    return d.dsdTheta * reaction[r.drivenExternal(r.drivenIndex(node))];
 }
 
 double ReevingSubsystem::getDrivenNodePower(const State& s, int rope, int node) const {

@@ -216,7 +216,7 @@ std::vector<Vec3> ReevingSubsystem::sampleArc(const State& s, int rope, int node
     const Eigen::Vector3d station = c.nodes3.col(node);
     const Eigen::Vector3d centre =
         r.planar ? Eigen::Vector3d(station - r.normal * (r.normal.dot(station) - r.normal.dot(c.nodes3.col(0)))) : station;
-    const Eigen::Vector3d n = r.planar ? r.normal : r.wraps[node].axis;
+    const Eigen::Vector3d n = r.planar ? r.normal : r.grooveAxis(node, c.nodes3);
     // The arc starts where span k - 1 ends and turns about sigma n (GrooveArc's kinematics):
     // r(theta) = c + cos(theta) d + sin(theta) (sigma n x d), theta in [0, alpha].
     const Eigen::Vector3d d = toEigen(g.sample(s, rope, node - 1, 2).back()) - centre;

@@ -118,12 +118,12 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         return static_cast<int>(self.bodySlots_.size()) - 1;
     };
     for (RopeRecord& r : self.ropes) {
-        r.nodeSlot.assign(r.numNodes(), 0);
-        for (int k = 0; k < r.numNodes(); ++k) r.nodeSlot[k] = slotOf(r.node(k).first);
+        r.nodeSlot.assign(r.numStations(), 0);
+        for (int k = 0; k < r.numStations(); ++k) r.nodeSlot[k] = slotOf(r.station(k).first);
     }
     for (size_t i = 0; i < ropes.size(); ++i)
-        for (int k = 0; k < ropes[i].numNodes(); ++k) {
-            const auto [body, station] = ropes[i].node(k);
+        for (int k = 0; k < ropes[i].numStations(); ++k) {  // nodes and axis stations
+            const auto [body, station] = ropes[i].station(k);
             if (body->isGround()) continue;
             MobileNode mn{static_cast<int>(i), k, body, station};
             mn.slot = ropes[i].nodeSlot[k];
@@ -149,6 +149,8 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
                 ma.absolute = true;
                 ma.axis = dn.axis;
                 ma.bodyIndex = ma.body->getMobilizedBodyIndex();
+                ma.turningAxis = dn.turningAxis;
+                ma.bodyAxis = dn.bodyAxis;
             }
             self.mobileAngles_.push_back(ma);
         }
@@ -174,7 +176,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
             }
         for (const auto& [yRow, d] : angles) {
             rc.rows.push_back(yRow);
-            rc.external.push_back(dim * r.numNodes() + d);
+            rc.external.push_back(r.drivenExternal(d));
         }
     }
     if (z > 0) allocateZ(s, Vector(z, 0.0));
@@ -320,9 +322,9 @@ bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const
 
 void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord& r, const PositionCache& pc,
                                                 RopeCache& c) const {
-    c.nodes3.resize(3, r.numNodes());
-    for (int k = 0; k < r.numNodes(); ++k)  // MobilizedBody::findStationLocationInGround, per body
-        c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.node(k).second);
+    c.nodes3.resize(3, r.numStations());
+    for (int k = 0; k < r.numStations(); ++k)  // MobilizedBody::findStationLocationInGround, per body
+        c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.station(k).second);
     modal(getZ(s), r, false, c.modalCoordinates);
     c.slipStates.resize(r.numTraction);
     for (int t = 0; t < r.numTraction; ++t) c.slipStates[t] = getZ(s)[r.slipZOffset + 2 * t];
@@ -369,10 +371,10 @@ void ReevingSubsystem::Guts::failEvaluation(const State& s, const RopeRecord& r,
 
 void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord& r, const PositionCache& pc,
                                                 RopeCache& c) const {
-    c.nodeVelocities3.resize(3, r.numNodes());
-    for (int k = 0; k < r.numNodes(); ++k) {  // MobilizedBody::findStationVelocityInGround, per body
+    c.nodeVelocities3.resize(3, r.numStations());
+    for (int k = 0; k < r.numStations(); ++k) {  // MobilizedBody::findStationVelocityInGround, per body
         const SimTK::SpatialVec& V = pc.bodyV[r.nodeSlot[k]];
-        const Vec3 p = pc.bodyX[r.nodeSlot[k]].R() * r.node(k).second;
+        const Vec3 p = pc.bodyX[r.nodeSlot[k]].R() * r.station(k).second;
         c.nodeVelocities3.col(k) = toEigen(V[1] + V[0] % p);
     }
     modal(getZ(s), r, true, c.modalRates);
@@ -672,7 +674,12 @@ void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord&
         }
         const double sRef = r.driven[d].traction ? (*traction)[r.driven[d].tractionIndex].sStick : r.driven[d].sRef;
         if (r.driven[d].absoluteAngle) {  // the sheave's own angle: the pin's plus its parent's turn
-            const SimTK::Vec3& axis = r.driven[d].axis;
+            SimTK::Vec3 axis = r.driven[d].axis;
+            if (r.driven[d].turningAxis && sDrivenDot) {  // the rate about m (turningGripAxis)
+                double unused = 0;
+                turningGripAxis(pin.getBodyRotation(s) * r.driven[d].bodyAxis, pin.getBodyAngularVelocity(s), gripUp(),
+                                axis, unused);
+            }
             sDriven[d] = sRef + r.driven[d].dsdTheta * (pin.getOneQ(s, 0) + parentTurn(s, r, r.driven[d]));
             if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * SimTK::dot(axis, pin.getBodyAngularVelocity(s));
             continue;
@@ -686,6 +693,18 @@ double ReevingSubsystem::Guts::parentTurn(const State& s, const RopeRecord& r, c
     const MobilizedBody& pin = r.nodeSpec(d.node).body;
     const MobilizedBody& parent = pin.getParentMobilizedBody();
     if (parent.isGround()) return 0.0;
+    if (d.turningAxis) {
+        // The angle of a parent direction about the pin axis from "up" projected onto the groove's
+        // plane, now less with the parent at Ground's orientation.
+        const SimTK::Vec3 up = gripUp();
+        auto angle = [&up](const SimTK::Vec3& n, const SimTK::Vec3& direction) {
+            const SimTK::Vec3 u = (up - n * SimTK::dot(n, up)).normalize();
+            return std::atan2(SimTK::dot(n, SimTK::cross(u, direction)), SimTK::dot(u, direction));
+        };
+        const SimTK::Rotation& R_GP = parent.getBodyRotation(s);
+        return std::remainder(angle(R_GP * d.parentAxis, R_GP * d.parentPerp) - angle(d.parentAxis, d.parentPerp),
+                              2 * SimTK::Pi);
+    }
     // The parent's rotation R_GP about the pin axis a (a planar rope: R_GP turns about a alone):
     // the angle from e to R_GP e, e perpendicular to a.
     const SimTK::UnitVec3 a(d.axis);

@@ -83,6 +83,15 @@ struct RopeRecord {
         // that axis, parentTurn), so a parent that turns carries the rope on the groove with it.
         bool absoluteAngle = false;
         SimTK::Vec3 axis{0, 0, 1};  // absoluteAngle: the pin axis in Ground (+- the plane normal)
+        // A spatial rope's gripping groove whose pin axis turns with the parent (NodeWrap::
+        // turningAxis): its angle is measured about the current axis n from "up" projected onto
+        // the groove's plane (as the rope model's grip): theta = q + psi, psi the angle of a
+        // parent direction (parentPerp, normal to the pin axis parentAxis, parent frame) about n
+        // from that "up", less its value with the parent at Ground's orientation
+        // (grippingGrooveParentTurn); its rate is omega_B . m, m = (n - a g_up) / (1 - a^2),
+        // a = n . g_up.
+        bool turningAxis = false;
+        SimTK::Vec3 bodyAxis{0, 0, 1}, parentAxis{0, 0, 1}, parentPerp{1, 0, 0};
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
@@ -95,7 +104,11 @@ struct RopeRecord {
     std::vector<DrivenNode> driven;
     std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
     std::vector<NodeWrap> wraps;              // per node: a wrapped deviation sheave's groove (RopeModel)
-    std::vector<int> nodeSlot;  // per node: its body's slot in ReevingSubsystem::Guts::bodySlots (realizeTopology)
+    /// Per node whose groove axis turns with its body (NodeWrap::turningAxis), in node order: the
+    /// node and its axis station, the point of its body at unit distance from the groove's
+    /// centre along the axis (RopeModel::axisStation: station numNodes() + i).
+    std::vector<std::pair<int, SimTK::Vec3>> axisStations;
+    std::vector<int> nodeSlot;  // per station (nodes, then axis stations): its body's slot in Guts::bodySlots
 
     int numSpans() const { return static_cast<int>(spec.sheaves.size()) + 1; }
     int numNodes() const { return numSpans() + 1; }
@@ -109,6 +122,24 @@ struct RopeRecord {
         const RopeNode& n = nodeSpec(k);
         return {&n.body, n.point};
     }
+    /// Number of stations the rope's model takes: its nodes, then its axis stations.
+    int numStations() const { return numNodes() + static_cast<int>(axisStations.size()); }
+    /// Station i: node i (i < numNodes()), or an axis station on its node's body.
+    std::pair<const SimTK::MobilizedBody*, SimTK::Vec3> station(int i) const {
+        if (i < numNodes()) return node(i);
+        const auto& [k, point] = axisStations[static_cast<std::size_t>(i - numNodes())];
+        return {&nodeSpec(k).body, point};
+    }
+    /// The groove axis of wrapped node k in Ground [-]: its own, or (turning with its body) from
+    /// the centre to its axis station in `stations` (the cache's nodes3).
+    Eigen::Vector3d grooveAxis(int k, const Eigen::Matrix3Xd& stations) const {
+        for (std::size_t i = 0; i < axisStations.size(); ++i)
+            if (axisStations[i].first == k)
+                return stations.col(numNodes() + static_cast<int>(i)) - stations.col(k);
+        return wraps[static_cast<std::size_t>(k)].axis;
+    }
+    /// The rope's external coordinate (station coordinate) of its d-th driven material coordinate.
+    int drivenExternal(int d) const { return dim() * numStations() + d; }
     /// Index of node k among the driven nodes, or -1.
     int drivenIndex(int k) const {
         for (size_t d = 0; d < driven.size(); ++d)
@@ -130,7 +161,7 @@ struct RopeRecord {
         return out;
     }
     /// Number of the rope's external coordinates (RopeModel::numExternalCoordinates).
-    int numExternal() const { return dim() * numNodes() + static_cast<int>(driven.size()); }
+    int numExternal() const { return dim() * numStations() + static_cast<int>(driven.size()); }
 };
 
 /// State (a discrete variable of the subsystem, invalidating Stage::Position): the spatial ropes'
@@ -199,6 +230,8 @@ struct CouplingWorkspace {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     std::vector<int> U;                    // mobilities (u indices), ascending
     std::vector<int> angleU;               // per MobileAngle: its pin's u index (-1: an absolute row)
+    std::vector<SimTK::Vec3> angleAxes;    // per MobileAngle: an absolute row's axis this evaluation
+    std::vector<double> angleBias;         // per MobileAngle: an absolute row's mdot . omega_B [1/s^2]
     std::vector<SimTK::Vec3> nodeOffsets;  // per MobileNode: R_GB station [m], in Ground
     SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
     SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit, bodyVelocities, bodyForces;
@@ -253,7 +286,25 @@ struct MobileAngle {
     bool absolute = false;
     SimTK::Vec3 axis{0, 0, 1};
     int bodyIndex = 0;  ///< the body's MobilizedBodyIndex (absolute rows)
+    /// An absolute row whose pin axis turns (DrivenNode::turningAxis): the row's axis is
+    /// m = (n - a g_up) / (1 - a^2), n = R_GB bodyAxis, a = n . g_up, per evaluation
+    /// (CouplingWorkspace::angleAxes), and its acceleration gains mdot . omega_B.
+    bool turningAxis = false;
+    SimTK::Vec3 bodyAxis{0, 0, 1};
 };
+
+/// A gripping groove whose axis n turns at omega (DrivenNode::turningAxis): its angle's rate is
+/// omega . m with m = (n - a g_up) / (1 - a^2), a = n . g_up (g_up = -g / |g|, "up" of the
+/// rope model's grip); mdotOmega = mdot . omega, the rate's bias (omega held).
+inline void turningGripAxis(const SimTK::Vec3& n, const SimTK::Vec3& omega, const SimTK::Vec3& gUp, SimTK::Vec3& m,
+                            double& mdotOmega) {
+    const double a = SimTK::dot(n, gUp), q = 1 - a * a;
+    m = (n - a * gUp) / q;
+    const SimTK::Vec3 ndot = SimTK::cross(omega, n);
+    const double adot = SimTK::dot(ndot, gUp);
+    const SimTK::Vec3 mdot = (ndot - adot * gUp) / q + (n - a * gUp) * (2 * a * adot / (q * q));
+    mdotOmega = SimTK::dot(mdot, omega);
+}
 
 /// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
 /// coupled vector y = [2 or 3 per MobileNode | 1 per MobileAngle] and, for each, the rope's
@@ -297,6 +348,8 @@ public:
         return *matter_;
     }
     const SimTK::Vec3& gravity() const { return gravity_; }
+    /// "Up" of a gripping groove's angle: -g / |g|, +y without gravity (WrapStationMap's).
+    SimTK::Vec3 gripUp() const { return gravity_.norm() > 0 ? SimTK::Vec3(-gravity_ / gravity_.norm()) : SimTK::Vec3(0, 1, 0); }
     bool gravityFromSystem() const { return gravityFromSystem_; }
     /// Finds the Force::Gravity and Force::UniformGravity elements of the system's
     /// GeneralForceSubsystems (at realizeTopology; their handles live as long as the topology).

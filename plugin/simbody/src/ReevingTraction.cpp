@@ -138,7 +138,7 @@ double ReevingSubsystem::Guts::maxFriction(const RopeRecord& r, const RopeRecord
 double ReevingSubsystem::Guts::stickFriction(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
     const RopeCache& c = positionCache(s).ropes[r.index];
     const auto [pa, pb] = nodeTotalForces(s, r, d.node);
-    const int external = r.dim() * r.numNodes() + r.drivenIndex(d.node);
+    const int external = r.drivenExternal(r.drivenIndex(d.node));
     // ropeReaction = h - S xddot, so (S xddot)_Y = h_Y - reaction_Y.
     const double sxdd = c.planar.nodeForce[external] - ropeReaction(s, r, c)[external];
     return pa - pb - sxdd;
@@ -157,7 +157,7 @@ ReevingSubsystem::Guts::MomentumSlip ReevingSubsystem::Guts::momentumSlip(const 
     const double pressing = std::max(tight - rhoA * m.speed * m.speed, 0.0);
     m.friction = sigma * pressing * (1.0 - std::exp(-d.frictionCoefficient * tractionWrapAngle(s, r, d)));
     m.drive = pa - pb - m.friction;
-    m.external = r.dim() * r.numNodes() + r.drivenIndex(d.node);
+    m.external = r.drivenExternal(r.drivenIndex(d.node));
     m.correction = pa - pb - c.planar.nodeForce[m.external];
     m.slipRate = m.speed - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
     m.workRate = m.friction * m.slipRate - m.correction * m.speed;

@@ -25,17 +25,20 @@ NodeWrap DeviationSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& plan
     w.radius = n.radius;
     w.wrapSense = n.sense;
     if (planeNormal.norm() > 0) return w;  // planar: the groove turns about the plane normal
-    // Spatial: the groove's axis, a body direction, fixed in Ground while the body keeps Ground's
-    // orientation.
+    // Spatial: the groove's axis, a body direction. Where the body turns about it alone (if at
+    // all) it is fixed in Ground; otherwise it turns with the body (a sheave on a slewing or
+    // luffing boom): the rope's model then takes it from an axis station, the body point one
+    // metre from the groove's centre along it.
     const SimTK::Vec3& a = n.axis;
     if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])) || std::abs(a.norm() - 1) > 1e-12)
         invalid(name + " axis = " + str(a) + " (|axis| = " + std::to_string(a.norm()) +
                 ") must be a unit vector: a spatial rope's wrapped sheave turns the rope about it");
-    if (!keepsGroundOrientation(n.body))
-        invalid(name + ": with SheaveModel::Wrapped on a spatial rope its body must keep Ground's orientation "
-                       "(Ground, or a Slider, Translation or Weld with aligned frames on such a body): sheaves on "
-                       "turning bodies are not built yet for spatial ropes");
-    w.axis = toEigen(a);
+    const SimTK::Vec3 inGround = referenceOrientation(n.body) * a;
+    if (!keepsDirection(n.body, inGround)) {
+        w.turningAxis = true;
+        site.rope.axisStations.push_back({site.node, n.point + a / a.norm()});
+    }
+    w.axis = toEigen(inGround);
     return w;
 }
 

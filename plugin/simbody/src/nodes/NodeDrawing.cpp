@@ -49,7 +49,7 @@ void DeviationSheaveNode::draw(const NodeDrawing& drawing) {
     if (drawing.rope.planar) {
         axis = toSimTK(drawing.rope.normal);
     } else if (drawing.rope.wraps[drawing.node].radius > 0) {  // a wrapped groove: its own axis
-        axis = toSimTK(drawing.rope.wraps[drawing.node].axis);
+        axis = toSimTK(drawing.rope.grooveAxis(drawing.node, drawing.cache.nodes3));
     } else {  // the plane of the two spans at the sheave (any plane through a straight pass)
         const Eigen::Matrix3Xd& p = drawing.cache.nodes3;
         const int k = drawing.node;

@@ -77,13 +77,24 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
         invalid(name + ": with SheaveModel::Wrapped its pin's parent must be Ground or translate without turning "
                        "(Slider, Translation or Weld with aligned frames, on such a body): a TractionSheave's grip on "
                        "the groove is measured from Ground's angles");
-    // The pin axis in Ground (its parent's turns, if any, are about it).
+    // The pin axis in Ground with the parent's chain at its reference. It turns with the parent
+    // unless the parent turns about it alone (if at all): then a spatial rope's model takes it
+    // from an axis station (NodeWrap::turningAxis), and a planar rope's grooves cannot.
     const SimTK::UnitVec3 axis(referenceOrientation(parent) * n.body.getDefaultInboardFrame().R().z());
-    if (turningParent && !keepsDirection(parent, axis))
-        invalid(name + ": with SheaveModel::Wrapped its pin's parent may turn only about the pin axis " +
+    const bool planar = planeNormal.norm() > 0;
+    const bool axisTurns = turningParent && !keepsDirection(parent, axis);
+    if (axisTurns && planar)
+        invalid(name + ": with SheaveModel::Wrapped on a planar rope its pin's parent may turn only about the pin "
+                       "axis " +
                 str(SimTK::Vec3(axis)) +
                 " (its chain of Pin or Planar mobilizers about that axis, Sliders, Translations and Welds): the "
-                "groove's axis must stay put");
+                "groove's axis must stay the plane normal");
+    const bool drum = site.node == 0 || site.node + 1 == site.rope.numNodes();
+    if (axisTurns && drum)
+        invalid(name + ": with SheaveModel::Wrapped a winch drum's parent may turn only about the pin axis " +
+                str(SimTK::Vec3(axis)) +
+                " (its chain of Pin or Planar mobilizers about that axis, Sliders, Translations and Welds): the "
+                "law of the rope stored on a drum takes its axis fixed (a drum whose axis turns is not built yet)");
     const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
     NodeWrap w;
     w.radius = n.radius;
@@ -106,6 +117,14 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
         RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
         d.absoluteAngle = true;
         d.axis = grooveAxis;
+        if (axisTurns) {  // the axis station: on the pin axis, 1 m from the centre
+            w.turningAxis = true;
+            d.turningAxis = true;
+            d.bodyAxis = SimTK::Vec3(n.body.getDefaultOutboardFrame().R().z());
+            d.parentAxis = SimTK::Vec3(n.body.getDefaultInboardFrame().R().z());
+            d.parentPerp = SimTK::Vec3(n.body.getDefaultInboardFrame().R().x());
+            site.rope.axisStations.push_back({site.node, n.point + d.bodyAxis});
+        }
     }
     return w;
 }

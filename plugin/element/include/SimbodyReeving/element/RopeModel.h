@@ -77,8 +77,20 @@ struct NodeWrap {
     int wrapSense = 1;
     /// n [-]: the groove's unit axis in a spatial rope (Dim = 3), in the frame of the node
     /// positions; a finite unit vector (|n| within 1e-12 of 1). A planar rope's grooves turn
-    /// about +z, and this field is not read.
+    /// about +z, and this field is not read. With turningAxis, the axis at the reference
+    /// configuration (not read by the evaluations).
     Eigen::Vector3d axis{0.0, 0.0, 1.0};
+    /// Dim = 3: the groove's axis turns with the body that carries the groove (a sheave on a
+    /// slewing or luffing boom). It is then given per evaluation, as the node's position is: by an
+    /// axis station, a point on the same body at unit distance from the groove's centre along the
+    /// axis, n = p_axis - c, an extra column of the NodeMatrix forms' node arguments (after the
+    /// N + 1 nodes, one per such node in node order: RopeModel::axisStation). Its velocity then
+    /// carries the body's angular velocity, ndot = omega x n, into the rope's Lagrange equations
+    /// (WrapStationMap), and the rope's generalized force on it is the couple the groove's axis
+    /// carries. Interior Sliding and Driven nodes (a Driven node's grip angle phi is measured from
+    /// "up" projected onto the turning groove plane, WrapStationMap); not at a drum (its stored
+    /// rope's law takes the axis fixed) nor a Slipping node. Not for planar ropes.
+    bool turningAxis = false;
 };
 
 template <int Dim>
@@ -225,7 +237,8 @@ public:
     /// @throws std::invalid_argument for no spans, spans with different rope properties, L not
     ///         finite and > 0, nodeKinds or wraps of the wrong size, a Fixed interior node or a
     ///         Sliding end, a wrapped end node that is not Driven, a wrap radius not finite and >= 0, a wrap sense
-    ///         other than +1 or -1, or (Dim = 3) a wrapped node's axis that is not a finite unit vector.
+    ///         other than +1 or -1, or (Dim = 3) a wrapped node's axis that is not a finite unit vector;
+    ///         NodeWrap::turningAxis on a point node, an end node, a Slipping node or a planar rope.
     RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
               std::vector<NodeWrap> wraps = {});
 
@@ -248,8 +261,16 @@ public:
     /// wrapped node, [c, T_in, T_out, n (Dim = 3 only), l] at the offsets below.
     int nodeCoordinateOffset(int node) const { return nodeOffset_[node]; }
     bool isWrapped(int node) const { return arcIndex_[node] >= 0; }          ///< NodeWrap::radius > 0
-    /// The groove's unit axis n of node k (NodeWrap::axis in a spatial rope; +z in a planar one).
+    /// The groove's unit axis n of node k (NodeWrap::axis in a spatial rope; +z in a planar one;
+    /// at a node with NodeWrap::turningAxis its reference value: the evaluations take it from the
+    /// axis station).
     const Eigen::Vector3d& grooveAxis(int node) const { return grooveAxes_[node]; }
+    /// Number of station points the NodeMatrix forms take: the N + 1 nodes, then one axis
+    /// station per node with NodeWrap::turningAxis.
+    int numStations() const { return numNodes() + numAxisStations_; }
+    /// The column of node k's axis station in the NodeMatrix forms' node arguments (N + 1 + its
+    /// index among the turning nodes), or -1 if its axis does not turn.
+    int axisStation(int node) const { return axisStation_[node]; }
     int numWrappedNodes() const { return static_cast<int>(arcs_.size()); }  ///< nodes with a groove arc
     /// The rope on the groove of wrapped node k (its mass, radius and sense).
     /// @throws std::invalid_argument if node is not wrapped.
@@ -540,6 +561,8 @@ private:
     std::vector<int> arcIndex_, arcNode_;  // node -> arc index or -1; arc -> node
     std::vector<int> nodeOffset_;          // node -> first external coordinate of its block
     std::vector<Eigen::Vector3d> grooveAxes_;  // node -> its groove's axis (+z at point nodes and in 2D)
+    std::vector<int> axisStation_;             // node -> its axis station's column, or -1 (NodeWrap::turningAxis)
+    int numAxisStations_ = 0;
     int numNodeCoordinates_ = 0;
     std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1

@@ -61,23 +61,27 @@ void multiplyStationJacobianFromLeft(const Eigen::Ref<const Eigen::MatrixXd>& A,
 /// A rope's external coordinates as functions of the stations its bodies carry.
 ///
 /// The rope's (RopeModel<Dim>) external coordinates x follow from its stations
-///     Y = [p_0, ..., p_N (Dim each), s at the Driven nodes],
+///     Y = [p_0, ..., p_N, a_1, ..., a_m (Dim each), s at the Driven nodes],
 /// p_k the position of an end or point node, and the groove centre c_k of a wrapped node
-/// (NodeWrap): what the bodies carry. Each span's ends follow from its two nodes by the wrap
+/// (NodeWrap); a_i the axis station of the i-th node whose groove axis turns with its body
+/// (NodeWrap::turningAxis, 3D), its axis n_k = a_i - c_k: what the bodies carry. Each span's ends follow from its two nodes by the wrap
 /// geometry (computeSpanTangency: point-to-circle and circle-to-circle, open or crossed; the groove
 /// axis the plane's normal +z in a planar rope, NodeWrap::axis in a spatial one, where a span may
 /// leave a groove's plane at a fleet angle; the sense the node's NodeWrap::wrapSense), and each wrapped node's
 /// arc length from its two tangent points, l = R alpha (wrapAngle, continuous from the previous
 /// evaluation's alpha). So x = Phi(Y), xdot = J Ydot and xddot = J Yddot + b, with J and b from the
 /// tangency's analytic first and second time derivatives (computeTangencyRates). A spatial
-/// wrapped node's axis entries of x are its NodeWrap::axis, constant: the grooves' bodies keep
-/// their orientation (their J rows and b are zero).
+/// wrapped node's axis entries of x are its NodeWrap::axis, constant (their J rows and b are
+/// zero), or, for a turning axis, n = a_i - c_k (rows +I at a_i, -I at c_k; the tangency's axis
+/// columns carried over to those stations, its bias at the axis' rate ndot = adot_i - cdot_k).
 ///
 /// At a wrapped Driven node (a sheave that grips the rope: it does not slide on the groove) the
 /// station Y_s is the material coordinate at the groove's "up" point (against gravity, projected
 /// onto the groove's plane in 3D), so the
 /// rope's material coordinate where it arrives on the groove is s_k = Y_s + sigma R phi_in, phi_in
-/// the arriving tangent point's angle from "up" (WrapStationMapData::arrivalAngles), and the
+/// the arriving tangent point's angle from "up" (WrapStationMapData::arrivalAngles; where the
+/// groove's axis turns, "up"'s projection turns with it: phi's rate gains a (n x g_up) . ndot /
+/// (1 - a^2), a = n . g_up, in J and its derivative in b), and the
 /// departing span starts at s_k + l = Y_s + sigma R phi_out. For a sheave turning by theta about
 /// the plane normal, Y_s = s_ref - sigma R theta. A wrapped end node (a winch drum) has one tangent
 /// point, that of the span it starts or ends (point-to-circle or circle-to-circle), and no arc:
@@ -100,8 +104,9 @@ public:
     explicit WrapStationMap(const RopeModel<Dim>& rope) : rope_(&rope) {}
 
     const RopeModel<Dim>& rope() const { return *rope_; }  ///< the mapped rope
-    /// Number of station coordinates: Dim (N + 1) + RopeModel::numDrivenNodes().
-    int numStationCoordinates() const { return Dim * rope_->numNodes() + rope_->numDrivenNodes(); }
+    /// Number of station coordinates: Dim RopeModel::numStations() + RopeModel::numDrivenNodes()
+    /// (Dim (N + 1) + numDrivenNodes() without turning groove axes).
+    int numStationCoordinates() const { return Dim * rope_->numStations() + rope_->numDrivenNodes(); }
 
     /// x, xdot, J and b at the stations Y and their rates Ydot. data.wrapAngles, when it holds a
     /// value per node, is the previous evaluation's (alpha stays continuous through full turns);

@@ -168,10 +168,11 @@ struct DeviationSheave {
     /// clockwise.
     int wrapSense = 1;
     /// With SheaveModel::Wrapped on a spatial rope: the groove's axis in the body's frame [-], a
-    /// unit vector. The body must keep Ground's orientation (Ground, or a Slider, Translation or
-    /// Weld with aligned frames on such a body): the groove's plane stays put while the rope
-    /// arrives and leaves at any fleet angle (the angle between a span and that plane). Not read
-    /// for planar ropes.
+    /// unit vector. The rope arrives and leaves at any fleet angle (the angle between a span and
+    /// the groove's plane). The body may turn in any way (a sheave on a slewing or luffing boom):
+    /// the axis then turns with it, the rope's Lagrange equations carry the body's angular
+    /// velocity (RopeModel's NodeWrap::turningAxis) and the rope's reaction on the sheave is a
+    /// force at its centre and a couple. Not read for planar ropes.
     SimTK::Vec3 axis{0};
     /// The RopeNode of kind DeviationSheave.
     operator RopeNode() const {
@@ -232,8 +233,11 @@ struct WinchDrum {
 /// luffing boom): theta is then the sheave's own angle, its pin angle plus the parent's turn about
 /// the pin axis from Ground's orientation (within half a turn: a run ends with a message when the
 /// parent passes it), so the rope on the groove turns with the parent too. On a spatial rope the
-/// groove turns about the pin axis, and the parent must keep Ground's orientation (Ground, or a
-/// Slider, Translation or Weld with aligned frames on such a body: a trolley).
+/// groove turns about the pin axis n and the parent may turn in any way (a sheave on a slewing
+/// and luffing boom): where it turns the axis too, theta is the sheave's angle about n measured
+/// from "up" (-g) projected onto the groove's plane, its pin angle plus the turn of a parent
+/// direction measured so, from the parent at Ground's orientation (its rate omega . m,
+/// m = (n - a g_up) / (1 - a^2), a = n . g_up; gravity along n is refused by the rope model).
 struct TurningSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
@@ -414,10 +418,11 @@ public:
     ///         override index out of range, non-finite plane normal, gravity out of the rope plane
     ///         (gravity given to the constructor; with the system's gravity, realizeTopology checks
     ///         the plane and throws std::logic_error); with SheaveModel::Wrapped, a
-    ///         wrap sense not +-1, a TractionSheave (or a TurningSheave or WinchDrum of a spatial
-    ///         rope) whose pin's parent turns relative to Ground, a planar rope's TurningSheave,
-    ///         TractionSheave or WinchDrum whose pin axis is not the plane normal, or a spatial
-    ///         rope's DeviationSheave without a unit axis or on a body that turns.
+    ///         wrap sense not +-1, a TractionSheave whose pin's parent turns relative to Ground, a
+    ///         WinchDrum (or a planar rope's TurningSheave) whose pin's parent turns about another
+    ///         axis than the pin's, a planar rope's TurningSheave, TractionSheave or WinchDrum whose
+    ///         pin axis is not the plane normal, or a spatial rope's DeviationSheave without a unit
+    ///         axis.
     int addRope(const RopeSpec& spec);
 
     /// Number of ropes added.
