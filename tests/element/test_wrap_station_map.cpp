@@ -309,9 +309,11 @@ TEST(WrapStationMap, TurningGrooveAxesAreForWrappedInteriorNodesOfSpatialRopes) 
     EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {MaterialNode::Fixed, MaterialNode::Slipping, MaterialNode::Fixed},
                                       {NodeWrap{}, turning, NodeWrap{}}),
                          std::invalid_argument, "not for a slipping traction sheave");
-    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed},
-                                      {turning, NodeWrap{}, NodeWrap{}}),
-                         std::invalid_argument, "nor for a drum");
+    // A drum (a wrapped Driven end) may turn: its axis station follows the interior ones.
+    const RopeModel<3> drum(spans3(), 20.0, {MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed},
+                            {turning, NodeWrap{}, NodeWrap{}});
+    EXPECT_EQ(drum.numStations(), 4);
+    EXPECT_EQ(drum.axisStation(0), 3);
     std::vector<SpanModel<2>> planar;
     for (int j = 0; j < 2; ++j) planar.emplace_back(props, spanOptions(0, 0), Vector2d(0.0, -kG));
     EXPECT_THROW_MESSAGE(RopeModel<2>(std::move(planar), 20.0, {}, {NodeWrap{}, turning, NodeWrap{}}),

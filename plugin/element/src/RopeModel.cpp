@@ -164,12 +164,11 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
                 }
                 grooveAxes_[k] = wrap.axis;
                 if (wrap.turningAxis) {
-                    if (nodeKind_[k] == MaterialNode::Slipping || k == 0 || k == N)
+                    if (nodeKind_[k] == MaterialNode::Slipping)
                         throw std::invalid_argument(
                             "RopeModel: node " + std::to_string(k) +
-                            ": a turning groove axis (NodeWrap::turningAxis) is built for Sliding and Driven interior "
-                            "nodes (not for a slipping traction sheave, nor for a drum: its stored rope's law "
-                            "takes the groove's axis fixed)");
+                            ": a turning groove axis (NodeWrap::turningAxis) is built for Sliding and Driven nodes "
+                            "(sheaves and drums), not for a slipping traction sheave");
                     axisStation_[k] = N + 1 + numAxisStations_++;
                 }
             } else if (wrap.turningAxis) {
@@ -782,6 +781,7 @@ detail::StoredRope<Dim> storedRopeLaw(const RopeModel<Dim>& model, int k, double
         const int tangent = o + (k == 0 ? RopeModel<Dim>::wrappedDepartureOffset() : RopeModel<Dim>::wrappedArrivalOffset());
         law.setWrapped(model.arc(k).radius(), model.arc(k).wrapSense(), o + RopeModel<Dim>::wrappedCentreOffset(), tangent,
                        o + (Dim == 3 ? RopeModel<Dim>::wrappedAxisOffset() : 0));
+        if (model.axisStation(k) >= 0) law.setTurningAxis();
     } else {
         law.setPointOffset(o);
     }

@@ -11,7 +11,9 @@ namespace SimbodyReeving::detail {
 template <int Dim>
 void StoredRope<Dim>::evaluate(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, double s, double sdot,
                                StoredRopeTerms<Dim>& out) const {
-    if (isWrapped())
+    if (turningAxis_)
+        evaluateTurningAxis(x, xdot, s, sdot, out);
+    else if (isWrapped())
         evaluateWrapped(x, xdot, s, sdot, out);
     else
         evaluatePoint(x, xdot, s, sdot, out);

@@ -16,7 +16,7 @@ namespace SimbodyReeving::detail {
 /// rope adds, and its energies. Fixed size: no allocation per evaluation.
 template <int Dim>
 struct StoredRopeTerms {
-    static constexpr int kMaxColumns = 2 * Dim + 1;  ///< centre, tangent point, s
+    static constexpr int kMaxColumns = 3 * Dim + 1;  ///< centre, tangent point, axis (turning), s
     int count = 0;
     std::array<int, kMaxColumns> cols{};
     Eigen::Matrix<double, kMaxColumns, kMaxColumns> mass = Eigen::Matrix<double, kMaxColumns, kMaxColumns>::Zero();
@@ -48,7 +48,22 @@ struct StoredRopeTerms {
 /// u(psi) = cos psi up + sin psi n x up, |g| the magnitude of gravity in the groove's plane. The
 /// last terms are the partial turn's: the energy of a full turn does not depend on where the drum
 /// stands. These are exact for a single layer of any number of turns in the groove's plane (no
-/// pitch across the drum). The axis is constant (a drum whose body keeps its orientation).
+/// pitch across the drum), with the axis constant (a drum whose body keeps its orientation).
+///
+/// **Wrapped drum whose axis turns** (Dim = 3, setTurningAxis: a drum on a slewing or luffing
+/// body; n = a - c from an axis station a, |n| = 1): the stored rope turns rigidly with the drum.
+/// Its angular velocity is Omega_s n + Omega_perp, Omega_perp = n x ndot (the axis' tumbling) and
+/// Omega_s = f . (Tdot - cdot) / R - sigma sdot_k / R the spin about n (f = n x e, e = (T - c) / R
+/// the tangent point's radial: the tangent radial's turn less the material's slide past it).
+/// With the stored arc's moments I1 = int u dlambda, I2 = int u u^T dlambda over its length (u the
+/// radial of the material at lambda from the tangent point, turned by -sigma kappa lambda / R
+/// about n from e), integrated in closed form,
+///     T = 1/2 rhoA [l |cdot|^2 + 2 R Omega_s cdot . (n x I1) + 2 R cdot . (Omega_perp x I1)
+///                   + R^2 l Omega_s^2 + R^2 (l |Omega_perp|^2 - Omega_perp^T I2 Omega_perp)],
+///     U = -rhoA (l g . c + R g . I1).
+/// (The spin and tumbling cross term vanishes: n x u is normal to Omega_perp x u.) With the axis
+/// fixed it is the law above. Its mass block and force at (c, T, n, s) are the Lagrangian's
+/// derivatives, taken by forward automatic differentiation of T's velocity map and U.
 template <int Dim>
 class StoredRope {
 public:
@@ -70,6 +85,10 @@ public:
         tangentOffset_ = tangentOffset;
         axisOffset_ = axisOffset;
     }
+    /// Declares the wrapped drum's axis turning: its x columns at the axis offset are n = a - c,
+    /// whose rates enter the law (Dim = 3 only).
+    void setTurningAxis() { turningAxis_ = true; }
+    bool hasTurningAxis() const { return turningAxis_; }
     /// The external coordinate of the node's position (a point drum).
     void setPointOffset(int offset) { centreOffset_ = offset; }
     /// The external coordinate of the node's material coordinate s_k.
@@ -94,12 +113,24 @@ private:
                        StoredRopeTerms<Dim>& out) const;
     void evaluateWrapped(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, double s, double sdot,
                          StoredRopeTerms<Dim>& out) const;
+    // StoredRopeTurningAxis.cpp.
+    void evaluateTurningAxis(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, double s, double sdot,
+                             StoredRopeTerms<Dim>& out) const;
     int node_;
     double lengthAtZero_, slope_, rhoA_;
     Vec gravity_;
     double radius_ = 0;
     int sense_ = 1;
     int centreOffset_ = 0, tangentOffset_ = 0, axisOffset_ = 0, materialOffset_ = 0;
+    bool turningAxis_ = false;
 };
+
+// (Defined in StoredRopeTurningAxis.cpp; the planar one throws std::logic_error.)
+template <>
+void StoredRope<3>::evaluateTurningAxis(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, double s, double sdot,
+                                        StoredRopeTerms<3>& out) const;
+template <>
+void StoredRope<2>::evaluateTurningAxis(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, double s, double sdot,
+                                        StoredRopeTerms<2>& out) const;
 
 }  // namespace SimbodyReeving::detail

@@ -2,6 +2,8 @@
 
 #include "SimbodyReeving/element/WrapGeometry.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -120,39 +122,55 @@ BoomLayout boomLayout(const BoomCraneParameters& p) {
     return c;
 }
 
-// Groove axes and wrap senses of the sheaves (nodes 1..3) at rest: every luffing sheave and the
-// foot and tip sheaves turn about the superstructure's z (clockwise seen from +z: the rope goes up
-// and over the A-frame and foot sheaves, round the far side of the tip sheaves); the hook sheave
-// turns about the hook's x, the rope passing under it from the tip sheave's fall (z < 0) to the
-// dead end's (z > 0), clockwise seen from +x.
+Eigen::Vector3d eig(const Vec3& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+// Groove axes and wrap senses of the sheaves (nodes 1..3) at rest. Every luffing sheave and the
+// foot and tip sheaves turn about the superstructure's z, the hook sheave about the hook's x. The
+// rope turns half a turn round the boom tip's luffing sheave and A-frame sheave 2, where the path
+// through the centres cannot tell the sense (its turn lies across the groove's plane): clockwise
+// seen from +z, round the tip sheave's far side and A-frame sheave 2's back (falls 1 and 3 above
+// the falls' line, fall 2 below it). The other sheaves deflect the rope: their sense is the
+// path's (wrapSenseFromPath).
 struct SheaveGroove {
     Vec3 axis;
     int sense;
     double radius;
 };
-SheaveGroove grooveOf(const BoomCraneParameters& p, int rope, int k) {
-    if (rope == BoomCraneScene::kLuffingRope) return {Vec3(0, 0, 1), -1, p.luffSheaveRadius};
-    if (k == 3) return {Vec3(1, 0, 0), -1, p.hoistSheaveRadius};
-    return {Vec3(0, 0, 1), -1, p.hoistSheaveRadius};
+SheaveGroove grooveOf(const BoomCraneParameters& p, int rope, int k, const std::array<Vec3, 5>& nodes) {
+    SheaveGroove g{Vec3(0, 0, 1), -1, rope == BoomCraneScene::kLuffingRope ? p.luffSheaveRadius : p.hoistSheaveRadius};
+    if (rope == BoomCraneScene::kHoistRope && k == 3) g.axis = Vec3(1, 0, 0);
+    if (rope == BoomCraneScene::kLuffingRope && k != 1) return g;
+    GrooveCircle c;
+    c.centre = eig(nodes[k]);
+    c.axis = eig(g.axis);
+    c.radius = g.radius;
+    g.sense = wrapSenseFromPath(eig(nodes[k - 1]), c, eig(nodes[k + 1]));
+    return g;
 }
 
-Eigen::Vector3d eig(const Vec3& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
-
-// Geometric length of a rope through `nodes` at rest [m]: its spans (between tangent points when
-// wrapped, WrapGeometry) and, when wrapped, the arcs R alpha on the sheaves (nodes 1..3). The
-// spans' part is returned in `spans`.
+// Geometric length of a rope through `nodes` at rest [m], from the drum's node to the dead end,
+// and its spans' part (`spans`). Point sheaves: the chords between the nodes. Wrapped: the spans
+// between tangent points (WrapGeometry), the arcs R alpha on the sheaves (nodes 1..3), and on the
+// drum the rope from its top to where it leaves, sigma R phi: a wrapped drum's material coordinate
+// is counted from its top ("up", phi measured from there counter-clockwise about its axis, as the
+// station map does; sigma = +1, the rope paid out by a positive angle leaving counter-clockwise
+// about z).
 double pathLength(const BoomCraneParameters& p, int rope, const std::array<Vec3, 5>& nodes, double& spans) {
     spans = 0;
     if (!wrapped(p)) {
         for (int k = 0; k < 4; ++k) spans += (nodes[k + 1] - nodes[k]).norm();
         return spans;
     }
-    std::array<TangencyEnd, 5> ends = {TangencyEnd::point(eig(nodes[0])), TangencyEnd::point(eig(nodes[0])),
+    std::array<GrooveCircle, 4> circles;
+    circles[0].centre = eig(nodes[0]);
+    circles[0].axis = Eigen::Vector3d::UnitZ();
+    circles[0].radius = p.drumRadius;
+    circles[0].wrapSense = 1;
+    std::array<TangencyEnd, 5> ends = {TangencyEnd::circle(circles[0]), TangencyEnd::point(eig(nodes[0])),
                                        TangencyEnd::point(eig(nodes[0])), TangencyEnd::point(eig(nodes[0])),
                                        TangencyEnd::point(eig(nodes[4]))};
-    std::array<GrooveCircle, 5> circles;
     for (int k = 1; k <= 3; ++k) {
-        const SheaveGroove g = grooveOf(p, rope, k);
+        const SheaveGroove g = grooveOf(p, rope, k, nodes);
         circles[k].centre = eig(nodes[k]);
         circles[k].axis = eig(g.axis);
         circles[k].radius = g.radius;
@@ -166,7 +184,9 @@ double pathLength(const BoomCraneParameters& p, int rope, const std::array<Vec3,
     }
     double arcs = 0;
     for (int k = 1; k <= 3; ++k) arcs += circles[k].radius * wrapAngle(circles[k], t[k - 1].endRadial, t[k].startRadial);
-    return spans + arcs;
+    const Eigen::Vector3d up = Eigen::Vector3d::UnitY(), e = t[0].startRadial;
+    const double phi = std::atan2(Eigen::Vector3d::UnitZ().dot(up.cross(e)), up.dot(e));
+    return spans + arcs + p.drumRadius * phi;
 }
 
 // Moment about the boom's foot (+z) of a force f at point x (superstructure frame, in-plane).
@@ -293,7 +313,7 @@ BoomCraneScene::BoomCraneScene(const BoomCraneParameters& p, const BoomCraneCycl
         drum.payoutSense = 1;
         rope.start = drum;
         for (int k = 1; k <= 3; ++k) {
-            const SheaveGroove g = grooveOf(p, r, k);
+            const SheaveGroove g = grooveOf(p, r, k, r == kLuffingRope ? layout.luff : layout.hoist);
             DeviationSheave sheave;
             sheave.body = *nodes_[r][k].first;
             sheave.centre = nodes_[r][k].second;

@@ -89,12 +89,6 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
                 str(SimTK::Vec3(axis)) +
                 " (its chain of Pin or Planar mobilizers about that axis, Sliders, Translations and Welds): the "
                 "groove's axis must stay the plane normal");
-    const bool drum = site.node == 0 || site.node + 1 == site.rope.numNodes();
-    if (axisTurns && drum)
-        invalid(name + ": with SheaveModel::Wrapped a winch drum's parent may turn only about the pin axis " +
-                str(SimTK::Vec3(axis)) +
-                " (its chain of Pin or Planar mobilizers about that axis, Sliders, Translations and Welds): the "
-                "law of the rope stored on a drum takes its axis fixed (a drum whose axis turns is not built yet)");
     const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
     NodeWrap w;
     w.radius = n.radius;

@@ -87,9 +87,10 @@ struct NodeWrap {
     /// N + 1 nodes, one per such node in node order: RopeModel::axisStation). Its velocity then
     /// carries the body's angular velocity, ndot = omega x n, into the rope's Lagrange equations
     /// (WrapStationMap), and the rope's generalized force on it is the couple the groove's axis
-    /// carries. Interior Sliding and Driven nodes (a Driven node's grip angle phi is measured from
-    /// "up" projected onto the turning groove plane, WrapStationMap); not at a drum (its stored
-    /// rope's law takes the axis fixed) nor a Slipping node. Not for planar ropes.
+    /// carries. Sliding and Driven nodes (a Driven node's grip angle phi is measured from "up"
+    /// projected onto the turning groove plane, WrapStationMap), drums included (their stored
+    /// rope turns and tumbles with the drum, setStoredRope); not a Slipping node. Not for planar
+    /// ropes.
     bool turningAxis = false;
 };
 
@@ -238,7 +239,7 @@ public:
     ///         finite and > 0, nodeKinds or wraps of the wrong size, a Fixed interior node or a
     ///         Sliding end, a wrapped end node that is not Driven, a wrap radius not finite and >= 0, a wrap sense
     ///         other than +1 or -1, or (Dim = 3) a wrapped node's axis that is not a finite unit vector;
-    ///         NodeWrap::turningAxis on a point node, an end node, a Slipping node or a planar rope.
+    ///         NodeWrap::turningAxis on a point node, a Slipping node or a planar rope.
     RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
               std::vector<NodeWrap> wraps = {});
 
@@ -298,8 +299,10 @@ public:
     ///     T_stored = 1/2 rhoA [l (|cdot|^2 + v^2) -+ 2 R v cdot . (u(phi) - u(psi_e))],
     ///     U_stored = -rhoA l g . c +- rhoA |g| sigma R^2 (sin phi - sin psi_e)
     /// (upper signs at the rope's start; u(psi) the groove's radial direction at angle psi): the
-    /// integrals over the stored material of one layer, the partial turn's terms included (planar
-    /// ropes).
+    /// integrals over the stored material of one layer, the partial turn's terms included. A
+    /// spatial drum whose axis turns (NodeWrap::turningAxis) adds the stored rope's tumbling: its
+    /// angular velocity gains n x ndot, and T_stored and U_stored are the same integrals for that
+    /// rigid motion (the arc's first and second moments, closed form).
     /// Without it the material would vanish from the model at the drum, carrying its potential
     /// energy -rhoA g . r_k per metre out through the span's generalized force on s_k: a drum torque
     /// that depends on the height datum. With it the torque is datum-free, the stored rope's weight

@@ -38,7 +38,7 @@ struct BoomCraneParameters {
     double luffSheaveRadius = 0.3;   ///< A-frame and boom-tip luffing sheaves' groove radius [m], > 0
     double luffSheaveSpacing = 0.25; ///< the two A-frame sheaves sit at z = -+ this [m], > 0
     // ---- hoist rope: drum -> boom foot sheave -> tip sheave -> hook sheave -> dead end at the tip
-    SimTK::Vec3 hoistDrumCentre{-0.8, 1.6, 0.0};  ///< hoist drum axis point, superstructure frame [m], finite
+    SimTK::Vec3 hoistDrumCentre{-0.3, 0.9, 0.0};  ///< hoist drum axis point, superstructure frame [m], finite
     double footSheaveOffset = 0.8;   ///< foot sheave centre along the boom from the foot pin [m], > 0
     double footSheaveHeight = 0.7;   ///< foot sheave centre above the boom's axis [m], > 0
     double hoistSheaveRadius = 0.3;  ///< foot, tip and hook sheaves' groove radius [m], > 0
@@ -112,7 +112,8 @@ struct BoomCraneCycle {
 ///     node 4 the dead end (boom, above the hook sheave's other side at z = +R_h). Two falls.
 /// Every sheave is a DeviationSheave whose groove axis is its body's z (the hook sheave: x), so
 /// every groove turns with its body (RopeModel's NodeWrap::turningAxis); wrap senses are those of
-/// the reeving at rest. The ropes' unstretched lengths make the boom stand at about boomAngle and
+/// the reeving at rest (the path's deflection; half a turn round the tip's luffing sheave and
+/// A-frame sheave 2, clockwise about z). The ropes' unstretched lengths make the boom stand at about boomAngle and
 /// the hook hang about initialHookDepth under the tip at static equilibrium.
 ///
 /// A MotionWorkMeter integrates the work of the three prescribed motions (slew, luff, hoist), so
