@@ -1,7 +1,7 @@
 // The reeving-boom-crane executable end to end: the whole 40 s lift-slew-lower cycle with point and
 // with wrapped sheaves (outputs with their columns and keys, the energy balance, the slew, the
 // luff, the static hoist forces, fleet and wrap angles), bad input and an unusable output folder
-// (exit 2, nothing written).
+// (exit 2, nothing written), --max-steps (exit 1) and SIGINT (exit 130), nothing written.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -139,6 +139,8 @@ int countSnapshots(const fs::path& p) {
     for (size_t at = text.find("# snapshot "); at != std::string::npos; at = text.find("# snapshot ", at + 1)) ++n;
     return n;
 }
+
+}  // namespace
 
 class BoomCraneCycle : public ::testing::TestWithParam<std::string> {};
 
@@ -323,4 +325,30 @@ TEST(BoomCraneDemo, CheckValidatesWithoutRunning) {
     EXPECT_FALSE(fs::exists(out));
 }
 
-}  // namespace
+// --max-steps N: the run stops once the integrator has taken N steps, exit 1, nothing written.
+TEST(BoomCraneDemo, MaxStepsStopsTheRun) {
+    const fs::path out = scratch("max_steps");
+    const std::string log = out.string() + ".log";
+    EXPECT_EQ(run("--sheaves point --max-steps 20 --no-plots --quiet --out '" + out.string() + "'", log), 1);
+    const std::string msg = slurp(log);
+    EXPECT_NE(msg.find("reeving-boom-crane: stopped: the integrator took --max-steps 20 steps at t = "), std::string::npos)
+        << msg;
+    EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
+    EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out));
+}
+
+// SIGINT during the run: exit 130, the output folder left empty.
+TEST(BoomCraneDemo, InterruptedRunWritesNothing) {
+    const fs::path out = scratch("interrupted");
+    const std::string log = out.string() + ".log";
+    const std::string cmd = "timeout --preserve-status -s INT 2 '" + kExe +
+                            "' --sheaves point --axial-modes 3 --axial-dynamics dynamic --t-end 1000 --no-plots "
+                            "--quiet --out '" +
+                            out.string() + "' > '" + log + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << slurp(log);
+    EXPECT_NE(slurp(log).find("reeving-boom-crane: interrupted at t = "), std::string::npos) << slurp(log);
+    ASSERT_TRUE(fs::is_directory(out));
+    EXPECT_TRUE(fs::is_empty(out)) << "files left in " << out;
+}
