@@ -4,8 +4,9 @@
 #   ./scripts/demo.sh [ARGS...]        the pendulum demo (the paper's Table 1 study), out/pendulum
 #   ./scripts/demo.sh crane [ARGS...]  the gantry-crane demo (lift, traverse, lower), out/crane
 #   ./scripts/demo.sh elevator [ARGS...]  the traction-elevator demo (EN 81-50 traction checks), out/elevator
-# Extra arguments go to the demo; ./scripts/demo.sh --help, ./scripts/demo.sh crane --help and
-# ./scripts/demo.sh elevator --help list
+#   ./scripts/demo.sh boom-crane [ARGS...]  the boom-crane demo (lift, slew while luffing, lower), out/boom-crane
+# Extra arguments go to the demo; ./scripts/demo.sh --help, ./scripts/demo.sh crane --help,
+# ./scripts/demo.sh elevator --help and ./scripts/demo.sh boom-crane --help list
 # the demo's options.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,9 @@ if [ "${1:-}" = crane ]; then
     shift
 elif [ "${1:-}" = elevator ]; then
     demo=reeving-elevator
+    shift
+elif [ "${1:-}" = boom-crane ]; then
+    demo=reeving-boom-crane
     shift
 fi
 ./scripts/configure.sh

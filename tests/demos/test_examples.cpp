@@ -253,6 +253,38 @@ void checkCrane(const ProgramRun& r, const fs::path& cwd) {
     if (!haveGnuplot()) GTEST_SKIP() << "gnuplot not found: " << out << "'s figures were not checked";
 }
 
+// reeving-boom-crane --t-end 0.5 (at rest: the cycle starts at 1 s), its default wrapped sheaves.
+void checkBoomCrane(const ProgramRun& r, const fs::path& cwd) {
+    EXPECT_NE(r.out.find("reeving-boom-crane: wrapped sheaves, n_a = 1, 0.50 s simulated"), std::string::npos) << r.out;
+    const fs::path out = cwd / "out" / "boom-crane";  // the default --out
+    expectCsv(out / "timeseries.csv", 11);  // t = 0, 0.05, ..., 0.5
+    EXPECT_GT(fs::exists(out / "snapshots.dat") ? fs::file_size(out / "snapshots.dat") : 0u, 1000u);
+    const nlohmann::json s = readJson(out / "summary.json");
+    EXPECT_EQ(s.value("termination", ""), "completed");
+    EXPECT_EQ(s.value("sheaves", ""), "wrapped");
+    // At rest: the top of each of the hoist rope's 2 falls carries half the hook load, (4000 + 150)
+    // kg x 9.81 m/s^2 / 2 = 20356 N, plus the weight of the fall itself, less than rhoA g
+    // initialHookDepth = 1 x 9.81 x 14 = 137 N (point sheaves measured +116 and +103 N).
+    const double reference = s.value("static_reference_hoist_axial_force_N", 0.0);
+    EXPECT_NEAR(reference, 4150 * 9.81 / 2, 1e-6);
+    const nlohmann::json ropes = s.value("ropes", nlohmann::json::array());
+    ASSERT_EQ(ropes.size(), 2u);
+    const nlohmann::json spans = ropes[1].value("static_span_axial_force_N", nlohmann::json::array());
+    ASSERT_EQ(spans.size(), 4u);
+    for (int fall : {2, 3}) {
+        EXPECT_GT(spans[fall].get<double>(), reference);
+        EXPECT_LT(spans[fall].get<double>(), reference + 9.81 * 14);
+    }
+    if (haveGnuplot()) {
+        for (const char* fig : {"fig_slew_luff.png", "fig_swing.png", "fig_span_axial_forces.png",
+                                "fig_fleet_wrap_angles.png", "fig_energy.png", "fig_snapshots_side.png",
+                                "fig_snapshots_plan.png"})
+            EXPECT_GT(fs::exists(out / fig) ? fs::file_size(out / fig) : 0u, 1000u) << fig;
+    }
+    for (const std::string& f : filesUnder(out)) EXPECT_EQ(f.find(".partial"), std::string::npos) << f;
+    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot not found: " << out << "'s figures were not checked";
+}
+
 // reeving-elevator --t-end 0.3: every scenario, the traction table in out/elevator/summary.json.
 void checkElevator(const ProgramRun& r, const fs::path& cwd) {
     const fs::path out = cwd / "out" / "elevator";
@@ -284,6 +316,12 @@ const std::map<std::string, Example>& knownExamples() {
            "--integrator", "--accuracy", "--t-end", "--report-interval", "--out", "--no-plots", "--quiet", "--visualize"},
           "--t-end 0.3",
           checkElevator}},
+        {"reeving-boom-crane",
+         {{"--sheaves", "--axial-modes", "--transverse-modes", "--axial-dynamics", "--lift", "--slew-deg", "--luff-deg",
+           "--payload-mass", "--boom-length", "--boom-angle", "--ea", "--rho-a", "--set", "--t-end", "--integrator",
+           "--accuracy", "--step", "--report-interval", "--snapshots", "--out", "--no-plots", "--quiet", "--visualize"},
+          "--t-end 0.5",
+          checkBoomCrane}},
     };
     return examples;
 }
@@ -292,7 +330,7 @@ const std::map<std::string, Example>& knownExamples() {
 
 TEST(Examples, EveryInstalledExampleIsCheckedHere) {
     const auto installed = installedExamples();
-    EXPECT_EQ(installed.size(), 5u);
+    EXPECT_EQ(installed.size(), 6u);
     for (const auto& [name, path] : installed) {
         EXPECT_TRUE(knownExamples().count(name)) << name << " is installed but has no first-contact check here";
         EXPECT_TRUE(fs::exists(path)) << path;
@@ -329,7 +367,10 @@ TEST(Examples, DefaultsRunAndWriteTheirOutputs) {
         const Example& example = knownExamples().at(name);
         const fs::path cwd = scratch("defaults_" + name);
         // Without a display, as on a build machine (--visualize is tried below).
-        const ProgramRun r = run(path, example.defaultsArgs + (name == "reeving-pendulum" || name == "reeving-crane" || name == "reeving-elevator" ? " --quiet" : ""), cwd,
+        const ProgramRun r = run(path, example.defaultsArgs + (name == "reeving-pendulum" || name == "reeving-crane" || name == "reeving-elevator" ||
+                                                  name == "reeving-boom-crane"
+                                              ? " --quiet"
+                                              : ""), cwd,
                           "env -u DISPLAY");
         ASSERT_EQ(r.status, 0) << name << ":\n" << r.out << r.err;
         example.checkDefaults(r, cwd);
