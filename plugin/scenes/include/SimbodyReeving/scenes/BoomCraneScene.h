@@ -98,7 +98,7 @@ struct BoomCraneCycle {
 /// BoomCraneCycle::slew; the boom, a MobilizedBody::Pin about the superstructure's z at boomFoot,
 /// its frame's x along the boom (its angle free: the luffing rope holds it); the luffing and hoist
 /// drums, MobilizedBody::Pins about the superstructure's z, prescribed by BoomCraneCycle::luff and
-/// ::hoist; the hook block, a MobilizedBody::Free (frame origin at its sheave's centre, its centre
+/// BoomCraneCycle::hoist; the hook block, a MobilizedBody::Free (frame origin at its sheave's centre, its centre
 /// of mass hookComBelow under it); the payload, a MobilizedBody::Ball hookPinBelow under the hook
 /// block's origin, its centre of mass slingLength under the joint.
 ///
