@@ -52,6 +52,7 @@ struct Options {
     double stretch = kStretch;  // the spans' initial stretch (1 - l / chord)
     double retardation = 2e-3;  // Kelvin-Voigt c [s]: damps the rope's axial motion at the sheave
     int transverseModes = 1;
+    double lean = 0;  // drum 2 this much further out in x [m]: span 1 leans, the wrap angle is not pi
     // The rope's speed towards its start over the groove's, in units of the drums' speed: its sign is
     // the side the rope slides to (+1: span 0 tight).
     double sigma() const { return direction - groove > 0 ? 1.0 : -1.0; }
@@ -75,7 +76,7 @@ struct DrumsOverASheave {
         const Body::Rigid wheel(MassProperties(5, Vec3(0), Inertia(0.5)));
         sheave = MobilizedBody::Pin(matter.Ground(), Transform(), wheel, Transform());
         drum1 = MobilizedBody::Pin(matter.Ground(), Transform(Vec3(-out, -8, 0)), wheel, Transform());
-        drum2 = MobilizedBody::Pin(matter.Ground(), Transform(Vec3(out, -16, 0)), wheel, Transform());
+        drum2 = MobilizedBody::Pin(matter.Ground(), Transform(Vec3(out + o.lean, -16, 0)), wheel, Transform());
         // s = s_ref + R theta at the sheave: theta = groove x / R moves its surface at groove xdot
         // towards the rope's start.
         if (o.groove == 0)
@@ -108,15 +109,38 @@ struct DrumsOverASheave {
     }
 };
 
-// The chords' lengths [m]: centre to centre (point), tangent point to tangent point (wrapped).
-double chordA(sr::SheaveModel m) { return m == sr::SheaveModel::Point ? std::hypot(kR, 8.0) : 8.0; }
-double chordB(sr::SheaveModel m) { return m == sr::SheaveModel::Point ? std::hypot(kR, 16.0) : 16.0; }
+// Wrapped: each span is the crossed tangent of the groove circle (centre 0, radius R) and its drum's
+// (centre D, radius R_d), touching the groove at R n with n . D = R + R_d, |n| = 1:
+// n = k D / |D| + h J D / |D| (J: +90 degrees about z), k = (R + R_d) / |D|, h = -+sqrt(1 - k^2) (drum 1
+// on the left, drum 2 on the right); the span's length is sqrt(|D|^2 - (R + R_d)^2).
+Vec3 grooveNormal(const Vec3& D, double h) {
+    const double k = (kR + kDrum) / D.norm();
+    const Vec3 u = D / D.norm(), ju(-u[1], u[0], 0);
+    return k * u + h * std::sqrt(1 - k * k) * ju;
+}
+Vec3 drumCentre(const Options& o, int drum) {
+    const double out = o.model == sr::SheaveModel::Wrapped ? kR + kDrum : kR;
+    return drum == 1 ? Vec3(-out, -8, 0) : Vec3(out + o.lean, -16, 0);
+}
+Vec3 tangentNormal(const Options& o, int drum) { return grooveNormal(drumCentre(o, drum), drum == 1 ? -1.0 : 1.0); }
+double chordLength(const Options& o, int drum) {
+    const Vec3 D = drumCentre(o, drum);
+    if (o.model == sr::SheaveModel::Point) return D.norm();
+    return std::sqrt(D.normSqr() - (kR + kDrum) * (kR + kDrum));
+}
+// The closed-form wrap angle at the wrapped groove: clockwise from n_1 to n_2 (the rope runs up the
+// left side, over the top and down the right side).
+double clockwiseAngle(const Vec3& a, const Vec3& b) {
+    double alpha = std::atan2(-cross(a, b)[2], dot(a, b));
+    if (alpha <= 0) alpha += 2 * Pi;
+    return alpha;
+}
 
 // Both spans stretched by o.stretch at the start: s_ref and L from the geometry (a probe of the
 // wrapped machine gives the material coordinates at the drums' and the groove's tangent points).
 DrumsOverASheave* build(const Options& o) {
     const double stretch = 1 - o.stretch;
-    const double a = chordA(o.model), b = chordB(o.model);
+    const double a = chordLength(o, 1), b = chordLength(o, 2);
     if (o.model == sr::SheaveModel::Point) return new DrumsOverASheave(o, a * stretch, (a + b) * stretch);
     const double sProbe = 9.0, lProbe = 30.0;
     DrumsOverASheave probe(o, sProbe, lProbe);
@@ -135,18 +159,17 @@ DrumsOverASheave* build(const Options& o) {
 // Wrapped: the angle the rope turns through on the groove (clockwise about +z: it runs up the left
 // side, over the top and down the right side), between the radius vectors from the sheave's centre
 // to the arrival tangent point (the end of span 0) and the departure one (the start of span 1).
-// tangentOff: the worst distance of those points from the groove circle [m].
-double geometricWrapAngle(const DrumsOverASheave& p, const State& s, sr::SheaveModel model, double* tangentOff) {
+// tangentOff: the worst distance of those points from the closed-form tangent points R n [m].
+double geometricWrapAngle(const DrumsOverASheave& p, const State& s, const Options& o, double* tangentOff) {
+    const sr::SheaveModel model = o.model;
     const Vec3 c = p.sheave.getBodyOriginLocation(s);
     if (model == sr::SheaveModel::Point) {
         const Vec3 u = p.drum1.getBodyOriginLocation(s) - c, w = p.drum2.getBodyOriginLocation(s) - c;
         return Pi - std::atan2(cross(u, w).norm(), dot(u, w));
     }
     const Vec3 ra = p.reeving->sampleSpan(s, 0, 0, 2)[1] - c, rb = p.reeving->sampleSpan(s, 0, 1, 2)[0] - c;
-    if (tangentOff) *tangentOff = std::max(std::abs(ra.norm() - kR), std::abs(rb.norm() - kR));
-    double alpha = std::atan2(-cross(ra, rb)[2], dot(ra, rb));
-    if (alpha <= 0) alpha += 2 * Pi;
-    return alpha;
+    if (tangentOff) *tangentOff = std::max((ra - kR * tangentNormal(o, 1)).norm(), (rb - kR * tangentNormal(o, 2)).norm());
+    return clockwiseAngle(ra, rb);
 }
 
 const char* name(const Options& o) {
@@ -165,8 +188,8 @@ struct Measured {
     double withoutTerm = 0;  // worst |P_t / P_s / K - 1|, the plain capstan ratio
     double slipSpeedTerm = 0;  // worst |(P_t - c') / (P_s - c') / K - 1|, c' = rhoA (slip rate)^2
     double slipRateOff = 0;  // worst |slip rate - (direction - groove) 10 m/s| [m/s]
-    double alphaOff = 0;     // worst |alpha - pi| (wrapped: both spans vertical)
-    double tangentOff = 0;   // worst distance of the tangent points from the groove circle [m]
+    double alphaOff = 0;     // worst |alpha - clockwiseAngle(n_1, n_2)| (wrapped; pi with lean 0)
+    double tangentOff = 0;   // worst distance of the tangent points from R n_1, R n_2 [m]
     double wrapAngleOff = 0;  // worst |getWrapAngle - alpha|: the angle the code's law uses [rad]
     double energy = 0, largest = 0;
     double pTight = 0, pSlack = 0, alpha = 0, slipRate = 0;  // at 0.6 s
@@ -204,13 +227,14 @@ Measured run(const Options& o) {
         const double pb = p.reeving->getAxialForce(sv, 0, 1, p.reeving->getSpanMaterialRange(sv, 0, 1).first);
         const double tight = o.sigma() > 0 ? pa : pb, slack = o.sigma() > 0 ? pb : pa;
         double off = 0;
-        const double alpha = geometricWrapAngle(p, sv, o.model, &off), K = std::exp(kMu * alpha);
+        const double alpha = geometricWrapAngle(p, sv, o, &off), K = std::exp(kMu * alpha);
         const double c = kRhoA * kSpeed * kSpeed, v = p.reeving->getSlipRate(sv, 0, 1), c2 = kRhoA * v * v;
         w.withTerm = std::max(w.withTerm, std::abs((tight - c) / (slack - c) / K - 1));
         w.withoutTerm = std::max(w.withoutTerm, std::abs(tight / slack / K - 1));
         w.slipSpeedTerm = std::max(w.slipSpeedTerm, std::abs((tight - c2) / (slack - c2) / K - 1));
         w.slipRateOff = std::max(w.slipRateOff, std::abs(v - (o.direction - o.groove) * kSpeed));
-        if (o.model == sr::SheaveModel::Wrapped) w.alphaOff = std::max(w.alphaOff, std::abs(alpha - Pi));
+        if (o.model == sr::SheaveModel::Wrapped)
+            w.alphaOff = std::max(w.alphaOff, std::abs(alpha - clockwiseAngle(tangentNormal(o, 1), tangentNormal(o, 2))));
         w.tangentOff = std::max(w.tangentOff, off);
         w.wrapAngleOff = std::max(w.wrapAngleOff, std::abs(p.reeving->getWrapAngle(sv, 0, 1) - alpha));
         w.pTight = tight, w.pSlack = slack, w.alpha = alpha, w.slipRate = v;
@@ -218,7 +242,7 @@ Measured run(const Options& o) {
     w.energy = worst / w.largest;
     std::printf("[ steady ] %s: alpha %.12f, v_slip %+.4f m/s (off %.1e), P_tight %.6e N, P_slack %.6e N;\n"
                 "           law with rhoA v^2 off by %.2e, without it %.2e, with the slip rate's square %.2e; "
-                "alpha - pi %.1e, tangent points off the groove %.1e m, getWrapAngle off %.1e; energy %.2e of "
+                "alpha off the closed form %.1e, tangent points off it %.1e m, getWrapAngle off %.1e; energy %.2e of "
                 "%.3e J\n",
                 name(o), w.alpha, w.slipRate, w.slipRateOff, w.pTight, w.pSlack, w.withTerm, w.withoutTerm,
                 w.slipSpeedTerm, w.alphaOff, w.tangentOff, w.wrapAngleOff, w.energy, w.largest);
@@ -229,10 +253,10 @@ Measured run(const Options& o) {
 
 // Steady slip at 10 m/s over a held sheave from t = 0.5 s to 0.6 s (rhoA v^2 = 200 N against end
 // forces of about 1e5 N, so the centrifugal term moves the ratio by 6e-4). alpha from the geometry:
-// 3.0853624 rad at the point sheave (pi - atan(0.3 / 8) - atan(0.3 / 16)), pi at the wrapped one (the
-// tangent points on the groove circle and opposite: measured exactly 0 off both, bound 1e-14, a few
-// ulps of pi and of the 0.3 m radius). The wrap angle the code's law uses (getWrapAngle) equals it
-// to 0 (bound 1e-14).
+// 3.0853624 rad at the point sheave (pi - atan(0.3 / 8) - atan(0.3 / 16)), pi at the wrapped one: the
+// tangent points (the spans' end positions) at the closed-form ones, (-R, 0) and (R, 0), to 5.6e-17 m
+// (bound 5e-15 m, 90x), the angle between their radius vectors pi to 0 (bound 1e-14 rad, a few ulps
+// of pi). The wrap angle the code's law uses (getWrapAngle) equals it to 0 (bound 1e-14 rad).
 //  - RopeMomentum: (P_a - rhoA v^2) / (P_b - rhoA v^2) = e^(mu alpha) to 2.8e-10 (point) and 2.3e-10
 //    (wrapped), relative; bound 1e-8 (36x). The plain capstan ratio misses it by 6.0e-4: the check
 //    sees the term. The slip rate is 10 m/s to 3.0e-9 m/s (bound 1e-7 m/s, 33x).
@@ -252,7 +276,7 @@ TEST(TractionRopeMomentum, SteadySlipFollowsEulerEytelweinWithTheCentrifugalTerm
         EXPECT_LE(m.energy, 1e-10);
         EXPECT_LE(m.slipRateOff, 1e-7);
         EXPECT_LE(m.alphaOff, 1e-14);
-        EXPECT_LE(m.tangentOff, 1e-14);
+        EXPECT_LE(m.tangentOff, 5e-15);
         EXPECT_LE(m.wrapAngleOff, 1e-14);
         o.slip = sr::TractionSlip::CapstanConstraint;
         const Measured c = run(o);
@@ -260,6 +284,29 @@ TEST(TractionRopeMomentum, SteadySlipFollowsEulerEytelweinWithTheCentrifugalTerm
         EXPECT_LE(c.withoutTerm, 1e-9);
         EXPECT_GT(c.withTerm, 1e-4);
         EXPECT_LE(c.energy, 1e-10);
+    }
+}
+
+// Drum 2 3 m further out: span 1 leans and the wrap angle is no longer near pi: 2.9007123 rad at the
+// point sheave, 2.9570789 rad at the wrapped one, where the tangent points (the spans' end positions)
+// lie at the closed-form crossed tangents (grooveNormal) to 5.6e-17 m (bound 5e-15 m, 90x) and the
+// angle between their radius vectors is the closed form's to 0 (bound 1e-14 rad), as is getWrapAngle.
+// The law with e^(mu alpha) from that angle holds to 3.4e-10 (point) and 4.1e-10 (wrapped), bound
+// 1e-8 (24x); energy 8.4e-15 of 1.6e5 J (bound 1e-10).
+TEST(TractionRopeMomentum, SteadySlipOverALeaningSpanFollowsTheGeometrysWrapAngle) {
+    for (sr::SheaveModel model : {sr::SheaveModel::Point, sr::SheaveModel::Wrapped}) {
+        Options o;
+        o.model = model;
+        o.lean = 3.0;
+        const Measured m = run(o);
+        EXPECT_TRUE(m.modeAsExpected);
+        EXPECT_LT(m.alpha, Pi - 0.1);
+        EXPECT_LE(m.withTerm, 1e-8);
+        EXPECT_GT(m.withoutTerm, 1e-4);
+        EXPECT_LE(m.energy, 1e-10);
+        EXPECT_LE(m.alphaOff, 1e-14);
+        EXPECT_LE(m.tangentOff, 5e-15);
+        EXPECT_LE(m.wrapAngleOff, 1e-14);
     }
 }
 
@@ -370,11 +417,11 @@ Transient runTransient(sr::SheaveModel model) {
         const auto ra = p.reeving->getSpanMaterialRange(sv, 0, 0), rb = p.reeving->getSpanMaterialRange(sv, 0, 1);
         const double pa = p.reeving->getAxialForce(sv, 0, 0, ra.second);
         const double pb = p.reeving->getAxialForce(sv, 0, 1, rb.first);
-        const double alpha = geometricWrapAngle(p, sv, model, nullptr);
+        const double alpha = geometricWrapAngle(p, sv, o, nullptr);
         const double sigma = mode == sr::TractionMode::SlipTowardStart ? 1.0 : -1.0;
         const double tight = sigma > 0 ? pa : pb;
         const double F = std::max(tight - kRhoA * v * v, 0.0) * (1 - std::exp(-kMu * alpha));
-        const double da = chordA(model), db = chordB(model);
+        const double da = chordLength(o, 1), db = chordLength(o, 2);
         const double spans = kRhoA * (da * da / (ra.second - ra.first) + db * db / (rb.second - rb.first));
         const double arc = model == sr::SheaveModel::Wrapped ? kRhoA * kR * alpha : 0.0;
         const double ms = spans / 3 + arc, coupling = spans / 6 * move.acceleration(s.getTime());
