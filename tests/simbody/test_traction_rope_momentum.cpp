@@ -52,6 +52,7 @@ struct Options {
     double stretch = kStretch;  // the spans' initial stretch (1 - l / chord)
     double retardation = 2e-3;  // Kelvin-Voigt c [s]: damps the rope's axial motion at the sheave
     int transverseModes = 1;
+    double sheaveInertia = 0;  // > 0: the sheave turns freely (no Motion) with this inertia [kg m^2]
     double lean = 0;  // drum 2 this much further out in x [m]: span 1 leans, the wrap angle is not pi
     // The rope's speed towards its start over the groove's, in units of the drums' speed: its sign is
     // the side the rope slides to (+1: span 0 tight).
@@ -74,15 +75,18 @@ struct DrumsOverASheave {
         const bool wrapped = o.model == sr::SheaveModel::Wrapped;
         const double out = wrapped ? kR + kDrum : kR;
         const Body::Rigid wheel(MassProperties(5, Vec3(0), Inertia(0.5)));
-        sheave = MobilizedBody::Pin(matter.Ground(), Transform(), wheel, Transform());
+        const Body::Rigid free(MassProperties(5, Vec3(0), Inertia(o.sheaveInertia)));
+        sheave = MobilizedBody::Pin(matter.Ground(), Transform(), o.sheaveInertia > 0 ? free : wheel, Transform());
         drum1 = MobilizedBody::Pin(matter.Ground(), Transform(Vec3(-out, -8, 0)), wheel, Transform());
         drum2 = MobilizedBody::Pin(matter.Ground(), Transform(Vec3(out + o.lean, -16, 0)), wheel, Transform());
         // s = s_ref + R theta at the sheave: theta = groove x / R moves its surface at groove xdot
         // towards the rope's start.
-        if (o.groove == 0)
+        // A free sheave (sheaveInertia > 0) has no Motion.
+        if (o.sheaveInertia == 0 && o.groove == 0) {
             Motion::Steady(sheave, 0.0);  // held
-        else
+        } else if (o.sheaveInertia == 0) {
             sr::prescribeProfile(sheave, drumMove(), o.groove / kR);
+        }
         // Drum 1 (payout sense +1): s_0 = -R theta = direction x; drum 2 (payout sense -1, its rope
         // leaves it on the side that faces the sheave): s_N = L + R (-theta) = L + direction x.
         sr::prescribeProfile(drum1, drumMove(), -o.direction / kDrum);
@@ -380,14 +384,19 @@ struct Transient {
     double largestForce = 0;    // largest |P_a - P_b|
     double withoutInertia = 0;  // worst |P_a - P_b - sigma F - coupling| (m_s = 0)
     double withoutArc = 0;      // worst residual with m_s less the groove arc's rhoA R alpha
+    double pinWorst = 0;        // free sheave: worst |I thetaddot - sigma F R| [N m]
+    double pinLargest = 0;      // largest |sigma F R| [N m]
+    double energy = 0;          // worst |E - E0 + W_friction + W_damping - W_drives| over the largest term
+    double grooveSpeed = 0, ropeSpeed = 0;  // at the end [m/s]
     double ms = 0, arc = 0;
     int samples = 0, zMatches = 0;
 };
 
-Transient runTransient(sr::SheaveModel model) {
+Transient runTransient(sr::SheaveModel model, double sheaveInertia) {
     Options o;
     o.model = model;
     o.retardation = 0;
+    o.sheaveInertia = sheaveInertia;
     const std::unique_ptr<DrumsOverASheave> machine(build(o));
     DrumsOverASheave& p = *machine;
     RungeKuttaMersonIntegrator integ(p.system);
@@ -396,18 +405,27 @@ Transient runTransient(sr::SheaveModel model) {
     ts.initialize(p.state);
     const sr::MotionProfile move = drumMove();
     Transient w;
+    p.system.realize(integ.getState(), Stage::Velocity);
+    const double e0 = p.reeving->calcMechanicalEnergy(integ.getState());
+    double worstEnergy = 0, largestEnergy = 0;
     for (int i = 1; i <= 600; ++i) {
         ts.stepTo(5e-4 * i);
         const State& s = integ.getState();
         p.system.realize(s, Stage::Acceleration);
+        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getFrictionWork(s, 0, 1);
+        const double wd = p.reeving->getDampingWork(s), wm = p.meter->getWork(s);
+        worstEnergy = std::max(worstEnergy, std::abs(de + wf + wd - wm));
+        largestEnergy = std::max({largestEnergy, std::abs(de), std::abs(wf), std::abs(wd), std::abs(wm)});
         const sr::TractionMode mode = p.reeving->getTractionMode(s, 0, 1);
         if (mode == sr::TractionMode::Stick) continue;
-        const double v = p.reeving->getSlipRate(s, 0, 1);  // Ydot: the sheave is held
+        // Ydot: the slip rate plus the groove's surface speed R thetadot (sense +1).
+        const double thetaDot = p.sheave.getOneU(s, 0), v = p.reeving->getSlipRate(s, 0, 1) + kR * thetaDot;
+        w.grooveSpeed = kR * thetaDot, w.ropeSpeed = v;
         const Vector& z = s.getZ();
         const Vector& zdot = s.getZDot();
         int found = -1, matches = 0;
         for (int j = 1; j < z.size(); ++j)
-            if (z[j] == v && zdot[j - 1] == v) found = j, ++matches;
+            if (zdot[j - 1] == z[j] && std::abs(z[j] - v) <= 1e-12 * (1 + std::abs(v))) found = j, ++matches;
         w.zMatches = std::max(w.zMatches, matches);
         if (matches != 1) continue;
         const double yddot = zdot[found];
@@ -431,14 +449,21 @@ Transient runTransient(sr::SheaveModel model) {
         w.withoutArc = std::max(w.withoutArc, std::abs((ms - arc) * yddot + coupling - rhs));
         w.largest = std::max(w.largest, std::abs(ms * yddot));
         w.largestForce = std::max(w.largestForce, std::abs(pa - pb));
+        if (sheaveInertia > 0) {  // the friction's reaction turns the free sheave: I thetaddot = sigma F R
+            w.pinWorst = std::max(w.pinWorst, std::abs(sheaveInertia * p.sheave.getOneUDot(s, 0) - sigma * F * kR));
+            w.pinLargest = std::max(w.pinLargest, std::abs(sigma * F * kR));
+        }
         w.ms = ms, w.arc = arc;
         ++w.samples;
     }
-    std::printf("[ transient ] %s: %d slip samples, m_s %.6f kg (arc %.4f kg), largest m_s Yddot %.4e N, "
-                "largest |P_a - P_b| %.4e N;\n               balance off by %.3e N (%.2e), without the "
-                "inertia %.3e N, without the arc's mass %.3e N\n",
-                model == sr::SheaveModel::Wrapped ? "wrapped" : "point", w.samples, w.ms, w.arc, w.largest,
-                w.largestForce, w.worst, w.worst / w.largest, w.withoutInertia, w.withoutArc);
+    w.energy = worstEnergy / largestEnergy;
+    std::printf("[ transient ] %s, sheave %s: %d slip samples, m_s %.6f kg (arc %.4f kg), largest m_s Yddot "
+                "%.4e N, largest |P_a - P_b| %.4e N;\n               balance off by %.3e N (%.2e), without the "
+                "inertia %.3e N, without the arc's mass %.3e N; pin: I thetaddot off sigma F R by %.3e N m of "
+                "%.4e N m; at 0.3 s groove %.4f m/s, rope %.4f m/s; energy %.2e of %.3e J\n",
+                model == sr::SheaveModel::Wrapped ? "wrapped" : "point", sheaveInertia > 0 ? "free" : "held",
+                w.samples, w.ms, w.arc, w.largest, w.largestForce, w.worst, w.worst / w.largest, w.withoutInertia,
+                w.withoutArc, w.pinWorst, w.pinLargest, w.grooveSpeed, w.ropeSpeed, w.energy, largestEnergy);
     return w;
 }
 
@@ -447,17 +472,39 @@ Transient runTransient(sr::SheaveModel model) {
 // Measured: m_s 16.009 kg (point), 17.888 kg (wrapped, of which the arc's 1.885 kg); the balance holds
 // to 1.4e-12 N and 1.8e-12 N, 3.4e-16 and 4.2e-16 of the largest inertia term m_s Yddot (4.0e3 N,
 // 4.4e3 N), over 563 slip samples each; bound 2e-14 of it (48x). Without the inertia the balance
-// misses by the whole term (4.0e3 N), without the groove arc's mass by 459 N.
+// misses by the whole term (4.0e3 N), without the groove arc's mass by 459 N. Energy (the drums the
+// drive) to 7.0e-12 of 7.1e4 J (bound 1e-10, 14x).
 TEST(TractionRopeMomentum, AcceleratingSlipFollowsTheMomentumBalanceAtTheGroove) {
     for (sr::SheaveModel model : {sr::SheaveModel::Point, sr::SheaveModel::Wrapped}) {
-        const Transient t = runTransient(model);
+        const Transient t = runTransient(model, 0.0);
         EXPECT_EQ(t.zMatches, 1);  // Ydot is found in the state, once
         EXPECT_GE(t.samples, 300);
         EXPECT_LE(t.worst, 2e-14 * t.largest);
         EXPECT_GT(t.withoutInertia, 1e6 * 2e-14 * t.largest);
+        EXPECT_LE(t.energy, 1e-10);
         if (model == sr::SheaveModel::Wrapped) {
             EXPECT_GT(t.withoutArc, 1e6 * 2e-14 * t.largest);
         }
+    }
+}
+
+// The same accelerating slip over a free sheave (no Motion, I = 200 kg m^2, zero gravity): the only
+// torque on it is the friction's reaction, so I thetaddot = sigma F R (F from the end forces and the
+// geometry's alpha as above), and it spins up while the rope slips over it (groove 4.1 m/s, rope
+// 10.0 m/s at 0.3 s). Measured: the pin's balance to 1.8e-12 N m of 9.9e3 N m (point) and 1.0e4 N m
+// (wrapped), 1.8e-16; bound 1e-14 of it (55x). The rope's balance at the groove (with Ydot = slip rate
+// + R thetadot) to 3.2e-16 and 3.0e-16 of m_s Yddot (bound 2e-14, 62x); energy, the sheave's kinetic
+// energy included, to 3.0e-12 and 2.8e-12 of 7.1e4 J (bound 1e-10, 33x).
+TEST(TractionRopeMomentum, FreeSheaveIsTurnedByTheFrictionWhileTheRopeSlips) {
+    for (sr::SheaveModel model : {sr::SheaveModel::Point, sr::SheaveModel::Wrapped}) {
+        const Transient t = runTransient(model, 200.0);
+        EXPECT_EQ(t.zMatches, 1);
+        EXPECT_GE(t.samples, 300);
+        EXPECT_GT(t.grooveSpeed, 1.0);               // the sheave turns...
+        EXPECT_GT(t.ropeSpeed - t.grooveSpeed, 1.0);  // ...slower than the rope: it slips
+        EXPECT_LE(t.worst, 2e-14 * t.largest);
+        EXPECT_LE(t.pinWorst, 1e-14 * t.pinLargest);
+        EXPECT_LE(t.energy, 1e-10);
     }
 }
 
