@@ -313,7 +313,8 @@ src=$work/src
 build=$work/build
 logs=$work/logs
 mkdir -p "$src" "$logs"
-[[ $(cd "$src" && pwd -P) != "$(cd "$repo" && pwd -P)"* ]] || die "the work folder must not be inside the repository"
+srcReal=$(cd "$src" && pwd -P)/
+[[ $srcReal != "$(cd "$repo" && pwd -P)/"* ]] || die "the work folder must not be inside the repository"
 start=$(date +%s)
 
 stage=$work/stage
