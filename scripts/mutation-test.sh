@@ -3,32 +3,52 @@
 #
 # What it does. Copies the source tree to a private folder (never touching the repository's own
 # files), builds it there (Release, Ninja, no benchmarks) and runs the test suite once unmutated
-# (the baseline). Then, one at a time, it applies a deliberate bug (a "mutant": a small, exact
-# source edit whose match count is verified before it is applied), rebuilds in the same build
-# folder (so only what the edit touches recompiles), runs ctest (label `stress` excluded), and
-# restores the file. It prints a table: each mutant and the tests that failed with it (caught; a
-# test that already fails on the baseline does not count) or NOT CAUGHT.
+# (the baseline). Then, one at a time, it applies a deliberate bug (a "mutant"), rebuilds in the
+# same build folder (so only what the edit touches recompiles), runs ctest (label `stress`
+# excluded), and restores the file. It prints a table: each mutant and the tests that failed with
+# it (caught; a test that already fails on the baseline does not count) or NOT CAUGHT.
 #
-# The mutants:
-#   1 rope-weight     the rope material has no weight (SpanModel's gravity set to zero after its
-#                     validation; the condensed axial modes read the same gravity)
-#   2 linear-strain   the axial strain energy takes the engineering strain lambda - 1 instead of the
-#                     Green strain (AxialLaw: energy EA (lambda - 1)^2 / 2, i.e. tension EA (lambda - 1),
-#                     energy-consistent, for the dynamic and the condensed axial modes alike)
-#   3 qv-forces       no quadratic-velocity forces (SpanModel's Q_v zeroed; the kinetic energy kept)
-#   4 sheave-sense    turning and traction sheaves turn the wrong way in the material-coordinate
-#                     relation s = s_ref + sense R theta (the sign of sense flipped; drums unchanged)
-#   5 mode-accel      no mode-acceleration correction (RopeModel::recoverInertialStrain's result
-#                     marked invalid, so force queries use the uncorrected condensed strain)
-#   6 arc-mass        slot: zero the arc mass of wrapped sheaves; not applicable until wrapped sheaves
-#                     exist (listed, never counted as caught)
+# Where a mutant edits. The plugin's sources carry a marker comment `// mutation-site: NAME` on
+# each line a mutant changes (or alone on the line above it); a mutant finds its markers and
+# applies a regular-expression substitution to those lines only, so the sites survive code moving
+# between files or functions. A mutant whose marker is missing, or whose substitution leaves a
+# marked line unchanged, does not apply: the script stops (exit status 2) before building.
+#
+# The mutants (--list prints them with whether each applies to the working tree):
+#   1 rope-weight      the rope material has no weight (SpanModel's gravity set to zero before its
+#                      validation; the condensed axial modes read the same gravity)
+#   2 linear-strain    the axial strain energy takes the engineering strain lambda - 1 instead of the
+#                      Green strain (AxialLaw: energy EA (lambda - 1)^2 / 2, i.e. tension EA (lambda - 1),
+#                      energy-consistent, for the dynamic and the condensed axial modes alike)
+#   3 qv-forces        no quadratic-velocity forces in the spans (SpanModel's Q_v zeroed; the kinetic
+#                      energy kept)
+#   4 sheave-sense     turning and traction sheaves turn the wrong way in the material-coordinate
+#                      relation s = s_ref + sense R theta (TurningSheaveNode: sense negated; drums unchanged)
+#   5 mode-accel       no mode-acceleration correction (RopeModel::recoverInertialStrain's result
+#                      marked invalid, so force queries use the uncorrected condensed strain)
+#   6 arc-mass         the rope wrapped on a sheave's groove has no inertia (GrooveArc's mass matrix
+#                      zeroed; its weight, kinetic energy and quadratic-velocity forces kept)
+#   7 arc-qv-forces    the wrapped arc's quadratic-velocity forces zeroed (GrooveArc)
+#   8 wrap-jacobian    the arc length l = R alpha has a zero row in the station map's Jacobian
+#                      (WrapStationMap; its value and bias kept, a drum's s_0 row kept)
+#   9 up-direction     the "up" a gripping groove measures its angle from is +x instead of +y without
+#                      gravity (WrapStationMap::upDirection)
+#  10 ring-speed       the stored rope's ring on a wrapped drum moves at the tangent point's material
+#                      rate sdot instead of the drum's surface speed sdot - sigma R phidot (StoredRope)
+#  11 capstan-exponent the capstan exponent mu alpha halved wherever the law is evaluated: the stick
+#                      limit e^(mu alpha), the slip ratio and slip law, the friction 1 - e^(-mu alpha)
+#                      of TractionSlip::RopeMomentum (ReevingTraction)
+#  12 rhoa-v2          the rope's centripetal load rhoA v^2 dropped from the groove's normal load
+#                      P - rhoA v^2, in the RopeMomentum slip law and its stick limit (ReevingTraction)
+#  13 tight-side       RopeMomentum slip takes the slack side's tension as the tight one (ReevingTraction)
 #
 # How long it takes. On 2 cores shared with other work (Debian bookworm, g++ 12), under `nice`:
-# about 18 min for the first build of a copy, 3-7 min per run of the suite, 1-2 min to rebuild a
-# mutant of a .cpp file and 12 min for the header mutant (linear-strain, run last: nearly everything
-# includes it); 65 min in all for the baseline and the five mutants (docs/testing.md). A second run
-# reuses the copy and its build folder: only files that changed since are recopied and recompiled
-# (after the header mutant's restore, that is nearly everything again).
+# about 9 min for the first build of a copy, 2.5-4 min per run of the suite (350 tests), under a
+# minute to rebuild a mutant of a .cpp file and 7 min for the header mutant (linear-strain, run
+# last: nearly everything includes it); 55 min in all for the baseline and the 13 mutants once the
+# copy is built (docs/testing.md). A second run reuses the copy and its build folder: only files
+# that changed since are recopied and recompiled (after the header mutant's restore, that is nearly
+# everything again: about 6 min).
 #
 # Usage: scripts/mutation-test.sh [options]
 #   --working-tree       copy the working tree (tracked files as they are on disk, plus untracked
@@ -41,10 +61,11 @@
 #                        by the timeout, reported as such
 #   --jobs N             build and test parallelism (default: the number of cores)
 #   --work-dir DIR       the private copy and its build (default ${TMPDIR:-/tmp}/simbodyreeving-mutation)
-#   --list               list the mutants and exit
+#   --list               list the mutants, each with its files and whether it applies to the
+#                        repository's working tree (no copy, no build), and exit
 #   -h, --help           this text
-# Exit status: 0 every applicable mutant caught; 1 some mutant not caught; 2 bad usage, or a setup
-# failure (the copy does not build, an edit no longer matches the source: update the mutant).
+# Exit status: 0 every mutant caught; 1 some mutant not caught; 2 bad usage, a mutant that does not
+# apply (also with --list), or a setup failure (the copy or a mutant does not build).
 # The log of every build and test run is kept in the work folder (logs/).
 set -euo pipefail
 
@@ -80,110 +101,200 @@ done
 [[ $timeout =~ ^[0-9]+$ && $jobs =~ ^[1-9][0-9]*$ ]] || die "--timeout and --jobs take positive integers"
 
 # ---- the mutants -------------------------------------------------------------------------------
-# Each is a list of exact edits: edit FILE OLD NEW COUNT replaces the COUNT occurrences of the
-# literal text OLD (relative to the copy's root) by NEW, and fails if OLD occurs any other number
-# of times (the source moved on: update the mutant).
-names=(rope-weight linear-strain qv-forces sheave-sense mode-accel arc-mass)
+# Each mutant is a list of sites: `site FILE NAME EDIT [TEXT]` finds, in FILE (relative to the
+# tree's root), every line that carries the marker comment `// mutation-site: NAME`, and applies
+# the Perl expression EDIT (a substitution, or several joined by `or`) to $_, the line's code: the
+# marked line itself without its marker, or the line below a marker that stands alone. $ENV{TEXT}
+# is TEXT, for a longer replacement. A site fails (the mutant does not apply: exit status 2) if
+# FILE has no such marker or the edit leaves any marked line unchanged. Each changed line gets a
+# /* MUTANT */ comment (the restore checks that none is left).
+names=(rope-weight linear-strain qv-forces sheave-sense mode-accel arc-mass arc-qv-forces wrap-jacobian
+    up-direction ring-speed capstan-exponent rhoa-v2 tight-side)
 descriptions=(
-    "drop the rope weight (SpanModel gravity = 0)"
-    "linear instead of Green strain in the axial strain energy (AxialLaw)"
-    "drop the quadratic-velocity forces (SpanModel Q_v = 0)"
-    "flip the turning/traction sheave sense in s = s_ref + sense R theta"
-    "drop the mode-acceleration correction (recoverInertialStrain)"
-    "zero the arc mass of wrapped sheaves"
+    "SpanModel gravity -> 0 (the rope material has no weight)"
+    "AxialLaw: Green strain eps -> engineering strain lambda - 1 (energy and force)"
+    "SpanModel Q_v -> 0 (quadratic-velocity forces; the kinetic energy kept)"
+    "TurningSheave s = s_ref + sense R theta -> s_ref - sense R theta"
+    "recoverInertialStrain's mode-acceleration correction marked invalid"
+    "GrooveArc mass matrix -> 0 (the wrapped arc's inertia)"
+    "GrooveArc quadratic-velocity forces -> 0"
+    "WrapStationMap: the row of l = R alpha in the Jacobian -> 0 (bias kept)"
+    "WrapStationMap::upDirection without gravity: +y -> +x"
+    "StoredRope on a wrapped drum: ring speed sdot - sigma R phidot -> sdot"
+    "capstan exponent mu alpha -> mu alpha / 2 (stick limit and slip laws)"
+    "rhoA v^2 dropped from the capstan law and from the stick limit"
+    "RopeMomentum slip: tight side swapped (sigma > 0 ? P_a : P_b -> P_b : P_a)"
 )
-applicable=(1 1 1 1 1 0)
-notApplicableReason="not applicable until wrapped sheaves exist"
 
 mutant_1() {
-    edit plugin/element/src/SpanModel.cpp \
-'        throwInvalid("SpanModel", "gravity [m/s^2]", v.str(), "must be finite");
-    }
-' \
-'        throwInvalid("SpanModel", "gravity [m/s^2]", v.str(), "must be finite");
-    }
-    gravity_.setZero();  // MUTANT: the rope material has no weight
-' 1 || return 1
+    site plugin/element/src/SpanModel.cpp rope-weight 's/^(\s*)/$1gravity_.setZero(); /' || return 1
 }
 
-mutant_2() {
-    local f=plugin/element/include/SimbodyReeving/element/AxialLaw.h
-    edit $f '#include "SimbodyReeving/element/RopeProperties.h"
-' '#include "SimbodyReeving/element/RopeProperties.h"
+linearStrainHelpers='}  // namespace SimbodyReeving
 
 #include <cmath>
-' 1 || return 1
-    edit $f 'struct AxialLaw {
-' 'inline double reciprocal(double a) { return 1.0 / a; }  // MUTANT helper (Taylor numbers have their own)
 
-struct AxialLaw {
-    // MUTANT: the engineering strain lambda - 1 = 2 eps / (1 + lambda) instead of the Green strain eps:
-    // energy density (lambda - 1)^2 / 2, its derivative with respect to eps (lambda - 1) / lambda.
-    template <class Scalar>
-    static Scalar engineeringStrain(const Scalar& eps) {
-        using std::sqrt;
-        return (2.0 * eps) * reciprocal(Scalar(1.0) + sqrt(Scalar(1.0) + 2.0 * eps));
-    }
-    template <class Scalar>
-    static Scalar linearStrainEnergy(const Scalar& eps) {
-        const Scalar d = engineeringStrain(eps);
-        return 0.5 * (d * d);
-    }
-    template <class Scalar>
-    static Scalar linearStrainForce(const Scalar& eps) {
-        using std::sqrt;
-        return engineeringStrain(eps) * reciprocal(sqrt(Scalar(1.0) + 2.0 * eps));
-    }
-' 1 || return 1
-    edit $f '        if (!tensionOnly || primal >= transition) return eps;
-' '        if (!tensionOnly || primal >= transition) return linearStrainForce(eps);
-' 1 || return 1
-    edit $f '        if (!tensionOnly) return 0.5 * (eps * eps);
-' '        if (!tensionOnly) return linearStrainEnergy(eps);
-' 1 || return 1
-    edit $f '        if (primal >= transition) return 0.5 * (eps * eps) - Scalar(0.1 * transition * transition);
-' '        if (primal >= transition) return linearStrainEnergy(eps) - Scalar(0.1 * transition * transition);
-' 1 || return 1
-    edit $f '        if (!tensionOnly || eps >= transition) return 1.0;
-' '        if (!tensionOnly || eps >= transition) return 1.0 / ((1.0 + 2.0 * eps) * std::sqrt(1.0 + 2.0 * eps));
-' 1 || return 1
+namespace SimbodyReeving {
+
+inline double reciprocal(double a) { return 1.0 / a; }  // MUTANT helper (Taylor numbers have their own)
+// MUTANT: the engineering strain lambda - 1 = 2 eps / (1 + lambda) instead of the Green strain eps:
+// energy density (lambda - 1)^2 / 2, its derivative with respect to eps (lambda - 1) / lambda.
+template <class Scalar>
+Scalar engineeringStrain(const Scalar& eps) {
+    using std::sqrt;
+    return (2.0 * eps) * reciprocal(Scalar(1.0) + sqrt(Scalar(1.0) + 2.0 * eps));
+}
+template <class Scalar>
+Scalar linearStrainEnergy(const Scalar& eps) {
+    const Scalar d = engineeringStrain(eps);
+    return 0.5 * (d * d);
+}
+template <class Scalar>
+Scalar linearStrainForce(const Scalar& eps) {
+    using std::sqrt;
+    return engineeringStrain(eps) * reciprocal(sqrt(Scalar(1.0) + 2.0 * eps));
+}
+'
+mutant_2() {
+    site plugin/element/include/SimbodyReeving/element/AxialLaw.h linear-strain '
+        s/^struct AxialLaw \{/$ENV{TEXT}struct AxialLaw {/ or
+        s/return eps;/return linearStrainForce(eps);/ or
+        s/0\.5 \* \(eps \* eps\)/linearStrainEnergy(eps)/ or
+        s/return 1\.0;/return 1.0 \/ ((1.0 + 2.0 * eps) * std::sqrt(1.0 + 2.0 * eps));/' "$linearStrainHelpers" || return 1
 }
 
 mutant_3() {
-    edit plugin/element/src/SpanModel.cpp \
-'    d.kineticEnergy = 0.5 * rhoA * l * sumV2;
-' \
-'    d.kineticEnergy = 0.5 * rhoA * l * sumV2;
-    Qv.setZero();  // MUTANT: no quadratic-velocity forces
-' 1 || return 1
+    site plugin/element/src/SpanModel.cpp qv-forces 's/;\s*$/; Qv.setZero();/' || return 1
 }
 
 mutant_4() {
-    edit plugin/simbody/src/ReevingSubsystem.cpp \
-'                    d.sRef = n.materialCoordinateAtZeroAngle;
-                    d.dsdTheta = n.sense * n.radius;' \
-'                    d.sRef = n.materialCoordinateAtZeroAngle;
-                    d.dsdTheta = -n.sense * n.radius;  // MUTANT: the sheave turns the wrong way' 1 || return 1
+    site plugin/simbody/src/nodes/TurningSheaveNode.cpp sheave-sense 's/= site\.spec\.sense \*/= -site.spec.sense */' || return 1
 }
 
 mutant_5() {
-    edit plugin/element/src/RopeModel.cpp \
-'    data.inertialCorrectionValid = true;' \
-'    data.inertialCorrectionValid = false;  // MUTANT: no mode-acceleration correction' 1 || return 1
+    site plugin/element/src/RopeModel.cpp mode-accel 's/inertialCorrectionValid = true/inertialCorrectionValid = false/' || return 1
 }
 
 mutant_6() {
-    # Slot: once wrapped sheaves with a rope arc of their own exist, zero that arc's mass here (an
-    # `edit` of the arc's mass term) and set applicable[5]=1 above.
-    return 1
+    site plugin/element/src/GrooveArc.cpp arc-mass 's/massMatrix = rhoA \* R \*/massMatrix = 0.0 * rhoA * R */' || return 1
+}
+
+mutant_7() {
+    site plugin/element/src/GrooveArc.cpp arc-qv-forces 's/velocityForces = (.*);/velocityForces = 0.0 * ($1);/' || return 1
+}
+
+mutant_8() {
+    # l's row: R sigma phi_out from the span the arc starts, -R sigma phi_in from the one it ends
+    # (a drum's row, s_0's, kept).
+    site plugin/element/src/WrapStationMap.cpp wrap-jacobian '
+        s/rowsOver\(6, arcScale\(j\), row\)/rowsOver(6, drum ? arcScale(j) : 0.0, row)/ or
+        s/rowsOver\(7, -arcScale\(j \+ 1\), arcRow\(j \+ 1\)\)/rowsOver(7, 0.0, arcRow(j + 1))/' || return 1
+}
+
+mutant_9() {
+    site plugin/element/src/WrapStationMap.cpp up-direction 's/Eigen::Vector3d\(0\.0, 1\.0, 0\.0\)/Eigen::Vector3d(1.0, 0.0, 0.0)/' ||
+        return 1
+}
+
+mutant_10() {
+    site plugin/element/src/StoredRope.cpp ring-speed 's/v = sdot - sigma \* R \* phidot;/v = sdot;/' || return 1
+}
+
+mutant_11() {
+    site plugin/simbody/src/ReevingTraction.cpp capstan-exponent 's/d\.frictionCoefficient/(0.5 * d.frictionCoefficient)/g' ||
+        return 1
+}
+
+mutant_12() {
+    site plugin/simbody/src/ReevingTraction.cpp rhoa-v2 's/std::max\(tight - ([^,]*), 0\.0\)/std::max(tight - 0.0 * $1, 0.0)/' || return 1
+}
+
+mutant_13() {
+    site plugin/simbody/src/ReevingTraction.cpp tight-side 's/sigma > 0 \? pa : pb/sigma > 0 ? pb : pa/' || return 1
+}
+
+# The Perl half of `site`: ARGV = FILE WRITE; prints "markers changed unchanged-line-numbers".
+sitePerl='
+    my ($file, $write) = @ARGV;
+    open(my $in, "<", $file) or die "cannot read $file\n";
+    my $text = do { local $/; <$in> };
+    close $in;
+    my @lines = split /\n/, $text, -1;
+    my $marker = qr{\s*//\s*mutation-site:\s*\Q$ENV{NAME}\E\s*$};
+    my ($found, $changed, @unchanged) = (0, 0);
+    for my $i (0 .. $#lines) {
+        next unless $lines[$i] =~ $marker;
+        ++$found;
+        (my $code = $lines[$i]) =~ s/$marker//;
+        my ($j, $suffix) = ($i, substr($lines[$i], length $code));
+        if ($code !~ /\S/) { ($j, $suffix) = ($i + 1, ""); $code = $lines[$j] // ""; }
+        local $_ = $code;
+        eval $ENV{EDIT};
+        die "the edit is not valid Perl: $@" if $@;
+        if ($_ eq $code) { push @unchanged, $j + 1; next; }
+        $lines[$j] = $_ . " /* MUTANT */" . $suffix;
+        ++$changed;
+    }
+    print "$found $changed @unchanged\n";
+    if ($write && $found > 0 && !@unchanged) {
+        open(my $out, ">", $file) or die "cannot write $file\n";
+        print $out join("\n", @lines);
+        close $out;
+    }
+'
+root=$repo         # the tree the sites are read from (the copy, once made)
+applyEdits=0       # 1: write the edits (else only check that they apply)
+siteFiles=()
+site() {  # site FILE NAME EDIT [TEXT]
+    local file=$root/$1 result found changed unchanged
+    siteFiles+=("$1")
+    [[ -f $file ]] || { echo "$1 does not exist" >&2; return 1; }
+    if [[ $applyEdits == 1 ]]; then
+        local saved
+        saved=$work/saved/$(printf '%s' "$1" | tr / _)
+        if [[ ! -f $saved ]]; then  # the original, before the mutant's first edit of this file
+            cp -p "$file" "$saved"
+            printf '%s\n' "$1" >> "$work/saved/list"
+        fi
+    fi
+    result=$(NAME=$2 EDIT=$3 TEXT=${4-} perl -e "$sitePerl" "$file" "$applyEdits") || return 1
+    read -r found changed unchanged <<< "$result"
+    if [[ $found == 0 ]]; then
+        echo "$1 has no marker 'mutation-site: $2'" >&2
+        return 1
+    fi
+    if [[ -n $unchanged ]]; then
+        echo "$1: the edit changes nothing on line(s) $unchanged (marker 'mutation-site: $2')" >&2
+        return 1
+    fi
+}
+
+# checkMutant <number>: does the mutant apply to $root? (Nothing written.) Sets checkFiles, the
+# files it edits, and checkError, empty if it applies.
+checkMutant() {
+    local errFile
+    errFile=$(mktemp)
+    siteFiles=()
+    applyEdits=0
+    checkError=""
+    if ! "mutant_$1" 2> "$errFile"; then
+        checkError=$(paste -sd';' "$errFile" | sed 's/;/; /g')
+        [[ -n $checkError ]] || checkError="the mutant failed"
+    fi
+    rm -f "$errFile"
+    mapfile -t checkFiles < <(printf '%s\n' "${siteFiles[@]}" | awk 'NF && !seen[$0]++')
+    [[ -z $checkError ]]
 }
 
 if [[ ${listOnly:-0} == 1 ]]; then
+    status=0
     for i in "${!names[@]}"; do
-        printf '%d %-14s %s%s\n' $((i + 1)) "${names[i]}" "${descriptions[i]}" \
-            "$([[ ${applicable[i]} == 1 ]] || echo " ($notApplicableReason)")"
+        m=$((i + 1))
+        if checkMutant "$m"; then state="applies"; else state="DOES NOT APPLY: $checkError"; status=2; fi
+        printf '%2d %-17s %s (%s: %s)\n' "$m" "${names[i]}" "${descriptions[i]}" \
+            "$(IFS=,; echo "${checkFiles[*]}" | sed 's/,/, /g')" "$state"
     done
-    exit 0
+    exit $status
 fi
 
 isSelected() {  # isSelected <number>
@@ -207,7 +318,8 @@ src=$work/src
 build=$work/build
 logs=$work/logs
 mkdir -p "$src" "$logs"
-[[ $(cd "$src" && pwd -P) != "$(cd "$repo" && pwd -P)"* ]] || die "the work folder must not be inside the repository"
+srcReal=$(cd "$src" && pwd -P)/
+[[ $srcReal != "$(cd "$repo" && pwd -P)/"* ]] || die "the work folder must not be inside the repository"
 start=$(date +%s)
 
 stage=$work/stage
@@ -235,30 +347,14 @@ done
 rm -rf "$stage"
 echo "mutation-test: $what copied to $src"
 
+# Every selected mutant must apply to the copy before anything is built.
+root=$src
+for i in "${!names[@]}"; do
+    isSelected $((i + 1)) || continue
+    checkMutant $((i + 1)) || die "mutant $((i + 1)) (${names[i]}) does not apply: $checkError (see --list)"
+done
+
 # ---- helpers -----------------------------------------------------------------------------------
-edit() {  # edit FILE OLD NEW COUNT (FILE relative to the copy)
-    local file=$src/$1
-    local n
-    [[ -f $file ]] || { echo "edit: $1 does not exist" >&2; return 1; }
-    n=$(OLD=$2 perl -0777 -ne 'my ($n, $p) = (0, 0);
-            while (($p = index($_, $ENV{OLD}, $p)) >= 0) { ++$n; $p += length $ENV{OLD}; } print $n' "$file")
-    if [[ $n != "$4" ]]; then
-        echo "edit: the text to replace occurs $n times in $1 (expected $4):" >&2
-        printf '%s\n' "$2" | sed 's/^/    | /' >&2
-        return 1
-    fi
-    local saved
-    saved=$work/saved/$(printf '%s' "$1" | tr / _)
-    if [[ ! -f $saved ]]; then  # the original, before the mutant's first edit of this file
-        cp -p "$file" "$saved"
-        printf '%s\n' "$1" >> "$work/saved/list"
-    fi
-    cp -p "$file" "$saved.before"
-    OLD=$2 NEW=$3 perl -0777 -pi -e 's/\Q$ENV{OLD}\E/$ENV{NEW}/g' "$file"
-    if cmp -s "$file" "$saved.before"; then echo "edit: $1 unchanged" >&2; return 1; fi
-    rm -f "$saved.before"
-    return 0
-}
 restore() {  # puts back every file an edit changed (a new time stamp: the next build recompiles it)
     [[ -f $work/saved/list ]] || return 0
     local f
@@ -316,33 +412,31 @@ fi
 
 # ---- mutants -----------------------------------------------------------------------------------
 # Order of the runs: the header mutant last (it recompiles almost everything, and so does its restore).
-order=(1 3 4 5 2 6)
-declare -A result=() detail=()
+order=(1 3 4 5 6 7 8 9 10 11 12 13 2)
+declare -A result=() detail=() times=()
 notCaught=0
 setupError=0
 for m in "${order[@]}"; do
     isSelected "$m" || continue
     name=${names[m - 1]}
-    if [[ ${applicable[m - 1]} != 1 ]]; then
-        result[$m]="n/a"
-        detail[$m]=$notApplicableReason
-        continue
-    fi
     mkdir -p "$work/saved"
+    siteFiles=()
+    applyEdits=1
     if ! "mutant_$m" 2> "$logs/edit-$m-$name.log"; then
         cat "$logs/edit-$m-$name.log" >&2
         restore
         result[$m]="EDIT FAILED"
-        detail[$m]="the edit no longer matches the source (update the mutant)"
+        detail[$m]="the mutant does not apply (see --list)"
         setupError=1
         continue
     fi
+    applyEdits=0
     t0=$(date +%s)
     echo "mutation-test: mutant $m ($name): building (log: $logs/build-$m-$name.log)"
     if ! configure_and_build "$logs/build-$m-$name.log"; then
         restore
         result[$m]="BUILD FAILED"
-        detail[$m]="the mutant does not compile (see $logs/build-$m-$name.log; update the mutant)"
+        detail[$m]="the mutant does not compile (see $logs/build-$m-$name.log): update the mutant"
         setupError=1
         continue
     fi
@@ -361,6 +455,7 @@ for m in "${order[@]}"; do
         [[ -n ${baselineFailed["${t% (*}"]+x} ]] || caught+=("$t")
     done
     tt=$(($(date +%s) - t0 - tb))
+    times[$m]="build $(hms $tb), tests $(hms $tt)"
     if [[ ${#caught[@]} -gt 0 ]]; then
         result[$m]="caught by ${#caught[@]}"
         detail[$m]=$(printf '%s; ' "${caught[@]}")
@@ -371,7 +466,7 @@ for m in "${order[@]}"; do
         notCaught=1
     fi
     printf '%s\n' "${caught[@]}" > "$logs/caught-$m-$name.txt"
-    echo "mutation-test: mutant $m ($name): ${result[$m]} (build $(hms $tb), tests $(hms $tt))"
+    echo "mutation-test: mutant $m ($name): ${result[$m]} (${times[$m]})"
 done
 
 # ---- the table ---------------------------------------------------------------------------------
@@ -379,11 +474,13 @@ total=$(($(date +%s) - start))
 echo
 echo "Mutation run on the $what; ctest -LE stress${testsRegex:+ -R '$testsRegex'}${excludeRegex:+ -E '$excludeRegex'}"
 [[ -n $baselineTests ]] && echo "baseline: $baselineTests (tests failing unmutated do not count as catching)"
-printf '%-3s %-14s %-70s %s\n' "#" "mutant" "edit" "result"
-for m in 1 2 3 4 5 6; do
+printf '%-3s %-17s %-78s %s\n' "#" "mutant" "edit" "result"
+for i in "${!names[@]}"; do
+    m=$((i + 1))
     isSelected "$m" || continue
     [[ -n ${result[$m]+x} ]] || continue
-    printf '%-3s %-14s %-70s %s\n' "$m" "${names[m - 1]}" "${descriptions[m - 1]}" "${result[$m]}"
+    printf '%-3s %-17s %-78s %s\n' "$m" "${names[m - 1]}" "${descriptions[m - 1]}" \
+        "${result[$m]}${times[$m]:+ (${times[$m]})}"
     [[ -n ${detail[$m]} ]] && printf '%s\n' "${detail[$m]}" | tr ';' '\n' | sed 's/^ *//; s/^/        /'
 done
 echo "total: $(hms $total) ($jobs jobs; logs and the caught tests of each mutant in $logs)"

@@ -648,9 +648,8 @@ namespace {
 
 // A sheave that grips the rope (a Driven node, wrap sense -1: the rope runs up its left side, over
 // the top and down its right side), centre c, radius R, between two anchors below it.
-RopeModel<2> makeGrippingSheaveRope(double R) {
+RopeModel<2> makeGrippingSheaveRope(double R, const Vector2d& g = Vector2d(0.0, -kG)) {
     const RopeProperties props{1.0, 1e6, 0.0};
-    const Vector2d g(0.0, -kG);
     std::vector<SpanModel<2>> spans;
     for (int j = 0; j < 2; ++j) spans.emplace_back(props, spanOptions(0, 0), g);
     return RopeModel<2>(std::move(spans), 20.0, {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed},
@@ -694,6 +693,40 @@ TEST(WrapStationMap, GrippingSheaveCarriesTheMaterialCoordinateAroundItsGroove) 
     const Eigen::VectorXd acc = (-x2m + 16 * x1m - 30 * d.x + 16 * x1p - x2p) / (12 * h * h);
     EXPECT_LT((rate - d.xdot).cwiseAbs().maxCoeff() / rate.cwiseAbs().maxCoeff(), 1e-10);
     EXPECT_LT((acc - (d.jacobian * Ydd + d.bias)).cwiseAbs().maxCoeff() / acc.cwiseAbs().maxCoeff(), 1e-7);
+}
+
+// Without gravity "up" is +y: the same sheave with both anchors straight below its tangent points
+// (phi_in = pi/2, phi_out = -pi/2 from +y, sigma = -1) carries s_in = Y_s - R pi/2 and
+// s_out = Y_s + R pi/2 as under gravity -y; under gravity -x, the picture turned a quarter turn
+// clockwise with it, "up" is +x and the same s_in follows. Measured exact (0 m); bound 1e-13 m. An
+// "up" of +x without gravity would move s_in by R pi/2 = 0.63 m.
+TEST(WrapStationMap, GrippingSheaveWithoutGravityMeasuresItsAngleFromPlusY) {
+    const double R = 0.4, Ys = 7.0;
+    WrapStationMapData d;
+    Eigen::VectorXd Y(7), Yd = Eigen::VectorXd::Zero(7);
+    {
+        const RopeModel<2> rope = makeGrippingSheaveRope(R, Vector2d::Zero());
+        const WrapStationMap map(rope);
+        Y << -R, -3.0, 0.0, 0.0, R, -2.0, Ys;
+        map.evaluate(Y, Yd, d);
+        const int row = rope.numNodeCoordinates() + rope.drivenIndex(1);
+        const double arc = d.x[rope.nodeCoordinateOffset(1) + RopeModel<2>::wrappedArcLengthOffset()];
+        EXPECT_NEAR(d.arrivalAngles[1], kPi / 2, 1e-13);
+        EXPECT_NEAR(d.x[row], Ys - R * kPi / 2, 1e-13);
+        EXPECT_NEAR(d.x[row] + arc, Ys + R * kPi / 2, 1e-13);
+    }
+    {
+        // Gravity along -x, "up" +x: the anchors at (-3, R) and (-2, -R), the rope arriving at the
+        // tangent point (0, R), a quarter turn counter-clockwise from +x.
+        const RopeModel<2> rope = makeGrippingSheaveRope(R, Vector2d(-kG, 0.0));
+        const WrapStationMap map(rope);
+        Y << -3.0, R, 0.0, 0.0, -2.0, -R, Ys;
+        WrapStationMapData e;
+        map.evaluate(Y, Yd, e);
+        const int row = rope.numNodeCoordinates() + rope.drivenIndex(1);
+        EXPECT_NEAR(e.arrivalAngles[1], kPi / 2, 1e-13);
+        EXPECT_NEAR(e.x[row], Ys - R * kPi / 2, 1e-13);
+    }
 }
 
 // phi_in stays continuous where the arriving tangent point passes the groove's bottom (phi_in = pi,

@@ -167,7 +167,7 @@ void GrooveArc<Dim>::evaluate(const Coordinates& x, const Coordinates& xdot, Dat
     const auto B0tB1 = (B0.transpose() * B1).eval();
     const auto B0tB2 = (B0.transpose() * B2).eval();
     const auto B1tB2 = (B1.transpose() * B2).eval();
-    data.massMatrix = rhoA * R *
+    data.massMatrix = rhoA * R *  // mutation-site: arc-mass
                       (I.one * B0.transpose() * B0 + I.cc * B1.transpose() * B1 + I.ss * B2.transpose() * B2 +
                        I.c * (B0tB1 + B0tB1.transpose()) + I.s * (B0tB2 + B0tB2.transpose()) +
                        I.cs * (B1tB2 + B1tB2.transpose()));
@@ -183,7 +183,7 @@ void GrooveArc<Dim>::evaluate(const Coordinates& x, const Coordinates& xdot, Dat
         gValue[i] = g[i].value();
     }
     data.kineticEnergy = 0.5 * xdot.dot(gValue);
-    data.velocityForces = 0.5 * G.transpose() * xdot - G * xdot;
+    data.velocityForces = 0.5 * G.transpose() * xdot - G * xdot;  // mutation-site: arc-qv-forces
 
     const AD U = gravityEnergyOf<Dim, AD>(xad, gravity_, rhoA, R, sigma);
     data.gravityEnergy = U.value();

@@ -1901,7 +1901,7 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
         load[nqc + nc + k] = invEA * (Mzdd[nw + nqc + k] - ws.velocityForcesZ[nw + nqc + k]);
     solveDependent(data, ws.dependentLu, load, data.inertialCorrection);
     data.inertialCorrection *= -1.0;
-    data.inertialCorrectionValid = true;
+    data.inertialCorrectionValid = true;  // mutation-site: mode-accel
 }
 
 template <int Dim>

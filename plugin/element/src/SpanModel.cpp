@@ -125,6 +125,7 @@ SpanModel<Dim>::SpanModel(const RopeProperties& properties, const SpanOptions& o
         throw std::invalid_argument(
             "SpanModel: SpanOptions::axialDynamics = QuasiStatic (the default) with axial modes requires "
             "elasticModel = Consistent (got PaperLiteral); set axialDynamics = Dynamic for the paper's energy");
+    // mutation-site: rope-weight
     if (!gravity_.allFinite()) {
         std::ostringstream v;
         v << "(" << gravity_.transpose() << ")";
@@ -541,7 +542,7 @@ void SpanModel<Dim>::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q,
         }
     Qv[iS1] = -rhoA * qS1 - 0.5 * rhoA * sumV2;
     Qv[iS2] = -rhoA * qS2 + 0.5 * rhoA * sumV2;
-    d.kineticEnergy = 0.5 * rhoA * l * sumV2;
+    d.kineticEnergy = 0.5 * rhoA * l * sumV2;  // mutation-site: qv-forces
 
     // ---- axial strain energy: U_ax = 1/2 EA l sum w eps^2, eps = 1/2(|t|^2/l^2 - 1) ------------
     {

@@ -81,6 +81,7 @@ void StoredRope<Dim>::evaluateWrapped(const Eigen::VectorXd& x, const Eigen::Vec
     auto u = [&](double t) { return V(std::cos(t) * up + std::sin(t) * w); };
     auto du = [&](double t) { return V(-std::sin(t) * up + std::cos(t) * w); };
     const V D = u(phi) - u(psiE);
+    // mutation-site: ring-speed
     const double v = sdot - sigma * R * phidot;  // the drum's surface speed
     const double psiEdot = -sigma * v / R;
     const V Ddot = du(phi) * phidot - du(psiE) * psiEdot;

@@ -21,6 +21,7 @@ Eigen::Vector3d lift(const Eigen::Matrix<double, Dim, 1>& v) {
 template <int Dim>
 Eigen::Vector3d WrapStationMap<Dim>::upDirection() const {
     const Eigen::Vector3d g = lift<Dim>(rope_->span(0).gravity());
+    // mutation-site: up-direction
     return g.norm() > 0 ? Eigen::Vector3d(-g / g.norm()) : Eigen::Vector3d(0.0, 1.0, 0.0);
 }
 
@@ -188,7 +189,7 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
             }
             if (withRates) {
                 const int row = drum ? nodeRows + rope.drivenIndex(j) : arcRow(j);  // s_0 (below), or l
-                rowsOver(6, arcScale(j), row);
+                rowsOver(6, arcScale(j), row);  // mutation-site: wrap-jacobian
                 data.bias[row] += arcScale(j) * rates.startAngleAcceleration;
             }
         }
@@ -207,7 +208,7 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
             }
             if (withRates) {
                 if (!drum) {
-                    rowsOver(7, -arcScale(j + 1), arcRow(j + 1));
+                    rowsOver(7, -arcScale(j + 1), arcRow(j + 1));  // mutation-site: wrap-jacobian
                     data.bias[arcRow(j + 1)] -= arcScale(j + 1) * rates.endAngleAcceleration;
                 }
                 if (rope.drivenIndex(j + 1) >= 0) {  // s_in = Y_s + sigma R phi_in (below)

@@ -40,7 +40,7 @@ double ReevingSubsystem::Guts::tractionWrapAngle(const State& s, const RopeRecor
 }
 
 double ReevingSubsystem::Guts::tractionLimit(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
-    return std::exp(d.frictionCoefficient * tractionWrapAngle(s, r, d));
+    return std::exp(d.frictionCoefficient * tractionWrapAngle(s, r, d));  // mutation-site: capstan-exponent
 }
 
 const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const RopeRecord& r) const {
@@ -57,7 +57,7 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
             key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
             continue;
         }
-        const double limit = std::exp(d.frictionCoefficient * d.wrapAngle);
+        const double limit = std::exp(d.frictionCoefficient * d.wrapAngle);  // mutation-site: capstan-exponent
         // kappa = P_{k-1} / P_k: the tight side is the one the rope slides towards.
         key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? limit : 1.0 / limit;
     }
@@ -73,6 +73,7 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
     for (const RopeRecord::DrivenNode& d : r.driven) {
         if (!d.traction || key[d.tractionIndex] == 0) continue;
         if (d.geometricWrap)
+            // mutation-site: capstan-exponent
             model->setSlipLaw(d.node, 1.0, key[d.tractionIndex] * d.frictionCoefficient);
         else
             model->setSlipRatio(d.node, key[d.tractionIndex]);
@@ -131,7 +132,9 @@ double ReevingSubsystem::Guts::maxFriction(const RopeRecord& r, const RopeRecord
                                            const State& s) const {
     // In stick the rope moves with the groove: v = dsdTheta thetadot.
     const double v = d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+    // mutation-site: rhoa-v2
     const double pressing = std::max(tight - r.spec.properties.massPerLength * v * v, 0.0);
+    // mutation-site: capstan-exponent
     return pressing * (1.0 - std::exp(-d.frictionCoefficient * tractionWrapAngle(s, r, d)));
 }
 
@@ -152,9 +155,12 @@ ReevingSubsystem::Guts::MomentumSlip ReevingSubsystem::Guts::momentumSlip(const 
     const auto [pa, pb] = nodeTotalForces(s, r, d.node);
     m.speed = c.slipRates[d.tractionIndex];
     const double sigma = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
+    // mutation-site: tight-side
     const double tight = sigma > 0 ? pa : pb, rhoA = r.spec.properties.massPerLength;
     // The groove's normal load per unit angle is P - rhoA v^2: none where the rope lifts off.
+    // mutation-site: rhoa-v2
     const double pressing = std::max(tight - rhoA * m.speed * m.speed, 0.0);
+    // mutation-site: capstan-exponent
     m.friction = sigma * pressing * (1.0 - std::exp(-d.frictionCoefficient * tractionWrapAngle(s, r, d)));
     m.drive = pa - pb - m.friction;
     m.external = r.drivenExternal(r.drivenIndex(d.node));

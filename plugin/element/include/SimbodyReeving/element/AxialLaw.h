@@ -21,6 +21,7 @@ namespace SimbodyReeving {
 ///   1/2 x^6) in between, eps^2 / 2 - eps_s^2 / 10 above.
 /// The templated forms take the strain as a Scalar (double, or a Taylor number for exact
 /// derivatives) together with its plain value, which selects the branch.
+// mutation-site: linear-strain
 struct AxialLaw {
     double EA = 0;              ///< axial stiffness [N]
     bool tensionOnly = false;   ///< false: linear law
@@ -38,7 +39,7 @@ struct AxialLaw {
     /// f(eps) [-]: P = EA f.
     template <class Scalar>
     Scalar f(const Scalar& eps, double primal) const {
-        if (!tensionOnly || primal >= transition) return eps;
+        if (!tensionOnly || primal >= transition) return eps;  // mutation-site: linear-strain
         if (!(primal > 0)) return Scalar(0.0);
         const double c = 1.0 / transition;
         const Scalar x = c * eps;
@@ -48,8 +49,9 @@ struct AxialLaw {
     /// F(eps) [-]: energy density EA F, F' = f.
     template <class Scalar>
     Scalar F(const Scalar& eps, double primal) const {
-        if (!tensionOnly) return 0.5 * (eps * eps);
+        if (!tensionOnly) return 0.5 * (eps * eps);  // mutation-site: linear-strain
         if (!(primal > 0)) return Scalar(0.0);
+        // mutation-site: linear-strain
         if (primal >= transition) return 0.5 * (eps * eps) - Scalar(0.1 * transition * transition);
         const Scalar x = (1.0 / transition) * eps;
         const Scalar x2 = x * x;
@@ -58,7 +60,7 @@ struct AxialLaw {
     }
     /// f'(eps) [-]: the tangent stiffness EA f'.
     double fPrime(double eps) const {
-        if (!tensionOnly || eps >= transition) return 1.0;
+        if (!tensionOnly || eps >= transition) return 1.0;  // mutation-site: linear-strain
         if (!(eps > 0)) return 0.0;
         const double x = eps / transition;
         return x * x * (18.0 + x * (-32.0 + 15.0 * x));
