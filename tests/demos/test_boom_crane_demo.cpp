@@ -169,7 +169,7 @@ TEST_P(BoomCraneCycle, RunsTheCycleWithItsPhysics) {
     EXPECT_DOUBLE_EQ(json.value("t_reached", 0.0), 40.0);
 
     // Energy: E - E0 - W_motion against the largest |W_motion| (slew, luff and hoist drives). The
-    // bound 1e-7 is the issue's; measured 8.4e-10 (point) and 1.3e-9 (wrapped).
+    // bound 1e-7 (the required balance); measured 8.4e-10 (point) and 1.3e-9 (wrapped).
     EXPECT_LE(json.value("energy_residual_relative", 1.0), 1e-7);
     EXPECT_GT(json.value("max_abs_motion_work_J", 0.0), 1e5);  // lifting 4.15 t by 4 m alone is 1.6e5 J
 

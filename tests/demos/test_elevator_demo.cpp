@@ -215,8 +215,8 @@ TEST(ElevatorDemo, CompensationCarriesTheHoistRopesWeightAcross) {
 
 // The traction sheave's energy balance on the elevator itself, with its default quasi-static axial modes: the
 // emergency stop sticks, slips and sticks again (2 transitions), and E(t) - E(0) + W_friction +
-// W_damping - W_machine stays within 1e-6 of the largest term (measured 4.1e-7; it was 1.9e-5 while
-// the slipping node's condensed amplitudes carried the ratio's multiplier).
+// W_damping - W_machine stays within 1e-6 of the largest term (measured 4.1e-7; 1.9e-5
+// if the slipping node's condensed amplitudes carry the ratio's multiplier).
 TEST(ElevatorDemo, EmergencyStopEnergyClosesThroughStickSlipStick) {
     const fs::path out = scratch("stop_energy");
     ASSERT_EQ(run("--scenario emergency-stop --no-plots --quiet --out '" + out.string() + "'", out.string() + ".log"), 0);

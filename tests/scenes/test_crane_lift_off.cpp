@@ -178,7 +178,7 @@ TEST(CraneLiftOff, StartsOnTheFloorWithTheSlingSlack) {
     EXPECT_GT(cycle.duration, taut);
 }
 
-// Acceptance: the light rope (rhoA = 0.016 kg/m: 0.7 kg in the falls, 1.4e-4 of the lifted
+// The light rope (rhoA = 0.016 kg/m: 0.7 kg in the falls, 1.4e-4 of the lifted
 // 5.2 t) at three hoisting speeds. The dynamic factor phi = peak / static rope force against
 // 1 + v_h sqrt(k / M) / g, k = n^2 EA / l_falls = 8.99e6 N/m, M = 5 200 kg: measured -0.20 %,
 // -0.28 %, -0.33 % at v_h = 0.1, 0.2, 0.3 m/s (phi 1.421, 1.845, 2.273); bound 1 %, margin 3x.

@@ -211,7 +211,7 @@ State atRest(ElevatorScene& scene, double rise) {
 //    Bound 3 N (27x).
 //  - 2:1, wrapped sheaves (the default, the traction sheave's included): every fall vertical, no
 //    sharing left out: at most 4.4e-3 N (with a point traction sheave, its falls leaning 9 degrees,
-//    it was 0.24 N on the counterweight side). Bound 0.1 N (23x).
+//    0.24 N on the counterweight side). Bound 0.1 N (23x).
 // The effect checked, the ropes' weight (the closed form with w = 0), is at least 14 N (the 2 m
 // counterweight fall at n_a = 0: c_n w l0 = 0.5 x 13.7 N/m x 2 m), 25 N at n_a = 1: more than 5
 // bounds everywhere (asserted), so the scene without rope weight fails. So does an axial force
@@ -297,7 +297,7 @@ ElevatorParameters deflectorParameters() {
 
 // The deflector sets the traction sheave's wrap angle: at rest with the car at five heights the
 // reported angle (the wrapped rope's tangent points, ReevingSubsystem::getWrapAngle) is the closed
-// form's (measured at most 1.0e-14 rad; bound 1e-9 rad, the issue's), and it changes with the car
+// form's (measured at most 1.0e-14 rad; bound 1e-9 rad), and it changes with the car
 // (the car's fall leans less as it gets longer: 2.636 rad with the car 2 m under the sheave, 2.707
 // at the bottom landing). Without the deflector and the offset it is pi.
 TEST(ElevatorScene, DeflectorSetsTheWrapAngleAtEveryCarPosition) {

@@ -175,7 +175,7 @@ TEST(ReevingSubsystem, StaticTensionApproachesHangingRopeSolution) {
         PendulumScene scene(p, spans(na));
         const State s = scene.makeInitialState(0, 0);
         const ReevingSubsystem& rv = scene.reeving();
-        // Measured 3.7e-9 N = 2.2e-16 EA; the bound is the sheave Newton's acceptance
+        // Measured 3.7e-9 N = 2.2e-16 EA; the bound is the sheave Newton's tolerance
         // (RopeModel: residual <= 1e-14 in strain units, or stagnation below 1e-12).
         EXPECT_LE(rv.getMaxConstraintError(s), 1e-12 * p.EA);
         const auto [s1, s2] = rv.getSpanMaterialRange(s, 0, 1);
@@ -302,7 +302,7 @@ TEST(ReevingSubsystem, QueriesAndDecorations) {
     const double sSheave = rv.getMaterialCoordinate(s, 0, 1);
     EXPECT_NEAR(sSheave, 3.0, 0.01);
     // Axial forces of both spans at the sheave are equal (the constraint).
-    // Measured 1.8e-9 N; bound: the sheave Newton's acceptance, 1e-12 in strain units.
+    // Measured 1.8e-9 N; bound: the sheave Newton's tolerance, 1e-12 in strain units.
     EXPECT_NEAR(rv.getAxialForce(s, 0, 0, sSheave), rv.getAxialForce(s, 0, 1, sSheave), 1e-12 * 16.5e6);
     const std::vector<Vec3> pts = rv.sampleSpan(s, 0, 1, 11);
     ASSERT_EQ(pts.size(), 11u);

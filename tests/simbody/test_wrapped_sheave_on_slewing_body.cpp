@@ -120,7 +120,7 @@ double ropeLengthFromGeometry(const SlewingTower& t, const State& s, double EA, 
 // - R (pi/2 - beta)), lambda = sqrt(1 + 2 T / EA) (Green's strain; the groove holds R alpha of
 // unstretched rope). Solved here for beta; the load starts there, moving at Omega r. Over one
 // revolution (RK-Merson 1e-10) its distance from the slewing axis, its height (relative to r) and
-// its azimuth against Omega t (the whirl's rate) stay within 1e-6 (the bound) of the
+// its azimuth against Omega t (the whirl's rate) stay within 1e-6 of the
 // closed form: measured 3.9e-8, 5.1e-8, 4.0e-8 rad. What remains is the groove's rope at its
 // unstretched length (a load rests eps R off the tangent point's vertical: docs/verification.md,
 // "What a wrapped groove does not model"): it scales with 1 / EA (4.1e-6 at EA = 1e7, also with

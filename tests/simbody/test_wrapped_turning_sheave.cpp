@@ -112,9 +112,9 @@ TEST(WrappedTurningSheave, RopeOnTheGrooveTurnsWithTheSheave) {
 // Inextensible, m2's rise y obeys M y'' = F0 + k y with M = m1 + m2 + rhoA L (+ J / R^2 for a
 // TurningSheave), F0 = (m1 - m2) g + rhoA g (x1 - x2) and k = 2 rhoA g (the rope's weight moving
 // to the longer side), so y(t) = (F0 / k) (cosh(sqrt(k / M) t) - 1), whose initial acceleration is
-// the acceptance's F0 / M. The simulated y at 0.5, 0.75 and 1 s against it, for a TurningSheave
+// F0 / M. The simulated y at 0.5, 0.75 and 1 s against it, for a TurningSheave
 // with J = 0.5 kg m^2 (J / R^2 = 5.6 kg) and a frictionless DeviationSheave: measured 2.0e-6 and
-// 1.0e-6 relative (the stiff rope's bounce, about 1e-6 m); bound 1e-4 (the acceptance's; 50x).
+// 1.0e-6 relative (the stiff rope's bounce, about 1e-6 m); bound 1e-4 (50x).
 // Without the arc's rope in the inertia y would be off by about 1.5e-2, without J / R^2 by 8.6e-2.
 // The same with the rope spatial (no plane normal: two transverse directions, the grooves'
 // axes their pin's or +z): the same bound.

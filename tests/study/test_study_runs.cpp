@@ -52,7 +52,7 @@ bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") =
 
 }  // namespace
 
-// Acceptance: a study of six small cases gives, per case, exactly the numbers of the demo run
+// A study of six small cases gives, per case, exactly the numbers of the demo run
 // with the same options (run here from the command line, the options space-separated).
 TEST(StudyRuns, SixCasesGiveExactlyTheDemoRunsNumbers) {
     const fs::path dir = scratch("six");
@@ -105,7 +105,7 @@ TEST(StudyRuns, SixCasesGiveExactlyTheDemoRunsNumbers) {
             << png;
 }
 
-// Acceptance: a case forced to fail (a value that passes --check but fails the run: a rope too
+// A case forced to fail (a value that passes --check but fails the run: a rope too
 // soft for the static equilibrium) is recorded with its message, the other case completes, and the
 // study ends with exit status 1. No wall limit here: how long the failing case takes depends on the
 // machine (and on sanitizers), its status must not.
@@ -148,7 +148,7 @@ TEST(StudyRuns, FailingCasesAreRecordedAndTheOthersComplete) {
     EXPECT_EQ(s.at("failures")[0].at("parameters").at("set.EA"), "10");
 }
 
-// Acceptance: a case past the wall limit is stopped and recorded as a timeout, the other case
+// A case past the wall limit is stopped and recorded as a timeout, the other case
 // completes. Measured on an idle 2-core machine with t-end 5 s: the quick case (vx0 1 m/s) takes
 // 0.19 s of wall, the slow one (vx0 1000 m/s, ~100 000 steps per simulated second) 27.7 s. The
 // limit, 4 s, is 20x the quick case's wall (which sanitizers slow about 3-5x) and a seventh of the
@@ -205,7 +205,7 @@ TEST(StudyRuns, StepLimitFailsCasesWithTheDemosMessage) {
     }
 }
 
-// Acceptance: a study killed (SIGKILL) part way and resumed runs only the missing cases and ends
+// A study killed (SIGKILL) part way and resumed runs only the missing cases and ends
 // with the same table as an uninterrupted run (wall times aside).
 TEST(StudyRuns, KilledStudyResumesToTheUninterruptedTable) {
     const fs::path dir = scratch("resume");
@@ -240,7 +240,7 @@ TEST(StudyRuns, KilledStudyResumesToTheUninterruptedTable) {
         done = lines(partial).size() - 1;
     }
     ASSERT_GE(done, 2u);
-    ASSERT_LT(done, 6u) << "the runner finished before it was killed";
+    ASSERT_LT(done, 6u) << "the runner finished before the kill";
     EXPECT_FALSE(fs::exists(dir / "killed" / "results.csv"));
     // Without --resume the stopped study is not overwritten.
     const ProgramRun again = run(kStudy + " " + quote(dir / "slow.yaml") + " --out " + quote(dir / "killed"), dir);
@@ -266,7 +266,7 @@ TEST(StudyRuns, KilledStudyResumesToTheUninterruptedTable) {
               withoutColumn(dir / "whole" / "results.csv", "wall_seconds"));
 }
 
-// Acceptance: with MPI, the same study under mpirun -n 3 (oversubscribed on small machines) gives
+// With MPI, the same study under mpirun -n 3 (oversubscribed on small machines) gives
 // the serial table bit for bit (wall times aside).
 TEST(StudyRuns, MpiRunEqualsTheSerialRun) {
     if (!REEVING_STUDY_WITH_MPI) GTEST_SKIP() << "reeving-study was built without MPI (SIMBODYREEVING_STUDY_MPI OFF)";
