@@ -106,8 +106,8 @@ TEST(StepFailures, FixedStepEndsWithTheRopesMessage) {
 // CPodes: the payload pushed at 100 m/s with QuasiStatic axial modes and a first step of 20 s: the
 // first trial state is so far out that the rope's Newton fails there (from its warm start and from
 // its cold restart); CPodes takes the recoverable error, retries at a quarter of the step, and
-// completes. (A first step of 2 s with a 300 m/s push failed before the Newton got its cold restart;
-// it now converges there.)
+// completes. (With a first step of 2 s and a 300 m/s push the Newton's cold restart converges
+// from the start.)
 TEST(StepFailures, CPodesRetriesAfterAFailedTrialEvaluation) {
     const Outcome r = run("cpodes", 20.0, 0, 100.0, AxialDynamics::QuasiStatic, 3);
     std::printf("cpodes, initial step 20 s, push 100 m/s: %s, %d evaluation failure(s), last: %s\n",
