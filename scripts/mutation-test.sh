@@ -41,6 +41,9 @@
 #  12 rhoa-v2          the rope's centripetal load rhoA v^2 dropped from the groove's normal load
 #                      P - rhoA v^2, in the RopeMomentum slip law and its stick limit (ReevingTraction)
 #  13 tight-side       RopeMomentum slip takes the slack side's tension as the tight one (ReevingTraction)
+#  14 arc-length       the rope on a groove measured as R alpha / 2: a wrapped sheave's arc length
+#                      and a gripping groove's (drum, turning sheave) R phi halved in the station map,
+#                      consistently in its value, Jacobian and bias (WrapStationMap)
 #
 # How long it takes. On 2 cores shared with other work (Debian bookworm, g++ 12), under `nice`:
 # about 9 min for the first build of a copy, 2.5-4 min per run of the suite (350 tests), under a
@@ -109,7 +112,7 @@ done
 # FILE has no such marker or the edit leaves any marked line unchanged. Each changed line gets a
 # /* MUTANT */ comment (the restore checks that none is left).
 names=(rope-weight linear-strain qv-forces sheave-sense mode-accel arc-mass arc-qv-forces wrap-jacobian
-    up-direction ring-speed capstan-exponent rhoa-v2 tight-side)
+    up-direction ring-speed capstan-exponent rhoa-v2 tight-side arc-length)
 descriptions=(
     "SpanModel gravity -> 0 (the rope material has no weight)"
     "AxialLaw: Green strain eps -> engineering strain lambda - 1 (energy and force)"
@@ -124,6 +127,7 @@ descriptions=(
     "capstan exponent mu alpha -> mu alpha / 2 (stick limit and slip laws)"
     "rhoA v^2 dropped from the capstan law and from the stick limit"
     "RopeMomentum slip: tight side swapped (sigma > 0 ? P_a : P_b -> P_b : P_a)"
+    "WrapStationMap: the rope on a groove R alpha -> R alpha / 2 (arcs and gripped rope)"
 )
 
 mutant_1() {
@@ -211,6 +215,12 @@ mutant_12() {
 
 mutant_13() {
     site plugin/simbody/src/ReevingTraction.cpp tight-side 's/sigma > 0 \? pa : pb/sigma > 0 ? pb : pa/' || return 1
+}
+
+mutant_14() {
+    site plugin/element/src/WrapStationMap.cpp arc-length '
+        s/return rope\.arc\(k\)\.radius\(\) \*/return 0.5 * rope.arc(k).radius() */ or
+        s/= arc\.radius\(\) \* alpha;/= 0.5 * arc.radius() * alpha;/' || return 1
 }
 
 # The Perl half of `site`: ARGV = FILE WRITE; prints "markers changed unchanged-line-numbers".

@@ -131,7 +131,7 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
     // and bias gather R sigma phi_out's from the span it starts (k) and -R sigma phi_in's from the
     // span it ends (k - 1).
     auto arcRow = [&](int k) { return rope.nodeCoordinateOffset(k) + Model::wrappedArcLengthOffset(); };
-    auto arcScale = [&](int k) { return rope.arc(k).radius() * rope.arc(k).wrapSense(); };
+    auto arcScale = [&](int k) { return rope.arc(k).radius() * rope.arc(k).wrapSense(); };  // mutation-site: arc-length
     TangencyJacobian Jt;
     TangencyRates rates;
     for (int j = 0; j < N; ++j) {
@@ -253,7 +253,7 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
                                                   data.wrapAngles[k])
                                       : wrapAngle(g, data.tangencies[k - 1].endRadial, data.tangencies[k].startRadial);
         data.wrapAngles[k] = alpha;
-        data.x[arcRow(k)] = arc.radius() * alpha;
+        data.x[arcRow(k)] = arc.radius() * alpha;  // mutation-site: arc-length
     }
     // A wrapped Driven node grips the rope on its groove: the material coordinate at the arriving
     // tangent point is s_in = Y_s + sigma R phi_in, phi_in the tangent point's angle about the
