@@ -182,7 +182,9 @@ TEST(WrapStationMap, SpatialJacobianAndBiasMatchFiniteDifferences) {
 // nddot = thetaddot e x n + thetadot^2 e x (e x n) exactly (a rigid body's motion: |n| stays 1).
 // xdot = J Ydot and xddot = J Yddot + b against 4th-order differences of x(t) (h = 1e-3 s) for a
 // turning sheave between two points and for a turning sheave next to a fixed-axis one (their
-// circle-to-circle tangent), fleet angles of several degrees. Bounds as the fixed-axis test's.
+// circle-to-circle tangent), fleet angles of several degrees; and drums whose groove walks along
+// their axis as rope is stored (NodeWrap::layRate: the centre c + (x0 + x' Y) n moves with the
+// drum's coordinate Y, and with n where the axis turns). Bounds as the fixed-axis test's.
 TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
     const RopeProperties props{1.0, 1e6, 0.0};
     struct Turning {
@@ -201,6 +203,11 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
         w.turningAxis = true;
         return w;
     };
+    auto layWrap = [](NodeWrap w) {
+        w.layRate = 0.2;
+        w.layOffset = 0.1;
+        return w;
+    };
     const Eigen::Vector3d tilted = Eigen::Vector3d(0.12, 0.05, 1.0).normalized();
     const std::vector<Layout> layouts = {
         {{NodeWrap{}, turningWrap(0.3, 1, tilted), NodeWrap{}},
@@ -217,6 +224,17 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
          {{-1.0, 0.0, 0.3}, {0.2, -2.0, 0.0}, {1.2, 0.1, -0.2}},
          {{1, Eigen::Vector3d(0.6, 0.3, 0.2).normalized(), 0.8, -0.6}},
          {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed}},
+        // Drums that spool across their width (NodeWrap::layRate): the groove x = 0.1 + 0.2 Y
+        // along the axis from the drum's centre, the axis fixed (to a hanging end) and turning (to
+        // a tilted sheave).
+        {{layWrap(wrap3(0.4, 1, tilted)), NodeWrap{}},
+         {{0.0, 0.0, 0.0}, {0.5, -3.0, 0.4}},
+         {},
+         {MaterialNode::Driven, MaterialNode::Fixed}},
+        {{layWrap(turningWrap(0.4, -1, tilted)), wrap3(0.25, 1, Eigen::Vector3d(-0.1, 0.0, 1.0)), NodeWrap{}},
+         {{0.0, 0.0, 0.0}, {2.0, -2.2, 0.3}, {3.0, 0.4, -0.3}},
+         {{0, Eigen::Vector3d(0.0, 1.0, 0.2).normalized(), 0.6, -0.5}},
+         {MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed}},
     };
     double worstRate = 0, worstAcceleration = 0, largestFleet = 0;
     for (const Layout& layout : layouts) {
@@ -275,6 +293,16 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
         const Eigen::VectorXd model = d.jacobian * Ydd + d.bias;
         worstAcceleration = std::max(worstAcceleration, (acc - model).cwiseAbs().maxCoeff() / acc.cwiseAbs().maxCoeff());
         largestFleet = std::max({largestFleet, d.startFleetAngles.cwiseAbs().maxCoeff(), d.endFleetAngles.cwiseAbs().maxCoeff()});
+        // A walking groove's tangent point lies x = 0.1 + 0.2 Y along the axis from the centre.
+        for (int k = 0; k < rope.numNodes(); ++k) {
+            if (rope.grooveLayRate(k) == 0) continue;
+            const Eigen::Vector3d c = Y.segment<3>(3 * k), T = d.x.segment<3>(rope.nodeCoordinateOffset(k) +
+                                                                                   RopeModel<3>::wrappedDepartureOffset());
+            const int a = rope.axisStation(k);
+            const Eigen::Vector3d n = a >= 0 ? Eigen::Vector3d(Y.segment<3>(3 * a) - c) : rope.grooveAxis(k);
+            EXPECT_NEAR((T - c).dot(n), 0.1 + 0.2 * Y[nY - 1], 1e-14);
+            EXPECT_NEAR(((T - c) - (T - c).dot(n) * n).norm(), rope.arc(k).radius(), 1e-14);
+        }
         // The axis entries are the stations' difference, and they move.
         for (const Turning& tu : layout.turning) {
             const int o = rope.nodeCoordinateOffset(tu.node) + RopeModel<3>::wrappedAxisOffset();
@@ -288,6 +316,39 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
     EXPECT_GT(largestFleet, 3 * kPi / 180);
     EXPECT_LT(worstRate, 1e-10);
     EXPECT_LT(worstAcceleration, 1e-7);
+}
+
+// A groove lay (a drum spooling across its width): only at a wrapped Driven end node of a spatial
+// rope, finite.
+TEST(WrapStationMap, GrooveLaysAreForWrappedDrumsOfSpatialRopes) {
+    const RopeProperties props{1.0, 1e6, 0.0};
+    auto spans3 = [&]() {
+        std::vector<SpanModel<3>> spans;
+        for (int j = 0; j < 2; ++j) spans.emplace_back(props, spanOptions(0, 0), Eigen::Vector3d(0.0, -kG, 0.0));
+        return spans;
+    };
+    NodeWrap drum = wrap3(0.3, 1, Eigen::Vector3d::UnitZ());
+    drum.layRate = 0.01;
+    const std::vector<MaterialNode> kinds{MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed};
+    const RopeModel<3> rope(spans3(), 20.0, kinds, {drum, NodeWrap{}, NodeWrap{}});
+    EXPECT_EQ(rope.grooveLayRate(0), 0.01);
+    EXPECT_EQ(rope.grooveLayRate(1), 0.0);
+    const char* where = "needs a wrapped Driven end node of a spatial rope";
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed},
+                                      {NodeWrap{}, drum, NodeWrap{}}),
+                         std::invalid_argument, where);
+    NodeWrap point;
+    point.layOffset = 0.2;
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, kinds, {point, NodeWrap{}, NodeWrap{}}), std::invalid_argument, where);
+    std::vector<SpanModel<2>> planar;
+    for (int j = 0; j < 2; ++j) planar.emplace_back(props, spanOptions(0, 0), Vector2d(0.0, -kG));
+    NodeWrap planarDrum = wrap(0.3, 1);
+    planarDrum.layRate = 0.01;
+    EXPECT_THROW_MESSAGE(RopeModel<2>(std::move(planar), 20.0, kinds, {planarDrum, NodeWrap{}, NodeWrap{}}),
+                         std::invalid_argument, where);
+    drum.layRate = std::nan("");
+    EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, kinds, {drum, NodeWrap{}, NodeWrap{}}), std::invalid_argument,
+                         "must be finite");
 }
 
 // A turning groove axis: for wrapped interior Sliding and Driven nodes of spatial ropes; the node

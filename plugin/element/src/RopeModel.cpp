@@ -135,8 +135,24 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     nodeOffset_.assign(N + 2, 0);
     grooveAxes_.assign(N + 1, Eigen::Vector3d::UnitZ());
     axisStation_.assign(N + 1, -1);
+    layRate_.assign(N + 1, 0.0);
+    layOffset_.assign(N + 1, 0.0);
     for (int k = 0; k <= N; ++k) {
         const NodeWrap& wrap = wraps[k];
+        if (!std::isfinite(wrap.layRate) || !std::isfinite(wrap.layOffset)) {
+            std::ostringstream msg;
+            msg << "RopeModel: node " << k << "'s lay (layRate = " << wrap.layRate << ", layOffset = " << wrap.layOffset
+                << " m) must be finite";
+            throw std::invalid_argument(msg.str());
+        }
+        if (wrap.layRate != 0 || wrap.layOffset != 0) {
+            if (Dim != 3 || !(wrap.radius > 0) || (k != 0 && k != N) || nodeKind_[k] != MaterialNode::Driven)
+                throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
+                                            ": a groove lay (NodeWrap::layRate, layOffset: a drum spooling across its "
+                                            "width) needs a wrapped Driven end node of a spatial rope (RopeModel<3>)");
+            layRate_[k] = wrap.layRate;
+            layOffset_[k] = wrap.layOffset;
+        }
         if (!std::isfinite(wrap.radius) || wrap.radius < 0) {
             std::ostringstream msg;
             msg << "RopeModel: node " << k << "'s wrap radius R = " << wrap.radius << " m must be finite and >= 0";

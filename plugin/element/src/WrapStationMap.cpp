@@ -95,9 +95,16 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         const int a = rope.axisStation(k);
         return lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * a) - stationRates.template segment<Dim>(Dim * k)));
     };
+    // A drum spooling across its width: its groove lies x = layOffset + layRate Y along the axis
+    // from the node's position (NodeWrap::layRate), Y its driven coordinate.
+    auto drivenColumn = [&](int k) { return Dim * numStations + rope.drivenIndex(k); };
+    auto lay = [&](int k) {
+        if (rope.grooveLayRate(k) == 0 && rope.grooveLayOffset(k) == 0) return 0.0;
+        return rope.grooveLayOffset(k) + rope.grooveLayRate(k) * stations[drivenColumn(k)];
+    };
     auto groove = [&](int k) {
         GrooveCircle g;
-        g.centre = lift<Dim>(station(k));
+        g.centre = lift<Dim>(station(k)) + lay(k) * axis(k);
         g.axis = axis(k);
         g.radius = rope.arc(k).radius();
         g.wrapSense = rope.arc(k).wrapSense();
@@ -147,6 +154,15 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
                 mb.velocity = lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * (j + 1))));
                 ma.axisRate = axisRate(j);
                 mb.axisRate = axisRate(j + 1);
+                // A walking groove's centre c + x n moves at cdot + x' Ydot n + x ndot, and
+                // accelerates by 2 x' Ydot ndot with the stations' and Y's second derivatives 0.
+                for (auto [node, motion] : {std::pair<int, EndMotion*>{j, &ma}, std::pair<int, EndMotion*>{j + 1, &mb}}) {
+                    const double rate = rope.grooveLayRate(node);
+                    if (rate == 0 && rope.grooveLayOffset(node) == 0) continue;
+                    const double ydot = stationRates[drivenColumn(node)];
+                    motion->velocity += rate * ydot * axis(node) + lay(node) * motion->axisRate;
+                    motion->acceleration = 2 * rate * ydot * motion->axisRate;
+                }
                 computeTangencyRates(a, b, t, ma, mb, rates);
             }
         } catch (const std::domain_error& e) {
@@ -161,9 +177,20 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         // Dim coordinates of the points and the stations of nodes j (columns 0..) and j + 1 (6..).
         // A turning axis n = a - c: its columns (3.. and 9..) go to the axis station (+) and the
         // centre (-).
+        // A walking groove's centre c + x n (x = layOffset + layRate Y; n = a - c where the axis
+        // turns) adds layRate n to Y's column, and moves x of the centre's column to the axis
+        // station's.
         auto rowsOver = [&](int row, double scale, int r) {
-            data.jacobian.template block<1, Dim>(r, Dim * j) += scale * Jt.template block<1, Dim>(row, 0);
-            data.jacobian.template block<1, Dim>(r, Dim * (j + 1)) += scale * Jt.template block<1, Dim>(row, 6);
+            for (const auto& [node, column] : {std::pair<int, int>{j, 0}, std::pair<int, int>{j + 1, 6}}) {
+                const Eigen::Matrix<double, 1, Dim> Jc = scale * Jt.template block<1, Dim>(row, column);
+                const double x = lay(node);
+                const int as = rope.axisStation(node);
+                data.jacobian.template block<1, Dim>(r, Dim * node) += (as >= 0 ? 1 - x : 1.0) * Jc;
+                if (as >= 0 && x != 0) data.jacobian.template block<1, Dim>(r, Dim * as) += x * Jc;
+                if (rope.grooveLayRate(node) != 0)
+                    data.jacobian(r, drivenColumn(node)) +=
+                        rope.grooveLayRate(node) * scale * Jt.template block<1, 3>(row, column).dot(axis(node));
+            }
             for (const auto& [node, column] : {std::pair<int, int>{j, 3}, std::pair<int, int>{j + 1, 9}}) {
                 const int as = rope.axisStation(node);
                 if (as < 0) continue;
