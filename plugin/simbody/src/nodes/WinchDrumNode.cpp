@@ -11,6 +11,13 @@ void WinchDrumNode::validate(const NodeSite& site) {
     validatePinnedNode(site);
     const double stored = site.spec.ropeOnDrum;
     if (!std::isfinite(stored) || stored < 0) invalid(mustBe(site.name + " ropeOnDrum [m]", stored, "finite and >= 0"));
+    const double pitch = site.spec.pitch;
+    if (!std::isfinite(pitch) || !(std::abs(pitch) < 2 * SimTK::Pi * site.spec.radius))
+        invalid(mustBe(site.name + " pitch [m]", pitch, "finite and |pitch| < 2 pi radius"));
+    if (pitch != 0 && (site.rope.spec.sheaveModel != SheaveModel::Wrapped || site.rope.spec.planeNormal.norm() > 0))
+        invalid(site.name + " pitch = " + std::to_string(pitch) +
+                " m: a drum that spools across its width needs a spatial rope (no RopeSpec::planeNormal) with "
+                "SheaveModel::Wrapped (its exit point walks along the drum's axis, out of any plane)");
 }
 
 void WinchDrumNode::addMaterialRelation(NodeSite& site) {
@@ -33,7 +40,20 @@ void WinchDrumNode::addMaterialRelation(NodeSite& site) {
 NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus sigma R
     // phi); the stored rope is the rest.
-    return grippingSheaveWrap(site, kName, planeNormal, true);
+    NodeWrap w = grippingSheaveWrap(site, kName, planeNormal, true);
+    if (site.spec.pitch != 0) {
+        // x = p (Y - s_ref) / (2 pi R) along the pin axis, Y = s_ref + dsdTheta theta: stored rope
+        // grows with Y at the start and as Y falls at the end.
+        const RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
+        const double toward = site.node == 0 ? 1.0 : -1.0;
+        const SimTK::Vec3 pinAxis = referenceOrientation(site.spec.body.getParentMobilizedBody()) *
+                                    site.spec.body.getDefaultInboardFrame().R().z();
+        // (NodeWrap::axis is the pin axis in Ground at the reference, or its opposite.)
+        const double along = SimTK::dot(pinAxis, SimTK::Vec3(w.axis[0], w.axis[1], w.axis[2])) > 0 ? 1.0 : -1.0;
+        w.layRate = along * toward * site.spec.pitch / (2 * SimTK::Pi * site.spec.radius);
+        w.layOffset = -w.layRate * d.sRef;
+    }
+    return w;
 }
 
 }  // namespace detail

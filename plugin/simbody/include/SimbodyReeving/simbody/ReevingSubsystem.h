@@ -128,6 +128,7 @@ struct RopeNode {
     /// SheaveModel::Wrapped: its wrap sense, +1 or -1.
     int sense = 1;
     double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
+    double pitch = 0;           ///< WinchDrum: the exit point's axial advance per turn [m] (WinchDrum::pitch)
     double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave, TractionSheave: s_ref [m]
     double frictionCoefficient = 0;  ///< TractionSheave: mu [-], >= 0
     double wrapAngle = 0;            ///< TractionSheave: alpha [rad], in [0, 20 pi]; 0: from the geometry
@@ -205,12 +206,24 @@ struct WinchDrum {
     double ropeOnDrum = 0;      ///< rope stored on the drum at pin angle 0 [m], >= 0
     int payoutSense = 1;        ///< +1: a positive pin angle pays rope out; -1: it hauls rope in
     SimTK::Vec3 centre{0};      ///< the rope node's point on the pin axis, drum body frame [m]
+    /// A drum that spools across its width (a spatial rope with SheaveModel::Wrapped): the axial
+    /// advance of the rope's exit point per turn of rope stored, p [m] (about the rope's diameter
+    /// on a grooved drum); p > 0 walks along the pin's +z (the drum's axis) as rope is stored,
+    /// p < 0 along -z. The groove circle the rope leaves lies x = p (s_top - s_top,0) / (2 pi R)
+    /// along the axis from `centre`, s_top the material coordinate at the drum's top (the drum's
+    /// turns: s_0 = -sense R theta at the start, s_N = L + sense R theta at the end, the sign
+    /// such that stored rope walks along +p); the tangent point's roll as the fall swings
+    /// (sigma R phi) does not move it (NodeWrap::layRate). One layer, of unbounded width: the
+    /// flanges and a second layer are not modelled. The stored rope stays a ring at `centre`.
+    /// 0 (the default): the rope leaves the drum in `centre`'s plane. Finite, |p| < 2 pi R.
+    double pitch = 0;
     /// The RopeNode of kind WinchDrum.
     operator RopeNode() const {
         RopeNode n(body, centre, radius);
         n.kind = RopeNodeKind::WinchDrum;
         n.sense = payoutSense;
         n.ropeOnDrum = ropeOnDrum;
+        n.pitch = pitch;
         return n;
     }
 };
