@@ -45,6 +45,7 @@ std::map<std::string, double*> parameterKeys(SimbodyReeving::BoomCraneParameters
             {"drumMass", &p.drumMass},
             {"drumInertia", &p.drumInertia},
             {"ropeOnDrum", &p.ropeOnDrum},
+            {"drumPitch", &p.drumPitch},
             {"hookMass", &p.hookMass},
             {"hookInertia", &p.hookInertia},
             {"hookComBelow", &p.hookComBelow},
@@ -164,7 +165,7 @@ void defineOptions(CLI::App& app, Options& o) {
            "crane parameter, repeatable (SI units): g superstructureMass\n"
            "superstructureInertia boomLength boomMass luffSheaveRadius\n"
            "luffSheaveSpacing footSheaveOffset footSheaveHeight hoistSheaveRadius\n"
-           "drumRadius drumMass drumInertia ropeOnDrum hookMass hookInertia\n"
+           "drumRadius drumMass drumInertia ropeOnDrum drumPitch hookMass hookInertia\n"
            "hookComBelow hookPinBelow initialHookDepth payloadMass payloadInertia\n"
            "slingLength rhoA EA EI minimumSpanLength (see BoomCraneScene.h)")
         ->type_name("KEY=VALUE")

@@ -57,7 +57,7 @@ struct Row {
     double t = 0, slewAngle = 0, boomAngle = 0, hookRadius = 0, swingInPlane = 0, swingOutOfPlane = 0;
     SimTK::Vec3 hook{0};
     std::array<std::array<double, kSpans>, kRopes> spanForce{};
-    std::array<double, kRopes> largestFleet{}, ropeOnDrum{};
+    std::array<double, kRopes> largestFleet{}, drumFleet{}, ropeOnDrum{};
     std::array<std::array<double, kSheaves>, kRopes> wrap{};
     std::array<double, 3> torque{}, power{};
     double work = 0, residual = 0;
@@ -85,6 +85,7 @@ Row observe(const BoomCraneScene& scene, const State& s, double energy0) {
     for (int rope = 0; rope < kRopes; ++rope) {
         for (int k = 0; k < kSpans; ++k) r.spanForce[rope][k] = scene.spanForce(s, rope, k);
         r.largestFleet[rope] = scene.largestFleetAngle(s, rope);
+        r.drumFleet[rope] = scene.drumFleetAngle(s, rope);
         for (int k = 1; k <= kSheaves; ++k) r.wrap[rope][k - 1] = scene.wrapAngle(s, rope, k);
         r.ropeOnDrum[rope] = scene.ropeOnDrum(s, rope);
     }
@@ -183,7 +184,7 @@ RunResult run(const Options& o, BoomCraneScene& scene) {
 /// Extremes over the reports.
 struct Figures {
     std::array<std::array<double, kSpans>, kRopes> maxSpanForce{};
-    std::array<double, kRopes> maxFleet{};
+    std::array<double, kRopes> maxFleet{}, maxDrumFleet{};
     std::array<std::array<double, kSheaves>, kRopes> minWrap{}, maxWrap{};
     std::array<double, 3> maxTorque{}, maxPower{};
     double maxSwingOut = 0, maxSwingIn = 0, minHookRadius = 0, maxHookRadius = 0, maxBoomAngle = 0, minBoomAngle = 0;
@@ -202,6 +203,7 @@ Figures summarize(const RunResult& r) {
         for (int rope = 0; rope < kRopes; ++rope) {
             for (int k = 0; k < kSpans; ++k) f.maxSpanForce[rope][k] = std::max(f.maxSpanForce[rope][k], w.spanForce[rope][k]);
             f.maxFleet[rope] = std::max(f.maxFleet[rope], w.largestFleet[rope]);
+            f.maxDrumFleet[rope] = std::max(f.maxDrumFleet[rope], w.drumFleet[rope]);
             for (int k = 0; k < kSheaves; ++k) {
                 f.minWrap[rope][k] = std::min(f.minWrap[rope][k], w.wrap[rope][k]);
                 f.maxWrap[rope][k] = std::max(f.maxWrap[rope][k], w.wrap[rope][k]);
@@ -229,6 +231,7 @@ void writeTimeseries(std::ostream& ts, const RunResult& r) {
     for (int rope = 0; rope < kRopes; ++rope)
         for (int k = 1; k <= kSpans; ++k) ts << ',' << kRopeKeys[rope] << "_span_" << k << "_N";
     for (int rope = 0; rope < kRopes; ++rope) ts << ',' << kRopeKeys[rope] << "_fleet_max_rad";
+    for (int rope = 0; rope < kRopes; ++rope) ts << ',' << kRopeKeys[rope] << "_drum_fleet_rad";
     for (int rope = 0; rope < kRopes; ++rope)
         for (int k = 0; k < kSheaves; ++k) ts << ",wrap_" << kSheaveNames[rope][k] << "_rad";
     for (const char* d : kDriveKeys) ts << ',' << d << "_torque_Nm";
@@ -241,6 +244,7 @@ void writeTimeseries(std::ostream& ts, const RunResult& r) {
         for (const auto& forces : w.spanForce)
             for (double x : forces) ts << ',' << x;
         for (double x : w.largestFleet) ts << ',' << x;
+        for (double x : w.drumFleet) ts << ',' << x;
         for (const auto& wraps : w.wrap)
             for (double x : wraps) ts << ',' << x;
         for (double x : w.torque) ts << ',' << x;
@@ -277,6 +281,7 @@ demo_common::Json parametersJson(const BoomCraneParameters& p) {
     j["drumMass"] = jsonNumber(p.drumMass);
     j["drumInertia"] = jsonNumber(p.drumInertia);
     j["ropeOnDrum"] = jsonNumber(p.ropeOnDrum);
+    j["drumPitch"] = jsonNumber(p.drumPitch);
     j["hookMass"] = jsonNumber(p.hookMass);
     j["hookInertia"] = jsonNumber(p.hookInertia);
     j["hookComBelow"] = jsonNumber(p.hookComBelow);
@@ -339,6 +344,12 @@ void writeOutputs(const fs::path& dir, const Options& o, const BoomCraneScene& s
         j["static_span_axial_force_N"] = jsonArray(first.spanForce[rope]);
         j["max_span_axial_force_N"] = jsonArray(f.maxSpanForce[rope]);
         j["max_fleet_angle_deg"] = jsonNumber(f.maxFleet[rope] * deg);
+        // Where the rope leaves its drum, against the usual limits (BoomCraneScene).
+        j["max_drum_fleet_angle_deg"] = jsonNumber(f.maxDrumFleet[rope] * deg);
+        j["drum_fleet_limit_plain_deg"] = jsonNumber(BoomCraneScene::kPlainDrumFleetLimit * deg);
+        j["drum_fleet_limit_grooved_deg"] = jsonNumber(BoomCraneScene::kGroovedDrumFleetLimit * deg);
+        j["drum_fleet_within_plain_limit"] = f.maxDrumFleet[rope] <= BoomCraneScene::kPlainDrumFleetLimit;
+        j["drum_fleet_within_grooved_limit"] = f.maxDrumFleet[rope] <= BoomCraneScene::kGroovedDrumFleetLimit;
         Json wraps = Json::array();
         for (int k = 0; k < kSheaves; ++k)
             wraps.push_back({{"sheave", k + 1},

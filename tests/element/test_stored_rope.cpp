@@ -301,7 +301,11 @@ StoredRope<3> turningLaw3(int node, double slope, int sigma) {
     return law;
 }
 
-void turningState3(double phi, int sigma, const Eigen::Vector3d& omega, Eigen::VectorXd& x, Eigen::VectorXd& xdot) {
+// With axial != 0 the tangent point lies that far along n from c's plane, walking at axialRate (a
+// drum that spools across its width): T = c + r + axial n, Tdot = cdot + omega_across x
+// (r + axial n) + rho n x r + axialRate n.
+void turningState3(double phi, int sigma, const Eigen::Vector3d& omega, Eigen::VectorXd& x, Eigen::VectorXd& xdot,
+                   double axial = 0, double axialRate = 0) {
     Eigen::Vector3d up, w;
     planeBasis3(up, w);
     const Eigen::Vector3d c(0.7, -1.2, 0.4), cdot(0.9, -0.4, 0.3), n = kAxis3;
@@ -310,17 +314,18 @@ void turningState3(double phi, int sigma, const Eigen::Vector3d& omega, Eigen::V
     const double rho = 1.7;
     x.resize(10);
     xdot.resize(10);
-    x << c, c + r, 0.35, n;
-    xdot << cdot, cdot + across.cross(r) + rho * n.cross(r), sigma * kR * (rho - omega.dot(n)), omega.cross(n);
+    x << c, c + r + axial * n, 0.35, n;
+    xdot << cdot, cdot + across.cross(r + axial * n) + rho * n.cross(r) + axialRate * n, sigma * kR * (rho - omega.dot(n)),
+        omega.cross(n);
 }
 
 // The stored material moving rigidly with the drum: material lambda from the tangent point at
-// c + R u, u turned from e = (T - c) / R by -sigma kappa lambda / R about n, velocity
-// cdot + omega x (R u).
+// c + R u, u turned from e (T - c projected onto the groove's plane, over R) by -sigma kappa
+// lambda / R about n, velocity cdot + omega x (R u).
 Quadrature rigidQuadrature3(double slope, int sigma, const Eigen::Vector3d& omega, const Eigen::VectorXd& x,
                             const Eigen::VectorXd& xdot) {
     const Eigen::Vector3d c = x.segment<3>(0), cdot = xdot.segment<3>(0), n = x.segment<3>(7);
-    const Eigen::Vector3d e = (x.segment<3>(3) - c) / kR, f = n.cross(e);
+    const Eigen::Vector3d r = x.segment<3>(3) - c, e = (r - n * n.dot(r)) / kR, f = n.cross(e);
     const double l = kL0 + slope * x[6];
     Quadrature q;
     const int steps = 20000;
@@ -337,7 +342,8 @@ Quadrature rigidQuadrature3(double slope, int sigma, const Eigen::Vector3d& omeg
 
 // A drum whose axis turns: the law's energies are those of the stored material turning rigidly
 // with the drum (quadrature, relative 1e-7 as above; measured below), at the rope's start and end,
-// both senses, omega across and along the axis; its mass and force are Lagrange's equations of
+// both senses, omega across and along the axis, the tangent point in the ring's plane and 0.08 m
+// off it along the axis, walking at 0.05 m/s (a drum spooling across its width); its mass and force are Lagrange's equations of
 // those energies at all ten coordinates (c, T, n, s), as the tests above check (differences of the
 // law's energies, bounds 1e-6; measured below).
 TEST(StoredRope, TurningAxisLawIsTheStoredMaterialTumblingWithTheDrum) {
@@ -345,10 +351,11 @@ TEST(StoredRope, TurningAxisLawIsTheStoredMaterialTumblingWithTheDrum) {
     const Eigen::Vector3d omega(0.8, -0.5, 1.3);
     for (double slope : {1.0, -1.0})
         for (int sigma : {1, -1})
-            for (double phi : {0.3, 2.0, -2.6}) {
+            for (double phi : {0.3, 2.0, -2.6})
+            for (double axial : {0.0, 0.08}) {
                 const StoredRope<3> law = turningLaw3(slope > 0 ? 0 : 5, slope, sigma);
                 Eigen::VectorXd x, xdot;
-                turningState3(phi, sigma, omega, x, xdot);
+                turningState3(phi, sigma, omega, x, xdot, axial, axial > 0 ? 0.05 : 0.0);
                 auto energies = [&](const Eigen::VectorXd& xe, const Eigen::VectorXd& ve) {
                     StoredRopeTerms<3> tt;
                     law.evaluate(xe, ve, xe[6], ve[6], tt);

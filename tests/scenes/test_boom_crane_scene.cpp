@@ -43,8 +43,11 @@ double slewTorqueAt(const BoomCraneParameters& p, double t) {
 // as a point mass on the drum's axis (RopeModel::setStoredRope): Delta m d^2. The torque grows by
 // Delta I times the slewing acceleration (no other term: the rings' spin is about z, their weight
 // has no moment about y, full turns keep the partial turn where it was). At t = 12 s the slew
-// accelerates and the luffing drum turns. Measured: 16.82 N m wrapped, 16.65 point (R^2 / 2 is
-// the 1 % between them), relative 4.1e-11 and 7.8e-13 of the closed form; bound 1e-8 (240x).
+// accelerates and the luffing drum turns; wrapped, both drums spool across their width (the exit
+// points 16 mm along the axis per turn: the rings stay in the drums' planes). Measured: 16.82 N m
+// wrapped, 16.65 point (R^2 / 2 is the 1 % between them), relative 1.5e-11 and 7.8e-13 of the
+// closed form; bound 1e-8. (Rings that took the walking tangent point's axial offset as part of
+// their radius, or its rate as spin, miss by 2.6e-5.)
 TEST(BoomCraneScene, StoredRopeSlewsAsRingsOnTheDrums) {
     const double t = 12.0;
     for (SheaveModel model : {SheaveModel::Wrapped, SheaveModel::Point}) {

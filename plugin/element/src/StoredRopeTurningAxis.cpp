@@ -44,7 +44,10 @@ void StoredRope<3>::evaluateTurningAxis(const Eigen::VectorXd& x, const Eigen::V
 
     // The tangent point's radial e, f = n x e, and the stored arc from there: length l, turned by
     // Delta = -sigma kappa l / R about n (u(t) = cos t e + sin t f, dlambda = -sigma kappa R dt).
-    const AdVec3 e = (T - c) / R, f = cross(n, e);
+    // (T - c projected onto the groove's plane: a drum that spools across its width has its
+    // tangent point along n from c, NodeWrap::layRate; the stored ring stays in c's plane.)
+    const AdVec3 r = T - c;
+    const AdVec3 e = (r - n * n.dot(r)) / R, f = cross(n, e);
     const Ad l = lengthAtZero_ + kappa * sk;
     const Ad delta = -sigma * kappa * l / R;
     const double scale = -sigma * kappa * R;
@@ -56,14 +59,18 @@ void StoredRope<3>::evaluateTurningAxis(const Eigen::VectorXd& x, const Eigen::V
         for (int j = 0; j < 3; ++j) I2(i, j) = scale * (C2 * e[i] * e[j] + S2 * f[i] * f[j] + X2 * (e[i] * f[j] + f[i] * e[j]));
     const AdVec3 k = cross(n, I1);
 
-    // G (7 x 10): cdot; Omega_s = f . (Tdot - cdot) / R - sigma sdot / R; Omega_perp = n x ndot.
+    // G (7 x 10): cdot; Omega_s = f . (Tdot - cdot) / R - (f . ndot)(n . (T - c)) / R - sigma sdot / R
+    // (the rate of the projected radial R e; the last but one term 0 unless the tangent point
+    // lies off c's plane, a drum spooling across its width); Omega_perp = n x ndot.
     Eigen::Matrix<Ad, 7, kCoordinates> G;
     for (int i = 0; i < 7; ++i)
         for (int j = 0; j < kCoordinates; ++j) G(i, j) = Ad(0.0);
+    const Ad axial = n.dot(r);
     for (int i = 0; i < 3; ++i) {
         G(i, i) = Ad(1.0);
         G(3, 3 + i) = f[i] / R;
         G(3, i) = -f[i] / R;
+        G(3, 6 + i) = -f[i] * axial / R;
     }
     G(3, 9) = Ad(-sigma / R);
     // n x ndot = [n]x ndot.

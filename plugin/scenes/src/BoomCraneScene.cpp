@@ -44,6 +44,7 @@ void BoomCraneParameters::validate() const {
     check("drumMass", drumMass, drumMass > 0, "> 0");
     check("drumInertia", drumInertia, drumInertia > 0, "> 0");
     check("ropeOnDrum", ropeOnDrum, ropeOnDrum > 0, "> 0");
+    check("drumPitch", drumPitch, drumPitch >= 0 && drumPitch < 2 * SimTK::Pi * drumRadius, "in [0, 2 pi drumRadius)");
     check("hookMass", hookMass, hookMass > 0, "> 0");
     check("hookInertia", hookInertia, hookInertia > 0, "> 0");
     check("hookComBelow", hookComBelow, hookComBelow >= 0, ">= 0");
@@ -310,6 +311,7 @@ BoomCraneScene::BoomCraneScene(const BoomCraneParameters& p, const BoomCraneCycl
         drum.body = drumBodyRef;
         drum.radius = p.drumRadius;
         drum.ropeOnDrum = p.ropeOnDrum;
+        drum.pitch = wrapped(p) ? p.drumPitch : 0.0;
         drum.payoutSense = 1;
         rope.start = drum;
         for (int k = 1; k <= 3; ++k) {
@@ -434,6 +436,12 @@ double BoomCraneScene::largestFleetAngle(const SimTK::State& s, int rope) const 
         largest = std::max({largest, std::abs(f.first), std::abs(f.second)});
     }
     return largest;
+}
+
+double BoomCraneScene::drumFleetAngle(const SimTK::State& s, int rope) const {
+    if (rope != kLuffingRope && rope != kHoistRope)
+        throw std::invalid_argument("BoomCraneScene::drumFleetAngle: rope = " + std::to_string(rope) + " must be 0 or 1");
+    return std::abs(reeving_->getFleetAngles(s, rope, 0).first);
 }
 
 namespace {

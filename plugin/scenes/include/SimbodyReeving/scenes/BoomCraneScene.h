@@ -42,10 +42,15 @@ struct BoomCraneParameters {
     double footSheaveOffset = 0.8;   ///< foot sheave centre along the boom from the foot pin [m], > 0
     double footSheaveHeight = 0.7;   ///< foot sheave centre above the boom's axis [m], > 0
     double hoistSheaveRadius = 0.3;  ///< foot, tip and hook sheaves' groove radius [m], > 0
-    double drumRadius = 0.35;        ///< both drums (point drums, as the gantry crane's) [m], > 0
+    double drumRadius = 0.35;        ///< both drums [m], > 0
     double drumMass = 300.0;         ///< each drum [kg], > 0
     double drumInertia = 30.0;       ///< each drum about its axis [kg m^2], > 0
     double ropeOnDrum = 60.0;        ///< rope stored on each drum at t = 0 [m], > 0
+    /// Wrapped: both drums spool across their width, the rope's exit point walking one pitch
+    /// along the drum's axis (+z) per turn stored (WinchDrum::pitch), from the rope's plane at
+    /// t = 0 [m]; the rope's diameter on a grooved drum. 0: the rope leaves in the plane. Finite,
+    /// in [0, 2 pi drumRadius). Not read with point sheaves.
+    double drumPitch = 0.016;
     // ---- hook block (a Free body; frame origin at its sheave's centre) and payload (a Ball joint)
     double hookMass = 150.0;         ///< [kg], > 0
     double hookInertia = 8.0;        ///< about each axis through its centre of mass [kg m^2], > 0
@@ -61,8 +66,9 @@ struct BoomCraneParameters {
     double EI = 0.0;                 ///< bending stiffness [N m^2], >= 0 (0 skips the bending term)
     double minimumSpanLength = 0.3;  ///< a span this short ends the run (two-blocking) [m], > 0
     /// How the ropes meet the sheaves: SheaveModel::Wrapped (the default: tangent points in 3D, the
-    /// rope's mass on the grooves, fleet angles) or SheaveModel::Point (the paper's point sheave).
-    /// The drums are point drums in both (the rope leaves from the drum's axis, lever arm R).
+    /// rope's mass on the grooves, fleet angles; the drums wrapped too, the rope leaving each at
+    /// its groove's tangent point) or SheaveModel::Point (the paper's point sheave; point drums,
+    /// the rope leaving from the drum's axis with lever arm R).
     SheaveModel sheaveModel = SheaveModel::Wrapped;
 
     /// @throws std::invalid_argument naming the first parameter out of range or not finite.
@@ -167,6 +173,16 @@ public:
     double inPlaneSwing(const SimTK::State& s) const;
     /// Largest |fleet angle| of any span of rope `rope` at any groove [rad] (0 with point sheaves).
     double largestFleetAngle(const SimTK::State& s, int rope) const;
+    /// |Fleet angle| of rope `rope` where it leaves its drum [rad]: the angle between span 0 and
+    /// the drum's groove plane, which the exit point's walk (drumPitch) changes through a lift
+    /// (0 with point sheaves). Crane practice keeps it below 1.5 degrees on plain and 2 degrees on
+    /// grooved drums (kPlainDrumFleetLimit, kGroovedDrumFleetLimit).
+    /// @throws std::invalid_argument for a rope other than 0, 1.
+    double drumFleetAngle(const SimTK::State& s, int rope) const;
+    /// The usual largest fleet angle at a plain (ungrooved) drum [rad]: 1.5 degrees.
+    static constexpr double kPlainDrumFleetLimit = 1.5 * 3.14159265358979323846 / 180.0;
+    /// The usual largest fleet angle at a grooved drum [rad]: 2 degrees.
+    static constexpr double kGroovedDrumFleetLimit = 2.0 * 3.14159265358979323846 / 180.0;
     /// Wrap angle on node k = 1..3 of rope `rope` [rad] (0 with point sheaves).
     /// @throws std::invalid_argument for a rope other than 0, 1 or k outside 1..3.
     double wrapAngle(const SimTK::State& s, int rope, int k) const;
