@@ -671,7 +671,7 @@ typename RopeModel<Dim>::SlipAngle RopeModel<Dim>::slipAngle(int k, const Eigen:
         //     sddot = (|wdot|^2 - sdot^2) / s + w_hat . wddot.
         // In a plane this is the planar branch's |phi|. Where the chords are parallel (s = 0: a
         // straight rope, or one doubling back, alpha = pi) the plane is undefined and alpha has a
-        // kink: w_hat is then the groove's axis n (the derivatives within the groove's plane), and
+        // kink: w_hat is then grooveAxis(k) (+z at a point node: the derivatives in the plane normal to it), and
         // the terms in 1 / s are dropped.
         const int oa = departureOffset(k - 1), ok = nodeOffset_[k], ob = arrivalOffset(k + 1);
         const Eigen::Vector3d din = x.template segment<3>(ok) - x.template segment<3>(oa);

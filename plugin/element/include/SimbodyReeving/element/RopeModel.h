@@ -340,7 +340,8 @@ public:
     /// from r_k to span k's end; in a spatial rope measured in the plane the two chords span,
     /// whose normal is d_in x d_out / |d_in x d_out|): pi for a rope doubling back over the node, 0
     /// for a straight one. (Spatial: where the chords are parallel that plane is undefined and
-    /// alpha has a kink; its derivatives are then taken within the groove's plane, NodeWrap::axis.)
+    /// alpha has a kink; its derivatives are then taken in the plane normal to grooveAxis(node),
+    /// +z at a point node.)
     /// @throws std::invalid_argument if node is not interior or data holds no such evaluation.
     double wrapAngle(const RopeData<Dim>& data, int node) const;
     /// The external coordinate of Driven or Slipping node k, the material coordinate of the
