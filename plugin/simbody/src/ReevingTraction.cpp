@@ -106,8 +106,11 @@ const RopeModel<Dim>& ReevingSubsystem::Guts::tractionPhaseModel(
         dead[i] = models[i].base.use_count() <= holders;
     }
     std::size_t kept = 0;
-    for (std::size_t i = 0; i < models.size(); ++i)
-        if (!dead[i]) models[kept++] = std::move(models[i]);
+    for (std::size_t i = 0; i < models.size(); ++i) {
+        if (dead[i]) continue;
+        if (kept != i) models[kept] = std::move(models[i]);  // (a self-move would empty the key)
+        ++kept;
+    }
     models.resize(kept);
     models.push_back({base, std::move(key), std::move(model)});
     return *models.back().model;
