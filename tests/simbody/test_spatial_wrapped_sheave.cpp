@@ -238,10 +238,11 @@ TEST(SpatialWrappedSheave, InThePlaneReproducesThePlanarRope) {
 }
 
 // Bad input, one clear error at addRope: a groove axis of zero length or not a unit vector, a
-// TractionSheave on a spatial rope. (A DeviationSheave on a body that turns, and a TurningSheave
-// and a WinchDrum whose pin's parent turns about another axis than the pin's, are accepted: their
-// axes turn with it.)
-TEST(SpatialWrappedSheave, RejectsBadAxesAndSpatialTraction) {
+// wrapped TractionSheave whose pin's parent turns (its grip is measured from Ground's angles). (A
+// DeviationSheave on a body that turns, a TurningSheave and a WinchDrum whose pin's parent turns
+// about another axis than the pin's, and a TractionSheave on a pin whose axis is not the plane's,
+// are accepted: their axes turn with it, or the groove is the pin's.)
+TEST(SpatialWrappedSheave, RejectsBadAxesAndATractionSheaveOnATurningParent) {
     for (const Vec3& axis : {Vec3(0), Vec3(0, 0, 2), Vec3(NaN, 0, 1)}) {
         Options o;
         o.axis = axis;
@@ -282,7 +283,12 @@ TEST(SpatialWrappedSheave, RejectsBadAxesAndSpatialTraction) {
     traction.radius = kR;
     traction.frictionCoefficient = 0.1;
     rope.sheaves = {traction};
-    EXPECT_THROW_MESSAGE(reeving.addRope(rope), std::invalid_argument, "implemented for planar ropes only");
+    EXPECT_NO_THROW(reeving.addRope(rope));
+    traction.body = grip;
+    rope.sheaves = {traction};
+    EXPECT_THROW_MESSAGE(reeving.addRope(rope), std::invalid_argument,
+                         "TractionSheave at node 1: with SheaveModel::Wrapped its pin's parent must be Ground or "
+                         "translate without turning");
 }
 
 // A held wrapped WinchDrum on a spatial rope (its pin axis +z, the groove in the x-y plane): a load

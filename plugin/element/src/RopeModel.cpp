@@ -3,6 +3,7 @@
 #include "RopeWorkspace.h"
 #include "SimbodyReeving/element/WrapStationMap.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -625,10 +626,6 @@ void RopeModel<Dim>::setSlipLaw(int node, double kappa0, double angleExponent) {
         throw std::invalid_argument(msg.str());
     }
     setSlipRatio(node, kappa0);
-    if (Dim == 3 && angleExponent != 0 && !isWrapped(node))
-        throw std::invalid_argument("RopeModel::setSlipLaw: node " + std::to_string(node) +
-                                    " is a point node of a spatial rope: its chord angle is not built in 3D "
-                                    "(angleExponent must be 0)");
     slipExponent_[node] = angleExponent;
 }
 
@@ -679,7 +676,51 @@ typename RopeModel<Dim>::SlipAngle RopeModel<Dim>::slipAngle(int k, const Eigen:
         }
         return a;
     } else {
-        throw std::logic_error("RopeModel::slipAngle: a point node of a spatial rope has no chord angle");
+        // alpha = atan2(|w|, c) with w = d_in x d_out, c = d_in . d_out: the angle between the
+        // chords in their own plane, whose normal is w_hat = w / |w|. Its rate
+        //     alphadot = (c sdot - s cdot) / (s^2 + c^2),   s = |w|, sdot = w_hat . wdot,
+        // is linear in (ddot_in, ddot_out) with
+        //     dalpha/dd_in = (c (d_out x w_hat) - s d_out) / (s^2 + c^2),
+        //     dalpha/dd_out = (c (w_hat x d_in) - s d_in) / (s^2 + c^2),
+        // and with dddot = 0 (cddot = 2 ddot_in . ddot_out, wddot = 2 ddot_in x ddot_out)
+        //     alphaddot = (c sddot - s cddot) / (s^2 + c^2) - 2 (c sdot - s cdot)(s sdot + c cdot) / (s^2 + c^2)^2,
+        //     sddot = (|wdot|^2 - sdot^2) / s + w_hat . wddot.
+        // In a plane this is the planar branch's |phi|. Where the chords are parallel (s = 0: a
+        // straight rope, or one doubling back, alpha = pi) the plane is undefined and alpha has a
+        // kink: w_hat is then grooveAxis(k) (+z at a point node: the derivatives in the plane normal to it), and
+        // the terms in 1 / s are dropped.
+        const int oa = departureOffset(k - 1), ok = nodeOffset_[k], ob = arrivalOffset(k + 1);
+        const Eigen::Vector3d din = x.template segment<3>(ok) - x.template segment<3>(oa);
+        const Eigen::Vector3d dout = x.template segment<3>(ob) - x.template segment<3>(ok);
+        const Eigen::Vector3d w = din.cross(dout);
+        const double s = w.norm(), c = din.dot(dout), q = s * s + c * c;
+        const bool plane = s > 1e-14 * std::sqrt(q);
+        const Eigen::Vector3d n = plane ? Eigen::Vector3d(w / s) : grooveAxes_[k];
+        a.alpha = std::atan2(s, c);
+        const Eigen::Vector3d gin = (c * dout.cross(n) - s * dout) / q;   // dalpha/dd_in
+        const Eigen::Vector3d gout = (c * n.cross(din) - s * din) / q;    // dalpha/dd_out
+        // d_in = r_k - p_a, d_out = p_b - r_k: dalpha/dp_a = -gin, dalpha/dr_k = gin - gout, dalpha/dp_b = gout.
+        a.count = 9;
+        for (int d = 0; d < 3; ++d) {
+            a.cols[d] = oa + d;
+            a.grad[d] = -gin[d];
+            a.cols[3 + d] = ok + d;
+            a.grad[3 + d] = gin[d] - gout[d];
+            a.cols[6 + d] = ob + d;
+            a.grad[6 + d] = gout[d];
+        }
+        if (xdot) {
+            const Eigen::Vector3d vin = xdot->template segment<3>(ok) - xdot->template segment<3>(oa);
+            const Eigen::Vector3d vout = xdot->template segment<3>(ob) - xdot->template segment<3>(ok);
+            const Eigen::Vector3d wdot = vin.cross(dout) + din.cross(vout);
+            const double sdot = n.dot(wdot), cdot = vin.dot(dout) + din.dot(vout);
+            const double cddot = 2.0 * vin.dot(vout);
+            const double sddot =
+                (plane ? (wdot.squaredNorm() - sdot * sdot) / s : 0.0) + 2.0 * n.dot(vin.cross(vout));
+            a.rate = gin.dot(vin) + gout.dot(vout);
+            a.bias = (c * sddot - s * cddot) / q - 2.0 * (c * sdot - s * cdot) * (s * sdot + c * cdot) / (q * q);
+        }
+        return a;
     }
 }
 
@@ -687,9 +728,6 @@ template <int Dim>
 double RopeModel<Dim>::wrapAngle(const RopeData<Dim>& data, int node) const {
     if (node < 1 || node >= numSpans())
         throw std::invalid_argument("RopeModel::wrapAngle: node " + std::to_string(node) + " is not an interior node");
-    if (Dim == 3 && !isWrapped(node))
-        throw std::invalid_argument("RopeModel::wrapAngle: node " + std::to_string(node) +
-                                    " is a point node of a spatial rope: its chord angle is not built in 3D");
     const Eigen::VectorXd& x = arcs_.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
     if (x.size() != numExternalCoordinates())
         throw std::invalid_argument("RopeModel::wrapAngle: data holds no evaluation from node positions");

@@ -98,6 +98,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         for (const SpanOptions& o : r.spanOptions) damped = damped || o.transverseDampingRatio > 0;
         r.dampingZOffset = damped ? z++ : -1;  // damping work
         r.tractionModels.clear();
+        r.spatialTractionModels.clear();
         traction.ropes.emplace_back(r.numTraction);
         for (const RopeRecord::DrivenNode& d : r.driven)
             if (d.traction) traction.ropes.back()[d.tractionIndex].sStick = d.sRef;
@@ -277,7 +278,7 @@ void ReevingSubsystem::Guts::seedDependentCoordinates(const State& from, const S
         };
         if (ropes[i].planar) {
             if (a.planarModel == b.planarModel) seed(a.planar, b.planar);
-        } else {
+        } else if (ropes[i].numTraction == 0 || a.spatialModel == b.spatialModel) {
             seed(a.spatial, b.spatial);
         }
     }
@@ -353,7 +354,17 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
             }
             model.solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
         } else {
-            spatialModel(s, r, c.nodes3).solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
+            const RopeModel<3>& model = spatialModel(s, r, c.nodes3);
+            if (r.numTraction > 0 && c.spatialModel != &model) {
+                // Another traction phase or other span frames: fresh data for its model, warm-started
+                // from the material coordinates and amplitudes of the last one (as planar ropes).
+                RopeData<3> fresh;
+                fresh.materialCoordinates = c.spatial.materialCoordinates;
+                fresh.condensedAmplitudes = c.spatial.condensedAmplitudes;
+                c.spatial = std::move(fresh);
+            }
+            c.spatialModel = &model;
+            model.solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
         }
     } catch (const std::exception& e) {
         failEvaluation(s, r, e);
@@ -390,8 +401,10 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
             planarModel(s, r).computeDynamics(c.nodes2, c.nodeVelocities2, c.drivenS, c.drivenSdot, c.modalCoordinates,
                                            c.modalRates, c.planar);
         } else {
-            spatialModel(s, r, c.nodes3).computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot,
-                                                      c.modalCoordinates, c.modalRates, c.spatial);
+            const RopeModel<3>& model = spatialModel(s, r, c.nodes3);
+            c.spatialModel = &model;
+            model.computeDynamics(c.nodes3, c.nodeVelocities3, c.drivenS, c.drivenSdot, c.modalCoordinates,
+                                  c.modalRates, c.spatial);
         }
     } catch (const std::exception& e) {
         failEvaluation(s, r, e);
@@ -556,7 +569,8 @@ const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const R
         }
         const_cast<SpatialFrames&>(frames).models[r.index] = makeSpatialModel(r, references);
     }
-    return *frames.models[r.index];
+    if (r.numTraction == 0) return *frames.models[r.index];
+    return tractionPhaseModel<3>(s, r, frames.models[r.index], r.spatialTractionModels);
 }
 
 const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const RopeRecord& r) const {
@@ -564,7 +578,8 @@ const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const R
     if (!frames.models[r.index])
         throw std::logic_error("ReevingSubsystem: rope '" + r.spec.name +
                                "': the state has no span frames yet (realize it to Stage::Position first)");
-    return *frames.models[r.index];
+    if (r.numTraction == 0) return *frames.models[r.index];
+    return tractionPhaseModel<3>(s, r, frames.models[r.index], r.spatialTractionModels);
 }
 
 double ReevingSubsystem::Guts::frameChangeMargin(const State& s, int rope) const {

@@ -97,10 +97,22 @@ struct RopeRecord {
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
     int slipZOffset = 0;      // first Z entry of the traction sheaves' slip states (Y, Ydot) each
     int dampingZOffset = -1;  // Z entry of the rope's damping work (ropes with axialRetardationTime > 0)
-    /// Models by traction phase (planar ropes with TractionSheaves): key = per traction sheave 0
-    /// (stick), its slip ratio kappa (a given wrap angle) or +-1 (the slip's direction, with the
-    /// geometry's wrap angle); built on first use (the set of phases a run visits is small).
-    mutable std::vector<std::pair<std::vector<double>, std::shared_ptr<const RopeModel<2>>>> tractionModels;
+    /// A rope model of one traction phase: the stick model `base` (a planar rope's planarModel,
+    /// a spatial rope's model of the state's span frames, SpatialFrames) with the node of each
+    /// slipping TractionSheave Slipping. key = per traction sheave 0 (stick, or a
+    /// TractionSlip::RopeMomentum sheave, Driven by its slip state in slip too), its slip ratio
+    /// kappa (a given wrap angle) or +-1 (the slip's direction, with the geometry's wrap angle).
+    template <int Dim>
+    struct TractionPhaseModel {
+        std::shared_ptr<const RopeModel<Dim>> base;  // held: its address identifies it
+        std::vector<double> key;
+        std::shared_ptr<const RopeModel<Dim>> model;
+    };
+    /// The traction phases' models of ropes with TractionSheaves, built on first use (the set of
+    /// phases a run visits is small; a spatial rope's also per set of span frames, those of frames
+    /// no state holds any more dropped when a new one is built).
+    mutable std::vector<TractionPhaseModel<2>> tractionModels;
+    mutable std::vector<TractionPhaseModel<3>> spatialTractionModels;
     std::vector<DrivenNode> driven;
     std::vector<MaterialNode> materialKinds;  // per node, for the RopeModel
     std::vector<NodeWrap> wraps;              // per node: a wrapped deviation sheave's groove (RopeModel)
@@ -199,6 +211,7 @@ struct RopeCache {
     RopeData<2> planar;
     RopeData<3> spatial;
     const RopeModel<2>* planarModel = nullptr;  // the model `planar` was computed with (traction phases)
+    const RopeModel<3>* spatialModel = nullptr;  // the model `spatial` was computed with (frames, traction phases)
     // With TractionSlip::RopeMomentum sheaves in slip: S and h with their Y condensed out (rows and
     // columns of Y zero), for the coupled solve.
     Eigen::MatrixXd condensedMass;
@@ -412,6 +425,22 @@ public:
     /// The planar rope r's model in state s: r.planarModel, or for a rope with TractionSheaves the
     /// model of the state's traction phases (Stage::Model or later).
     const RopeModel<2>& planarModel(const SimTK::State& s, const detail::RopeRecord& r) const;
+    /// The model of the traction phases of state s derived from `base` (the rope's stick model):
+    /// base itself while no TractionSheave slips with TractionSlip::CapstanConstraint, else the
+    /// phase's model from `models` (built there on first use; RopeRecord::TractionPhaseModel).
+    template <int Dim>
+    const RopeModel<Dim>& tractionPhaseModel(const SimTK::State& s, const detail::RopeRecord& r,
+                                             const std::shared_ptr<const RopeModel<Dim>>& base,
+                                             std::vector<detail::RopeRecord::TractionPhaseModel<Dim>>& models) const;
+    /// Calls f(model, data) with rope r's model and evaluation data in cache c (RopeModel<2> and
+    /// RopeData<2> for a planar rope, RopeModel<3> and RopeData<3> for a spatial one; the model
+    /// the data were computed with) and returns what it returns: the traction code is written
+    /// once for both.
+    template <class Cache, class F>
+    static decltype(auto) withRope(const detail::RopeRecord& r, Cache& c, F&& f) {
+        if (r.planar) return f(*c.planarModel, c.planar);
+        return f(*c.spatialModel, c.spatial);
+    }
     const detail::TractionStates& tractionStates(const SimTK::State& s) const;
     detail::TractionStates& updTractionStates(SimTK::State& s) const;
     /// Axial forces P_a, P_b of the spans before and after node k at the node [N] (Stage::Position).
@@ -477,11 +506,13 @@ public:
     /// degrees; past it the run ends (limitMargin), short of the tangency's singularity at 90.
     static constexpr double kMaxFleetAngle = 85.0 * 3.14159265358979323846 / 180.0;
 
-    /// The spatial rope r's model in state s; if the state has none yet, builds it from the chords
-    /// of `nodes` (the state's configuration) and stores it in the state (see SpatialFrames).
+    /// The spatial rope r's model in state s (its span frames; with TractionSheaves, of the
+    /// state's traction phases, tractionPhaseModel); if the state has no frames yet, builds them
+    /// from the chords of `nodes` (the state's configuration) and stores them in the state (see
+    /// SpatialFrames).
     const RopeModel<3>& spatialModel(const SimTK::State& s, const detail::RopeRecord& r,
                                      const Eigen::Matrix3Xd& nodes) const;
-    /// The spatial rope r's model in state s (Stage::Position or later).
+    /// The spatial rope r's model in state s (Stage::Position or later), as above.
     const RopeModel<3>& spatialModel(const SimTK::State& s, const detail::RopeRecord& r) const;
     const detail::SpatialFrames& spatialFrames(const SimTK::State& s) const;
     /// Builds a spatial rope model with these span reference frames.

@@ -1,6 +1,7 @@
 // ReevingSubsystem::Guts: traction sheaves (RopeNodeKind::TractionSheave). Stick is a Driven node
 // whose offset is state; slip makes the node MaterialNode::Slipping with the capstan ratio of the
-// slip's direction; the transitions are events; the friction work is a Z entry.
+// slip's direction; the transitions are events; the friction work is a Z entry. Written once for
+// planar (RopeModel<2>) and spatial (RopeModel<3>) ropes: Guts::withRope and tractionPhaseModel.
 
 #include "ReevingSubsystemGuts.h"
 
@@ -9,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 using SimTK::MobilizedBody;
@@ -34,42 +36,57 @@ TractionStates& ReevingSubsystem::Guts::updTractionStates(State& s) const {
 double ReevingSubsystem::Guts::tractionWrapAngle(const State& s, const RopeRecord& r,
                                                  const RopeRecord::DrivenNode& d) const {
     if (!d.geometricWrap) return d.wrapAngle;
-    // l / R wrapped, the chords' turning angle at a point sheave: the angle the slip law uses.
-    const RopeCache& c = positionCache(s).ropes[r.index];
-    return c.planarModel->wrapAngle(c.planar, d.node);
+    // l / R wrapped (in a spatial rope the groove-plane angle between the 3D tangent points), the
+    // chords' turning angle at a point sheave: the angle the slip law uses.
+    return withRope(r, positionCache(s).ropes[r.index],
+                    [&](const auto& model, const auto& data) { return model.wrapAngle(data, d.node); });
 }
 
 double ReevingSubsystem::Guts::tractionLimit(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
     return std::exp(d.frictionCoefficient * tractionWrapAngle(s, r, d));  // mutation-site: capstan-exponent
 }
 
-const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const RopeRecord& r) const {
-    if (r.numTraction == 0) return *r.planarModel;
+namespace {
+
+// Traction sheave d's entry of its rope's phase key (RopeRecord::TractionPhaseModel): 0 in stick
+// and for TractionSlip::RopeMomentum (Driven by Y), +-1 (the slip's direction) with the geometry's
+// wrap angle, else kappa = P_{k-1} / P_k: the tight side is the one the rope slides towards.
+double phaseKeyEntry(const RopeRecord::DrivenNode& d, const TractionNodeState& t) {
+    if (t.mode == TractionMode::Stick || d.momentumSlip) return 0.0;
+    if (d.geometricWrap) return t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
+    const double limit = std::exp(d.frictionCoefficient * d.wrapAngle);  // mutation-site: capstan-exponent
+    return t.mode == TractionMode::SlipTowardStart ? limit : 1.0 / limit;
+}
+
+}  // namespace
+
+template <int Dim>
+const RopeModel<Dim>& ReevingSubsystem::Guts::tractionPhaseModel(
+    const State& s, const RopeRecord& r, const std::shared_ptr<const RopeModel<Dim>>& base,
+    std::vector<RopeRecord::TractionPhaseModel<Dim>>& models) const {
+    if (r.numTraction == 0) return *base;
     const std::vector<TractionNodeState>& ts = tractionStates(s).ropes[r.index];
-    std::vector<double> key(r.numTraction, 0.0);
     bool anySlip = false;
-    for (const RopeRecord::DrivenNode& d : r.driven) {
-        if (!d.traction) continue;
-        const TractionNodeState& t = ts[d.tractionIndex];
-        if (t.mode == TractionMode::Stick || d.momentumSlip) continue;  // RopeMomentum: Driven by Y
-        anySlip = true;
-        if (d.geometricWrap) {  // kappa(alpha) = e^(+-mu alpha): the phase's sign is the key
-            key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
-            continue;
-        }
-        const double limit = std::exp(d.frictionCoefficient * d.wrapAngle);  // mutation-site: capstan-exponent
-        // kappa = P_{k-1} / P_k: the tight side is the one the rope slides towards.
-        key[d.tractionIndex] = t.mode == TractionMode::SlipTowardStart ? limit : 1.0 / limit;
+    for (const RopeRecord::DrivenNode& d : r.driven)
+        if (d.traction && phaseKeyEntry(d, ts[d.tractionIndex]) != 0) anySlip = true;
+    if (!anySlip) return *base;
+    // Compared entry by entry (no key formed: no allocation per evaluation).
+    for (const RopeRecord::TractionPhaseModel<Dim>& m : models) {
+        if (m.base != base) continue;
+        bool same = true;
+        for (const RopeRecord::DrivenNode& d : r.driven)
+            if (d.traction && m.key[d.tractionIndex] != phaseKeyEntry(d, ts[d.tractionIndex])) same = false;
+        if (same) return *m.model;
     }
-    if (!anySlip) return *r.planarModel;
-    for (const auto& [k, model] : r.tractionModels)
-        if (k == key) return *model;
+    std::vector<double> key(r.numTraction, 0.0);
+    for (const RopeRecord::DrivenNode& d : r.driven)
+        if (d.traction) key[d.tractionIndex] = phaseKeyEntry(d, ts[d.tractionIndex]);
     std::vector<MaterialNode> kinds = r.materialKinds;
     for (const RopeRecord::DrivenNode& d : r.driven)
         if (d.traction && key[d.tractionIndex] != 0) kinds[d.node] = MaterialNode::Slipping;
-    std::vector<SpanModel<2>> spans;
-    for (int j = 0; j < r.numSpans(); ++j) spans.push_back(r.planarModel->span(j));
-    auto model = std::make_shared<RopeModel<2>>(std::move(spans), r.spec.unstretchedLength, kinds, r.wraps);
+    std::vector<SpanModel<Dim>> spans;
+    for (int j = 0; j < r.numSpans(); ++j) spans.push_back(base->span(j));  // their reference frames too
+    auto model = std::make_shared<RopeModel<Dim>>(std::move(spans), r.spec.unstretchedLength, kinds, r.wraps);
     for (const RopeRecord::DrivenNode& d : r.driven) {
         if (!d.traction || key[d.tractionIndex] == 0) continue;
         if (d.geometricWrap)
@@ -80,20 +97,47 @@ const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const Ro
     }
     r.addStoredRope(*model);
     model->setStationaryNodes(r.stationaryNodes());
-    r.tractionModels.emplace_back(key, model);
-    return *r.tractionModels.back().second;
+    // Models derived from span frames that no state holds any more (a spatial rope's frames
+    // changed): base held only by such entries.
+    std::vector<bool> dead(models.size());
+    for (std::size_t i = 0; i < models.size(); ++i) {
+        long holders = 0;
+        for (const RopeRecord::TractionPhaseModel<Dim>& o : models) holders += o.base == models[i].base ? 1 : 0;
+        dead[i] = models[i].base.use_count() <= holders;
+    }
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < models.size(); ++i) {
+        if (dead[i]) continue;
+        if (kept != i) models[kept] = std::move(models[i]);  // (a self-move would empty the key)
+        ++kept;
+    }
+    models.resize(kept);
+    models.push_back({base, std::move(key), std::move(model)});
+    return *models.back().model;
+}
+
+template const RopeModel<2>& ReevingSubsystem::Guts::tractionPhaseModel<2>(
+    const State&, const RopeRecord&, const std::shared_ptr<const RopeModel<2>>&,
+    std::vector<RopeRecord::TractionPhaseModel<2>>&) const;
+template const RopeModel<3>& ReevingSubsystem::Guts::tractionPhaseModel<3>(
+    const State&, const RopeRecord&, const std::shared_ptr<const RopeModel<3>>&,
+    std::vector<RopeRecord::TractionPhaseModel<3>>&) const;
+
+const RopeModel<2>& ReevingSubsystem::Guts::planarModel(const State& s, const RopeRecord& r) const {
+    return tractionPhaseModel<2>(s, r, r.planarModel, r.tractionModels);
 }
 
 std::pair<double, double> ReevingSubsystem::Guts::nodeAxialForces(const State& s, const RopeRecord& r, int k) const {
-    const RopeCache& c = positionCache(s).ropes[r.index];
-    const RopeModel<2>& model = *c.planarModel;
-    EndStrain<2> e;
-    const Eigen::VectorXd& qa = c.planar.spanCoordinates(k - 1);
-    model.span(k - 1).endStrain(qa, Eigen::VectorXd::Zero(qa.size()), SpanEnd::Second, e);
-    const double pa = r.spec.properties.axialStiffness * e.strain;
-    const Eigen::VectorXd& qb = c.planar.spanCoordinates(k);
-    model.span(k).endStrain(qb, Eigen::VectorXd::Zero(qb.size()), SpanEnd::First, e);
-    return {pa, r.spec.properties.axialStiffness * e.strain};
+    return withRope(r, positionCache(s).ropes[r.index], [&](const auto& model, const auto& data) {
+        constexpr int Dim = std::decay_t<decltype(model)>::Vec::RowsAtCompileTime;
+        EndStrain<Dim> e;
+        const Eigen::VectorXd& qa = data.spanCoordinates(k - 1);
+        model.span(k - 1).endStrain(qa, Eigen::VectorXd::Zero(qa.size()), SpanEnd::Second, e);
+        const double pa = r.spec.properties.axialStiffness * e.strain;
+        const Eigen::VectorXd& qb = data.spanCoordinates(k);
+        model.span(k).endStrain(qb, Eigen::VectorXd::Zero(qb.size()), SpanEnd::First, e);
+        return std::pair<double, double>{pa, r.spec.properties.axialStiffness * e.strain};
+    });
 }
 
 double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
@@ -103,7 +147,9 @@ double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, con
         return c.slipRates[d.tractionIndex] - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
     // The groove's surface where the rope arrives: dsdTheta thetadot, plus sigma R phi_in-dot on a
     // wrapped sheave (RopeModel::surfaceRate).
-    return c.planar.materialRates[d.node] - c.planarModel->surfaceRate(c.planar, d.node);
+    return withRope(r, c, [&](const auto& model, const auto& data) {
+        return data.materialRates[d.node] - model.surfaceRate(data, d.node);
+    });
 }
 
 void ReevingSubsystem::Guts::startMomentumSlip(State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d,
@@ -118,14 +164,15 @@ void ReevingSubsystem::Guts::startMomentumSlip(State& s, const RopeRecord& r, co
 std::pair<double, double> ReevingSubsystem::Guts::nodeTotalForces(const State& s, const RopeRecord& r, int k) const {
     // EA (eps + c deps/dt) at the node's two span ends (Stage::Velocity): the rope's Kelvin-Voigt
     // damping (RopeProperties::axialRetardationTime c) included.
-    const RopeCache& c = positionCache(s).ropes[r.index];
-    const RopeModel<2>& model = *c.planarModel;
     const double EA = r.spec.properties.axialStiffness, tau = r.spec.properties.axialRetardationTime;
-    EndStrain<2> e;
-    model.span(k - 1).endStrain(c.planar.spanCoordinates(k - 1), c.planar.spanRates(k - 1), SpanEnd::Second, e);
-    const double pa = EA * (e.strain + tau * e.rate);
-    model.span(k).endStrain(c.planar.spanCoordinates(k), c.planar.spanRates(k), SpanEnd::First, e);
-    return {pa, EA * (e.strain + tau * e.rate)};
+    return withRope(r, positionCache(s).ropes[r.index], [&](const auto& model, const auto& data) {
+        constexpr int Dim = std::decay_t<decltype(model)>::Vec::RowsAtCompileTime;
+        EndStrain<Dim> e;
+        model.span(k - 1).endStrain(data.spanCoordinates(k - 1), data.spanRates(k - 1), SpanEnd::Second, e);
+        const double pa = EA * (e.strain + tau * e.rate);
+        model.span(k).endStrain(data.spanCoordinates(k), data.spanRates(k), SpanEnd::First, e);
+        return std::pair<double, double>{pa, EA * (e.strain + tau * e.rate)};
+    });
 }
 
 double ReevingSubsystem::Guts::maxFriction(const RopeRecord& r, const RopeRecord::DrivenNode& d, double tight,
@@ -143,7 +190,8 @@ double ReevingSubsystem::Guts::stickFriction(const State& s, const RopeRecord& r
     const auto [pa, pb] = nodeTotalForces(s, r, d.node);
     const int external = r.drivenExternal(r.drivenIndex(d.node));
     // ropeReaction = h - S xddot, so (S xddot)_Y = h_Y - reaction_Y.
-    const double sxdd = c.planar.nodeForce[external] - ropeReaction(s, r, c)[external];
+    const double h = withRope(r, c, [&](const auto&, const auto& data) { return data.nodeForce[external]; });
+    const double sxdd = h - ropeReaction(s, r, c)[external];
     return pa - pb - sxdd;
 }
 
@@ -164,7 +212,7 @@ ReevingSubsystem::Guts::MomentumSlip ReevingSubsystem::Guts::momentumSlip(const 
     m.friction = sigma * pressing * (1.0 - std::exp(-d.frictionCoefficient * tractionWrapAngle(s, r, d)));
     m.drive = pa - pb - m.friction;
     m.external = r.drivenExternal(r.drivenIndex(d.node));
-    m.correction = pa - pb - c.planar.nodeForce[m.external];
+    m.correction = pa - pb - withRope(r, c, [&](const auto&, const auto& data) { return data.nodeForce[m.external]; });
     m.slipRate = m.speed - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
     m.workRate = m.friction * m.slipRate - m.correction * m.speed;
     return m;
@@ -193,9 +241,11 @@ void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache
         if (ws.freeIndex.empty()) continue;
         RopeCache& c = pc.ropes[r.index];
         const int nx = r.numExternal(), nf = static_cast<int>(ws.freeIndex.size());
-        if (c.planar.nodeMass.size() == 0)
-            c.planarModel->multiplyByNodeMass(c.planar, Eigen::MatrixXd::Identity(nx, nx), c.planar.nodeMass);
-        const Eigen::MatrixXd& S = c.planar.nodeMass;
+        const Eigen::MatrixXd& S = withRope(r, c, [&](const auto& model, auto& data) -> const Eigen::MatrixXd& {
+            if (data.nodeMass.size() == 0)
+                model.multiplyByNodeMass(data, Eigen::MatrixXd::Identity(nx, nx), data.nodeMass);
+            return data.nodeMass;
+        });
         ws.freeSxF.resize(nx, nf);
         ws.freeSFF.resize(nf, nf);
         ws.freeDrive.resize(nf);
@@ -212,7 +262,7 @@ void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache
         c.condensedMass = S;
         c.condensedMass.noalias() -= ws.freeSxF * ws.freeSolve;
         ws.freeAcceleration = ws.freeLdlt.solve(ws.freeDrive);
-        c.condensedForce = c.planar.nodeForce;
+        c.condensedForce = withRope(r, c, [](const auto&, const auto& data) -> const Eigen::VectorXd& { return data.nodeForce; });
         c.condensedForce.noalias() -= ws.freeSxF * ws.freeAcceleration;
         for (a = 0; a < nf; ++a) {
             c.condensedMass.row(ws.freeIndex[a]).setZero();
@@ -230,7 +280,8 @@ void ReevingSubsystem::Guts::recoverMomentumSlips(PositionCache& pc, int rope) c
     for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
         if (f.rope == rope) ws.freeIndex.push_back(f.external);
     const int nf = static_cast<int>(ws.freeIndex.size());
-    const Eigen::MatrixXd& S = c.planar.nodeMass;
+    const Eigen::MatrixXd& S =
+        withRope(ropes[rope], c, [](const auto&, const auto& data) -> const Eigen::MatrixXd& { return data.nodeMass; });
     ws.freeDrive.resize(nf);
     ws.freeSFF.resize(nf, nf);
     int a = 0;
@@ -292,8 +343,9 @@ void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) 
     } else {
         // s_k continuous: the surface coordinate where the rope arrives (sStick + dsdTheta theta,
         // plus sigma R phi_in on a wrapped sheave) moves onto s_k.
-        const RopeCache& c = positionCache(s).ropes[rope];
-        next.sStick += c.planar.materialCoordinates[d.node] - c.planarModel->surfaceCoordinate(c.planar, d.node);
+        next.sStick += withRope(r, positionCache(s).ropes[rope], [&](const auto& model, const auto& data) {
+            return data.materialCoordinates[d.node] - model.surfaceCoordinate(data, d.node);
+        });
         next.mode = TractionMode::Stick;
     }
     ++next.transitions;
@@ -302,10 +354,11 @@ void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) 
     // energy jumps; slip -> stick is continuous (the slip rate is zero there). Positions and the
     // potential energy are continuous. The jump is booked as friction work, so that
     // E(t) - E(0) + W_friction = W_drives holds through the transition.
-    const double before = positionCache(s).ropes[rope].planar.kineticEnergy;
+    auto kinetic = [](const auto&, const auto& data) { return data.kineticEnergy; };
+    const double before = withRope(r, positionCache(s).ropes[rope], kinetic);
     updTractionStates(s).ropes[rope][d.tractionIndex] = next;
     getSystem().realize(s, Stage::Velocity);
-    const double after = positionCache(s).ropes[rope].planar.kineticEnergy;
+    const double after = withRope(r, positionCache(s).ropes[rope], kinetic);
     updZ(s)[r.tractionZOffset + d.tractionIndex] += before - after;
 }
 
@@ -378,7 +431,9 @@ double ReevingSubsystem::getSlipDistance(const State& s, int rope, int node) con
     if (getGuts().inMomentumSlip(s, r, d))  // Y over the groove's top, less the pin's turn
         return c.slipStates[d.tractionIndex] - d.dsdTheta * r.nodeSpec(node).body.getOneQ(s, 0) - d.sRef;
     const double sStick = getGuts().tractionStates(s).ropes[rope][d.tractionIndex].sStick;
-    return c.planar.materialCoordinates[node] - c.planarModel->surfaceCoordinate(c.planar, node) + sStick - d.sRef;
+    return ReevingSubsystem::Guts::withRope(r, c, [&](const auto& model, const auto& data) {
+               return data.materialCoordinates[node] - model.surfaceCoordinate(data, node);
+           }) + sStick - d.sRef;
 }
 
 double ReevingSubsystem::getTractionRatio(const State& s, int rope, int node) const {

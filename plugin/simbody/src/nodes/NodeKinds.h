@@ -93,7 +93,7 @@ struct TurningSheaveNode {
 };
 
 /// A sheave on a Pin that grips the rope by friction (stick: a TurningSheave with a state offset;
-/// slip: the capstan law, ReevingTraction.cpp). Inside a path of a planar rope.
+/// slip: the capstan law, ReevingTraction.cpp). Inside a path of a planar or spatial rope.
 struct TractionSheaveNode {
     static constexpr const char* kName = "TractionSheave";
     static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;

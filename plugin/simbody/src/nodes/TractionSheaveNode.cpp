@@ -18,8 +18,6 @@ void TractionSheaveNode::validate(const NodeSite& site) {
     if (n.slipModel != TractionSlip::CapstanConstraint && n.slipModel != TractionSlip::RopeMomentum)
         invalid(site.name + " slipModel = " + std::to_string(static_cast<int>(n.slipModel)) +
                 " is not a TractionSlip");
-    if (!(site.rope.spec.planeNormal.norm() > 0))
-        invalid(site.name + ": TractionSheave is implemented for planar ropes only (give RopeSpec::planeNormal)");
 }
 
 void TractionSheaveNode::addMaterialRelation(NodeSite& site) {

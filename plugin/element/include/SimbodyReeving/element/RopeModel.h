@@ -335,25 +335,30 @@ public:
     ///     kappa(alpha) = P_{k-1} / P_k = kappa_0 e^(c alpha),
     /// so that with kappa_0 = 1 and c = +-mu the law is Euler-Eytelwein's e^(+-mu alpha) with the
     /// wrap angle of the current geometry (wrapAngle): alpha = l / R at a wrapped node (l an
-    /// external coordinate), the turning angle between the two spans' chords at a point node of a
-    /// planar rope (from the positions of node k and of the spans' far ends). kappa(alpha) enters
+    /// external coordinate; in a spatial rope the arc in the groove's plane between the 3D tangent
+    /// points), the turning angle between the two spans' chords at a point node (from the
+    /// positions of node k and of the spans' far ends; in a spatial rope in the plane the two
+    /// chords span, see wrapAngle). kappa(alpha) enters
     /// the constraint row's Jacobian (its columns at l, or at the three positions) and its
     /// acceleration bias (the terms in alphadot, and alpha's own quadratic-velocity term at a
     /// point node), so the coupled solve stays exact as alpha changes.
     /// @param node          k, a Slipping node.
     /// @param kappa0        kappa_0 [-], finite and > 0.
     /// @param angleExponent c [1/rad], finite.
-    /// @throws std::invalid_argument if node is not Slipping, kappa0 is not finite and > 0,
-    ///         angleExponent is not finite, or it is non-zero at a point node of a spatial rope
-    ///         (its chord angle is not built in 3D).
+    /// @throws std::invalid_argument if node is not Slipping, kappa0 is not finite and > 0, or
+    ///         angleExponent is not finite.
     void setSlipLaw(int node, double kappa0, double angleExponent);
     /// The wrap angle alpha [rad] of interior node k in the geometry of data's last evaluation
-    /// from node positions or stations (as surfaceCoordinate): l / R at a wrapped node; at a point
-    /// node of a planar rope the turning angle between the chords of spans k - 1 and k,
-    /// |atan2(d_in x d_out, d_in . d_out)| in [0, pi] (d_in from span k - 1's start to r_k, d_out
-    /// from r_k to span k's end): pi for a rope doubling back over the node, 0 for a straight one.
-    /// @throws std::invalid_argument if node is not interior, is a point node of a spatial rope,
-    ///         or data holds no such evaluation.
+    /// from node positions or stations (as surfaceCoordinate): l / R at a wrapped node (in a
+    /// spatial rope the angle in the groove's plane between the radius vectors to the 3D tangent
+    /// points); at a point node the turning angle between the chords of spans k - 1 and k,
+    /// atan2(|d_in x d_out|, d_in . d_out) in [0, pi] (d_in from span k - 1's start to r_k, d_out
+    /// from r_k to span k's end; in a spatial rope measured in the plane the two chords span,
+    /// whose normal is d_in x d_out / |d_in x d_out|): pi for a rope doubling back over the node, 0
+    /// for a straight one. (Spatial: where the chords are parallel that plane is undefined and
+    /// alpha has a kink; its derivatives are then taken in the plane normal to grooveAxis(node),
+    /// +z at a point node.)
+    /// @throws std::invalid_argument if node is not interior or data holds no such evaluation.
     double wrapAngle(const RopeData<Dim>& data, int node) const;
     /// The external coordinate of Driven or Slipping node k, the material coordinate of the
     /// sheave's surface where the rope arrives on it [m]: drivenS's entry at a point node,

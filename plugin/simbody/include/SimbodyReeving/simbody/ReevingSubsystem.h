@@ -71,7 +71,8 @@ enum class SheaveModel {
     /// about their pin axes: the spans arrive and leave at the 3D tangent points, out of the
     /// groove's plane by their fleet angles (getFleetAngles), and the arc lies in that plane (a
     /// gripping groove's material coordinate is measured from "up", gravity projected onto its
-    /// plane: its axis must not be vertical). TractionSheave nodes stay planar.
+    /// plane: its axis must not be vertical). TractionSheave nodes too: their grooves turn about
+    /// their pin axes, their pins' parents keeping Ground's orientation (see TractionSheave).
     Wrapped,
 };
 
@@ -276,10 +277,16 @@ struct TurningSheave {
 ///
 /// The wrap angle from the geometry (wrapAngle 0), at every evaluation: with SheaveModel::Point the
 /// turning angle between the two chords at the sheave's centre, alpha = pi - angle(p_a - r_k,
-/// p_b - r_k) (p_a, p_b the spans' far ends; 0 for a rope running straight over it, where the
-/// sheave has no traction); with SheaveModel::Wrapped, where the rope arrives and leaves at the
-/// groove's tangent points (the pin's parent must keep Ground's orientation and its axis be along
-/// the plane normal, as for a wrapped TurningSheave), alpha = l / R. The stick limit e^(mu alpha)
+/// p_b - r_k) [rad] (p_a, p_b the spans' far ends; 0 for a rope running straight over it, where
+/// the sheave has no traction; on a spatial rope the angle of the 3D chords, in the plane they
+/// span); with SheaveModel::Wrapped, where the rope arrives and leaves at the groove's tangent
+/// points (the pin's parent must keep Ground's orientation, addRope throws otherwise; on a planar
+/// rope the pin axis must be along the plane normal, as for a wrapped TurningSheave), alpha = l / R,
+/// the arc on the groove between the tangent points. On a spatial rope the groove turns about the
+/// pin axis n and the spans arrive and leave at the 3D tangent points, out of the groove's plane
+/// by their fleet angles (getFleetAngles): alpha is then the angle in the groove's plane between
+/// the radius vectors to the two tangent points (the fleet angles do not add to it), and s_ref is
+/// measured from "up" (-g, +y without gravity) projected onto that plane. The stick limit e^(mu alpha)
 /// and, in slip, the capstan law P_{k-1} = e^(+-mu alpha) P_k (RopeModel::setSlipLaw, whose
 /// derivatives in the positions or in l enter the coupled solve) follow a deflector, a moving car
 /// or a leaning fall. A given alpha (double wrap, an arrangement the geometry does not show) is
@@ -296,8 +303,11 @@ struct TurningSheave {
 ///
 /// What it does not model: the tension varies along the wrap arc (P e^(mu phi) in slip, and the
 /// creep of an elastic rope in stick: the whole arc sticks here); groove wear and pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
-/// undefined: both forces at or below 0 keep the sheave in its mode. Planar ropes only for now
-/// (addRope throws for a spatial rope with a TractionSheave).
+/// undefined: both forces at or below 0 keep the sheave in its mode. On a spatial rope, the rope
+/// on the groove does not walk across it (the fleet angles' side load is not modelled), and at a
+/// point sheave whose chords are parallel (alpha = pi or 0) the plane of the chords, and so alpha's
+/// derivative across it, is undefined (a kink): its derivative is then taken in Ground's x-y plane
+/// (RopeModel::wrapAngle; a point node has no groove axis).
 ///
 /// With Kelvin-Voigt rope damping (RopeProperties::axialRetardationTime c > 0) CapstanConstraint's
 /// law and stick limit act on the elastic forces P = EA eps at the node, not on EA (eps + c Deps/Dt)
@@ -365,8 +375,7 @@ struct RopeSpec {
     /// this normal (gravity must lie in it); spans are then planar (no out-of-plane modes or work).
     /// Zero: spatial spans.
     SimTK::Vec3 planeNormal{0};
-    /// The deviation sheaves' model: SheaveModel::Point (the paper's) or SheaveModel::Wrapped
-    /// (planar ropes only).
+    /// The sheaves' and drums' model: SheaveModel::Point (the paper's) or SheaveModel::Wrapped.
     SheaveModel sheaveModel = SheaveModel::Point;
 };
 
