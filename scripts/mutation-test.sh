@@ -48,7 +48,7 @@
 # How long it takes. On 2 cores shared with other work (Debian bookworm, g++ 12), under `nice`:
 # about 9 min for the first build of a copy, 2.5-4 min per run of the suite (350 tests), under a
 # minute to rebuild a mutant of a .cpp file and 7 min for the header mutant (linear-strain, run
-# last: nearly everything includes it); 55 min in all for the baseline and the 13 mutants once the
+# last: nearly everything includes it); 55 min in all for the baseline and mutants 1-13 once the
 # copy is built (docs/testing.md). A second run reuses the copy and its build folder: only files
 # that changed since are recopied and recompiled (after the header mutant's restore, that is nearly
 # everything again: about 6 min).
