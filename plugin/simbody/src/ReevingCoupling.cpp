@@ -22,9 +22,11 @@ using namespace detail;
 
 // The coupled vector y = [positions in Ground of the mobile nodes (3 each) | driven material
 // coordinates (1 each)]. Each rope's external coordinates x map into it by a selection
-// (RopeCoupling), so the rope's S and h enter as the matching entries; a driven s = s_ref + dsdTheta
-// theta moves with its pin: its row of the Jacobian is dsdTheta at the pin's mobility, and a
-// force f_s on it is the generalized force dsdTheta f_s on the pin.
+// (RopeCoupling), so the rope's S and h enter as the matching entries; a driven s = s_ref + g(theta)
+// moves with its angle: its row of the Jacobian is g'(theta) times the angle's row (DrivenAngleRow:
+// the pin's mobility, or the sheave body's angular velocity about an axis), its acceleration
+// law.acceleration(theta, thetadot, thetaddot), and a force f_s on it is the generalized force
+// g'(theta) f_s on the angle.
 int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     // Force::Gravity's magnitude and direction are State parameters (they invalidate
     // Stage::Dynamics); the ropes were built with gravity_.
@@ -40,7 +42,7 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     // Traction sheaves slipping with TractionSlip::RopeMomentum: the friction's reaction on the pin
     // is an applied force; Y is condensed out of its rope: with F the Y indices and g_F the momentum
     // balance's right sides, S' = S - S_xF S_FF^-1 S_Fx and h' = h - S_xF S_FF^-1 g_F on the others.
-    condenseMomentumSlips(s, pc, mobilityForces);
+    condenseMomentumSlips(s, pc, mobilityForces, bodyForces);
     ws.h.setZero(n);
     for (size_t i = 0; i < ropes.size(); ++i) {
         const RopeCoupling& rc = ropeCoupling_[i];
@@ -76,21 +78,17 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
     ws.rdd.setZero(n);
     if (n > 0) {
         // Per evaluation, once: each mobile node's offset R_GB station from its body's origin (in
-        // Ground, from the body transforms of this realization) and each pin's u index.
+        // Ground, from the body transforms of this realization), each driven angle's row (its
+        // DrivenAngle unit) and its law's slope g'(theta).
         ws.nodeOffsets.resize(m);
         for (int a = 0; a < m; ++a) ws.nodeOffsets[a] = pc.bodyX[mobileNodes_[a].slot].R() * mobileNodes_[a].station;
-        ws.angleU.resize(na);
-        for (int a = 0; a < na; ++a) ws.angleU[a] = static_cast<int>(mobileAngles_[a].body->getFirstUIndex(s));
-        // Absolute rows: the axis (turning with the sheave's parent: m of turningGripAxis) and
-        // its bias mdot . omega.
-        ws.angleAxes.resize(na);
-        ws.angleBias.assign(na, 0.0);
+        ws.angleRows.resize(na);
+        ws.angleSlopes.resize(na);
         for (int a = 0; a < na; ++a) {
             const MobileAngle& ma = mobileAngles_[a];
-            ws.angleAxes[a] = ma.axis;
-            if (ma.turningAxis)
-                turningGripAxis(ma.body->getBodyRotation(s) * ma.bodyAxis, ma.body->getBodyAngularVelocity(s), gripUp(),
-                                ws.angleAxes[a], ws.angleBias[a]);
+            const RopeRecord::DrivenNode& d = ropes[ma.rope].driven[ma.driven];
+            d.angle.row(angleSite(s, ropes[ma.rope], d), ws.angleRows[a]);
+            ws.angleSlopes[a] = d.law.slope(pc.ropes[ma.rope].drivenAngles[ma.driven]);
         }
         // Free accelerations a0 under every force applied so far (prescribed motion included).
         // Without an enabled constraint calcAcceleration is the tree operator itself.
@@ -120,10 +118,9 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
                     const auto [a, d] = rowOwner_[col];
                     const Vec3 dir = toSimTK(mobileNodes_[a].directions.col(d));
                     ws.bodyForcesUnit[mobileNodes_[a].bodyIndex] += SpatialVec(ws.nodeOffsets[a] % dir, dir);
-                } else if (const MobileAngle& ma = mobileAngles_[col - ns]; ma.absolute) {
-                    ws.bodyForcesUnit[ma.bodyIndex] += SpatialVec(ma.dsdTheta * ws.angleAxes[col - ns], Vec3(0));
                 } else {
-                    ws.mobilityForcesUnit[ws.angleU[col - ns]] += ma.dsdTheta;
+                    ws.angleRows[col - ns].addGeneralizedForce(ws.angleSlopes[col - ns], ws.mobilityForcesUnit,
+                                                               ws.bodyForcesUnit);
                 }
                 matter().calcAcceleration(s, ws.mobilityForcesUnit, ws.bodyForcesUnit, ws.udot, ws.A_GB);
                 couplingAccelerations(pc, ws.A_GB, ws.udot, ws.aUnit);
@@ -193,13 +190,8 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             const Vec3 force = -toSimTK(mn.directions.leftCols(mn.dims) * ws.f.segment(mn.row, mn.dims));
             bodyForces[mn.bodyIndex] += SpatialVec(ws.nodeOffsets[a] % force, force);
         }
-        for (int a = 0; a < na; ++a) {
-            const MobileAngle& ma = mobileAngles_[a];
-            if (ma.absolute)  // a torque about the groove's axis on the sheave itself
-                bodyForces[ma.bodyIndex] += SpatialVec(-ma.dsdTheta * ws.f[ns + a] * ws.angleAxes[a], Vec3(0));
-            else
-                mobilityForces[ws.angleU[a]] -= ma.dsdTheta * ws.f[ns + a];
-        }
+        for (int a = 0; a < na; ++a)  // on the pin's mobility, or a torque about the groove's axis
+            ws.angleRows[a].addGeneralizedForce(-ws.angleSlopes[a] * ws.f[ns + a], mobilityForces, bodyForces);
     }
 
     productCoupling_ = products;
@@ -302,9 +294,9 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
     const int k = static_cast<int>(ws.U.size());
     ws.JU.setZero(n, k);
     ws.udotUnit.resize(nu);
-    for (int a = 0; a < na; ++a)  // driven rows: dsdTheta at the pin's mobility (absolute rows below)
-        if (!mobileAngles_[a].absolute)
-            ws.JU(ns + a, std::lower_bound(ws.U.begin(), ws.U.end(), ws.angleU[a]) - ws.U.begin()) = mobileAngles_[a].dsdTheta;
+    for (int a = 0; a < na; ++a)  // driven rows on a mobility: g'(theta) there (body rows below)
+        if (const DrivenAngleRow& row = ws.angleRows[a]; row.onMobility())
+            ws.JU(ns + a, std::lower_bound(ws.U.begin(), ws.U.end(), row.mobility) - ws.U.begin()) = ws.angleSlopes[a];
     if (k <= n) {
         ws.MinvUU.resize(k, k);
         ws.generalizedForce.resize(nu);
@@ -318,9 +310,9 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
                 for (int d = 0; d < mn.dims; ++d)
                     ws.JU(mn.row + d, c) = mn.directions(0, d) * v[0] + mn.directions(1, d) * v[1] + mn.directions(2, d) * v[2];
             }
-            for (int a = 0; a < na; ++a)  // absolute driven rows: dsdTheta (axis . omega) of the sheave
-                if (const MobileAngle& ma = mobileAngles_[a]; ma.absolute)
-                    ws.JU(ns + a, c) = ma.dsdTheta * SimTK::dot(ws.angleAxes[a], ws.bodyVelocities[ma.bodyIndex][0]);
+            for (int a = 0; a < na; ++a)  // driven body rows: g'(theta) (axis . omega) of the sheave
+                if (const DrivenAngleRow& row = ws.angleRows[a]; !row.onMobility())
+                    ws.JU(ns + a, c) = ws.angleSlopes[a] * row.bodyRate(ws.bodyVelocities);
             matter().multiplyByMInv(s, ws.generalizedForce, ws.udotUnit);
             for (int r = 0; r < k; ++r) ws.MinvUU(r, c) = ws.udotUnit[ws.U[r]];
             ws.generalizedForce[ws.U[c]] = 0;
@@ -341,13 +333,13 @@ void ReevingSubsystem::Guts::mobilityLambda(const State& s, CouplingWorkspace& w
         for (int c = 0; c < k; ++c) ws.JU(r, c) = ws.generalizedForce[ws.U[c]];
         ws.bodyForces[mn.bodyIndex] = SpatialVec(Vec3(0), Vec3(0));
     }
-    for (int a = 0; a < na; ++a) {  // absolute driven rows: a unit torque about the axis
-        const MobileAngle& ma = mobileAngles_[a];
-        if (!ma.absolute) continue;
-        ws.bodyForces[ma.bodyIndex] = SpatialVec(ma.dsdTheta * ws.angleAxes[a], Vec3(0));
+    for (int a = 0; a < na; ++a) {  // driven body rows: the torque g'(theta) about the axis
+        const DrivenAngleRow& row = ws.angleRows[a];
+        if (row.onMobility()) continue;
+        ws.bodyForces[row.body] = row.bodyTorque(ws.angleSlopes[a]);
         matter().multiplyBySystemJacobianTranspose(s, ws.bodyForces, ws.generalizedForce);
         for (int c = 0; c < k; ++c) ws.JU(ns + a, c) = ws.generalizedForce[ws.U[c]];
-        ws.bodyForces[ma.bodyIndex] = SpatialVec(Vec3(0), Vec3(0));
+        ws.bodyForces[row.body] = SpatialVec(Vec3(0), Vec3(0));
     }
     ws.generalizedForce.resize(nu);
     ws.responseU.resize(k);
@@ -396,11 +388,11 @@ void ReevingSubsystem::Guts::couplingAccelerations(const PositionCache& pc, cons
         const Eigen::Vector3d a3 = toEigen(A[1] + A[0] % p + w % (w % p));
         a.segment(mn.row, mn.dims).noalias() = mn.directions.leftCols(mn.dims).transpose() * a3;
     }
-    for (size_t d = 0; d < mobileAngles_.size(); ++d) {
+    for (size_t d = 0; d < mobileAngles_.size(); ++d) {  // sddot = law.acceleration(theta, thetadot, thetaddot)
         const MobileAngle& ma = mobileAngles_[d];
-        a[ns + static_cast<Eigen::Index>(d)] =
-            ma.absolute ? ma.dsdTheta * (SimTK::dot(ws.angleAxes[d], A_GB[ma.bodyIndex][0]) + ws.angleBias[d])
-                        : ma.dsdTheta * udot[ws.angleU[d]];
+        const RopeCache& c = pc.ropes[ma.rope];
+        a[ns + static_cast<Eigen::Index>(d)] = ropes[ma.rope].driven[ma.driven].law.acceleration(
+            c.drivenAngles[ma.driven], c.drivenAngleRates[ma.driven], ws.angleRows[d].acceleration(A_GB, udot));
     }
 }
 

@@ -98,8 +98,8 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
         // is measured in (-pi, pi]; the run ends before it passes half a turn (as an arc of the
         // groove [m]: R (pi - |turn|)).
         for (const RopeRecord::DrivenNode& d : r.driven) {
-            if (!d.absoluteAngle || r.nodeSpec(d.node).body.getParentMobilizedBody().isGround()) continue;
-            const double turn = r.wraps[d.node].radius * (SimTK::Pi - std::abs(parentTurn(s, r, d)));
+            if (!d.angle.includesParentTurn(r.nodeSpec(d.node).body)) continue;
+            const double turn = r.wraps[d.node].radius * (SimTK::Pi - std::abs(d.angle.parentTurn(angleSite(s, r, d))));
             if (turn < margin) {
                 margin = turn;
                 if (which)
@@ -171,7 +171,8 @@ double ReevingSubsystem::getDrivenNodeTorque(const State& s, int rope, int node)
         throw std::logic_error("ReevingSubsystem::getDrivenNodeTorque: realize the state to Stage::Dynamics first");
     const RopeCache& c = g.positionCache(s).ropes[rope];
     const Eigen::VectorXd reaction = g.ropeReaction(s, r, c);
-    return d.dsdTheta * reaction[r.drivenExternal(r.drivenIndex(node))];
+    const int driven = r.drivenIndex(node);  // g'(theta) f_s: the rope's force on s as a torque
+    return d.law.slope(c.drivenAngles[driven]) * reaction[r.drivenExternal(driven)];
 }
 
 double ReevingSubsystem::getDrivenNodePower(const State& s, int rope, int node) const {

@@ -145,15 +145,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     for (size_t i = 0; i < ropes.size(); ++i)
         for (size_t d = 0; d < ropes[i].driven.size(); ++d) {
             const RopeRecord::DrivenNode& dn = ropes[i].driven[d];
-            MobileAngle ma{static_cast<int>(i), static_cast<int>(d), &ropes[i].nodeSpec(dn.node).body, dn.dsdTheta};
-            if (dn.absoluteAngle) {
-                ma.absolute = true;
-                ma.axis = dn.axis;
-                ma.bodyIndex = ma.body->getMobilizedBodyIndex();
-                ma.turningAxis = dn.turningAxis;
-                ma.bodyAxis = dn.bodyAxis;
-            }
-            self.mobileAngles_.push_back(ma);
+            self.mobileAngles_.push_back({static_cast<int>(i), static_cast<int>(d), &ropes[i].nodeSpec(dn.node).body});
         }
     const int numMobile = static_cast<int>(mobileNodes_.size());
     for (size_t i = 0; i < ropes.size(); ++i) {
@@ -329,7 +321,7 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
     modal(getZ(s), r, false, c.modalCoordinates);
     c.slipStates.resize(r.numTraction);
     for (int t = 0; t < r.numTraction; ++t) c.slipStates[t] = getZ(s)[r.slipZOffset + 2 * t];
-    drivenCoordinates(s, r, c.drivenS, nullptr);
+    drivenCoordinates(s, r, c, false);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
     // What Simbody 3.7 does with the exception (its sources, confirmed in
     // tests/simbody/test_step_failures.cpp): the Runge-Kutta family (AbstractIntegratorRep::
@@ -391,7 +383,7 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
     modal(getZ(s), r, true, c.modalRates);
     c.slipRates.resize(r.numTraction);
     for (int t = 0; t < r.numTraction; ++t) c.slipRates[t] = getZ(s)[r.slipZOffset + 2 * t + 1];
-    drivenCoordinates(s, r, c.drivenS, &c.drivenSdot);
+    drivenCoordinates(s, r, c, true);
     // The coupled solve of the last realizeDynamics needed S only as products (productCoupling_):
     // then the rope does not form it.
     c.planar.formNodeMass = c.spatial.formNodeMass = !productCoupling_;
@@ -671,61 +663,32 @@ void detail::installFrameChangeHandler(System& system, SubsystemIndex reeving, i
     system.addEventHandler(new SpanFrameEvent(system, reeving, rope));  // the system owns it
 }
 
-void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord& r, Eigen::VectorXd& sDriven,
-                                               Eigen::VectorXd* sDrivenDot) const {
+void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord& r, RopeCache& c, bool rates) const {
     const int n = static_cast<int>(r.driven.size());
-    sDriven.resize(n);
-    if (sDrivenDot) sDrivenDot->resize(n);
+    c.drivenS.resize(n);
+    c.drivenAngles.resize(n);
+    if (rates) {
+        c.drivenSdot.resize(n);
+        c.drivenAngleRates.resize(n);
+    }
     const std::vector<TractionNodeState>* traction = r.numTraction > 0 ? &tractionStates(s).ropes[r.index] : nullptr;
     for (int d = 0; d < n; ++d) {
-        const MobilizedBody& pin = r.nodeSpec(r.driven[d].node).body;
+        const RopeRecord::DrivenNode& dn = r.driven[d];
+        const DrivenAngleSite site = angleSite(s, r, dn);
+        c.drivenAngles[d] = dn.angle.angle(site);
+        if (rates) c.drivenAngleRates[d] = dn.angle.rate(site);
         // A traction sheave's stick offset is state (in slip the entry is the groove's coordinate,
         // which no span reads); with TractionSlip::RopeMomentum in slip it is the state Y.
-        if (r.driven[d].momentumSlip && (*traction)[r.driven[d].tractionIndex].mode != TractionMode::Stick) {
-            const int zi = r.slipZOffset + 2 * r.driven[d].tractionIndex;
-            sDriven[d] = getZ(s)[zi];
-            if (sDrivenDot) (*sDrivenDot)[d] = getZ(s)[zi + 1];
+        if (dn.momentumSlip && (*traction)[dn.tractionIndex].mode != TractionMode::Stick) {
+            const int zi = r.slipZOffset + 2 * dn.tractionIndex;
+            c.drivenS[d] = getZ(s)[zi];
+            if (rates) c.drivenSdot[d] = getZ(s)[zi + 1];
             continue;
         }
-        const double sRef = r.driven[d].traction ? (*traction)[r.driven[d].tractionIndex].sStick : r.driven[d].sRef;
-        if (r.driven[d].absoluteAngle) {  // the sheave's own angle: the pin's plus its parent's turn
-            SimTK::Vec3 axis = r.driven[d].axis;
-            if (r.driven[d].turningAxis && sDrivenDot) {  // the rate about m (turningGripAxis)
-                double unused = 0;
-                turningGripAxis(pin.getBodyRotation(s) * r.driven[d].bodyAxis, pin.getBodyAngularVelocity(s), gripUp(),
-                                axis, unused);
-            }
-            sDriven[d] = sRef + r.driven[d].dsdTheta * (pin.getOneQ(s, 0) + parentTurn(s, r, r.driven[d]));
-            if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * SimTK::dot(axis, pin.getBodyAngularVelocity(s));
-            continue;
-        }
-        sDriven[d] = sRef + r.driven[d].dsdTheta * pin.getOneQ(s, 0);
-        if (sDrivenDot) (*sDrivenDot)[d] = r.driven[d].dsdTheta * pin.getOneU(s, 0);
+        const double sRef = dn.traction ? (*traction)[dn.tractionIndex].sStick : dn.sRef;
+        c.drivenS[d] = dn.law.materialCoordinate(sRef, c.drivenAngles[d]);
+        if (rates) c.drivenSdot[d] = dn.law.materialRate(c.drivenAngles[d], c.drivenAngleRates[d]);
     }
-}
-
-double ReevingSubsystem::Guts::parentTurn(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
-    const MobilizedBody& pin = r.nodeSpec(d.node).body;
-    const MobilizedBody& parent = pin.getParentMobilizedBody();
-    if (parent.isGround()) return 0.0;
-    if (d.turningAxis) {
-        // The angle of a parent direction about the pin axis from "up" projected onto the groove's
-        // plane, now less with the parent at Ground's orientation.
-        const SimTK::Vec3 up = gripUp();
-        auto angle = [&up](const SimTK::Vec3& n, const SimTK::Vec3& direction) {
-            const SimTK::Vec3 u = (up - n * SimTK::dot(n, up)).normalize();
-            return std::atan2(SimTK::dot(n, SimTK::cross(u, direction)), SimTK::dot(u, direction));
-        };
-        const SimTK::Rotation& R_GP = parent.getBodyRotation(s);
-        return std::remainder(angle(R_GP * d.parentAxis, R_GP * d.parentPerp) - angle(d.parentAxis, d.parentPerp),
-                              2 * SimTK::Pi);
-    }
-    // The parent's rotation R_GP about the pin axis a (a planar rope: R_GP turns about a alone):
-    // the angle from e to R_GP e, e perpendicular to a.
-    const SimTK::UnitVec3 a(d.axis);
-    const SimTK::UnitVec3 e = a.perp();
-    const SimTK::Vec3 turned = parent.getBodyRotation(s) * e;
-    return std::atan2(SimTK::dot(a, SimTK::cross(SimTK::Vec3(e), turned)), SimTK::dot(SimTK::Vec3(e), turned));
 }
 
 }  // namespace SimbodyReeving

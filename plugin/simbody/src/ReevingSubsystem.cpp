@@ -161,7 +161,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
         r.spanOptions[index] = options;
     }
     // Material coordinates: Fixed at anchors, Sliding at deviation sheaves, Driven (s = sRef +
-    // dsdTheta theta) at drums and turning sheaves.
+    // g(theta), nodes/DrivenLaw.h) at drums and turning sheaves.
     r.materialKinds.resize(r.numNodes());
     for (int k = 0; k < r.numNodes(); ++k) {
         const RopeNode& n = r.nodeSpec(k);

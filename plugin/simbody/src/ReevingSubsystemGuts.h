@@ -6,6 +6,8 @@
 /// solve), ReevingQueries.cpp (public queries) and ReevingStaticEquilibrium.cpp.
 
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
+#include "nodes/DrivenAngle.h"
+#include "nodes/DrivenLaw.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -59,11 +61,14 @@ struct RopeRecord {
     int numModal = 0;
     int zOffset = 0;  // first Z entry (modal coordinates), rates follow
 
-    /// The nodes whose material coordinate turns with a pin (WinchDrum, TurningSheave), in node
-    /// order: s_k = sRef + dsdTheta theta (RopeModel's Driven nodes).
+    /// The nodes whose material coordinate turns with a pin (WinchDrum, TurningSheave,
+    /// TractionSheave), in node order: s_k = sRef + g(theta) (RopeModel's Driven nodes), g the
+    /// node's DrivenLaw and theta its DrivenAngle (nodes/DrivenLaw.h, nodes/DrivenAngle.h).
     struct DrivenNode {
         int node = 0;
-        double sRef = 0, dsdTheta = 0;
+        double sRef = 0;  // [m]
+        DrivenLaw law;
+        DrivenAngle angle;
         bool drum = false;
         double ropeOnDrum = 0, payout = 0;  // drums: rope stored = ropeOnDrum - payout theta
         // TractionSheave: stick is this Driven node with sRef the state's TractionNodeState::sStick;
@@ -76,22 +81,8 @@ struct RopeRecord {
         // RopeModel::setSlipLaw), at every evaluation.
         bool geometricWrap = false;
         // TractionSlip::RopeMomentum: in slip the driven entry is the state Y (Z at
-        // slipZOffset + 2 tractionIndex, its rate after it), not sStick + dsdTheta theta.
+        // slipZOffset + 2 tractionIndex, its rate after it), not sStick + g(theta).
         bool momentumSlip = false;
-        // A wrapped gripping groove (TurningSheave, WinchDrum) of a planar rope: its angle is the
-        // sheave body's own about the pin axis (the pin angle plus the parent's rotation about
-        // that axis, parentTurn), so a parent that turns carries the rope on the groove with it.
-        bool absoluteAngle = false;
-        SimTK::Vec3 axis{0, 0, 1};  // absoluteAngle: the pin axis in Ground (+- the plane normal)
-        // A spatial rope's gripping groove whose pin axis turns with the parent (NodeWrap::
-        // turningAxis): its angle is measured about the current axis n from "up" projected onto
-        // the groove's plane (as the rope model's grip): theta = q + psi, psi the angle of a
-        // parent direction (parentPerp, normal to the pin axis parentAxis, parent frame) about n
-        // from that "up", less its value with the parent at Ground's orientation
-        // (grippingGrooveParentTurn); its rate is omega_B . m, m = (n - a g_up) / (1 - a^2),
-        // a = n . g_up.
-        bool turningAxis = false;
-        SimTK::Vec3 bodyAxis{0, 0, 1}, parentAxis{0, 0, 1}, parentPerp{1, 0, 0};
     };
     int numTraction = 0;
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
@@ -183,7 +174,7 @@ struct RopeRecord {
 /// (or ReevingSubsystem::resetSpanFrames) replaces a rope's model by one whose references are the
 /// current element frames, rotating the transverse modal coordinates and rates with it.
 /// State (a discrete variable, invalidating Stage::Position): per rope, per TractionSheave its phase
-/// and the material coordinate offset of its current stick phase (s_k = sStick + dsdTheta theta)
+/// and the material coordinate offset of its current stick phase (s_k = sStick + g(theta))
 /// and the count of transitions. (A wrap angle taken from the geometry is not state: it is a
 /// function of the positions, RopeModel::wrapAngle of the position cache's evaluation.)
 struct TractionNodeState {
@@ -219,6 +210,7 @@ struct RopeCache {
     bool condensed = false;
     Eigen::VectorXd slipStates, slipRates;  // the Z slip states Y, Ydot these were computed from (per traction sheave)
     Eigen::VectorXd drivenS, drivenSdot;  // material coordinates and rates of the driven nodes
+    Eigen::VectorXd drivenAngles, drivenAngleRates;  // their angles theta [rad] and rates [rad/s]
     // dynamics
     Eigen::VectorXd externalAccelerations;  // xddot of RopeModel's external coordinates (node positions
                                             // in the plane basis for planar ropes, driven s)
@@ -242,9 +234,8 @@ struct CouplingWorkspace {
     Eigen::VectorXd productWeights;  // [-z; 1]: rdd = [J_U | a0] productWeights (product route)
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     std::vector<int> U;                    // mobilities (u indices), ascending
-    std::vector<int> angleU;               // per MobileAngle: its pin's u index (-1: an absolute row)
-    std::vector<SimTK::Vec3> angleAxes;    // per MobileAngle: an absolute row's axis this evaluation
-    std::vector<double> angleBias;         // per MobileAngle: an absolute row's mdot . omega_B [1/s^2]
+    std::vector<DrivenAngleRow> angleRows;  // per MobileAngle: its angle's row this evaluation
+    std::vector<double> angleSlopes;        // per MobileAngle: g'(theta) of its law this evaluation [m/rad]
     std::vector<SimTK::Vec3> nodeOffsets;  // per MobileNode: R_GB station [m], in Ground
     SimTK::Vector udot, generalizedForce, udotUnit, mobilityForcesUnit;
     SimTK::Vector_<SimTK::SpatialVec> A_GB, bodyForcesUnit, bodyVelocities, bodyForces;
@@ -288,36 +279,12 @@ struct MobileNode {
 };
 
 /// Model (fixed at realizeTopology): a driven material coordinate in the coupled solve (1 row):
-/// s = sRef + dsdTheta theta, theta the pin's coordinate.
+/// s = sRef + g(theta) of rope `rope`'s driven node `driven` (its DrivenLaw g and DrivenAngle
+/// theta, whose row in each evaluation is CouplingWorkspace::angleRows, scaled by g'(theta)).
 struct MobileAngle {
     int rope = 0, driven = 0;
-    const SimTK::MobilizedBody* body = nullptr;
-    double dsdTheta = 0;
-    /// The row is dsdTheta times the sheave body's angular velocity about `axis` (Ground; a planar
-    /// rope's wrapped gripping groove, DrivenNode::absoluteAngle) instead of its pin's rate; its
-    /// force is then a torque about the axis on the body.
-    bool absolute = false;
-    SimTK::Vec3 axis{0, 0, 1};
-    int bodyIndex = 0;  ///< the body's MobilizedBodyIndex (absolute rows)
-    /// An absolute row whose pin axis turns (DrivenNode::turningAxis): the row's axis is
-    /// m = (n - a g_up) / (1 - a^2), n = R_GB bodyAxis, a = n . g_up, per evaluation
-    /// (CouplingWorkspace::angleAxes), and its acceleration gains mdot . omega_B.
-    bool turningAxis = false;
-    SimTK::Vec3 bodyAxis{0, 0, 1};
+    const SimTK::MobilizedBody* body = nullptr;  // the node's pin
 };
-
-/// A gripping groove whose axis n turns at omega (DrivenNode::turningAxis): its angle's rate is
-/// omega . m with m = (n - a g_up) / (1 - a^2), a = n . g_up (g_up = -g / |g|, "up" of the
-/// rope model's grip); mdotOmega = mdot . omega, the rate's bias (omega held).
-inline void turningGripAxis(const SimTK::Vec3& n, const SimTK::Vec3& omega, const SimTK::Vec3& gUp, SimTK::Vec3& m,
-                            double& mdotOmega) {
-    const double a = SimTK::dot(n, gUp), q = 1 - a * a;
-    m = (n - a * gUp) / q;
-    const SimTK::Vec3 ndot = SimTK::cross(omega, n);
-    const double adot = SimTK::dot(ndot, gUp);
-    const SimTK::Vec3 mdot = (ndot - adot * gUp) / q + (n - a * gUp) * (2 * a * adot / (q * q));
-    mdotOmega = SimTK::dot(mdot, omega);
-}
 
 /// Model (fixed at realizeTopology): where a rope sits in the coupled solve: its rows of the
 /// coupled vector y = [2 or 3 per MobileNode | 1 per MobileAngle] and, for each, the rope's
@@ -451,12 +418,12 @@ public:
                              const detail::RopeRecord::DrivenNode& d) const;
     /// e^(mu alpha) of traction sheave d of rope r in state s.
     double tractionLimit(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
-    /// Slip rate sdot_k - dsdTheta thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).
+    /// Slip rate sdot_k - g'(theta) thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).
     /// The slip of a TractionSlip::RopeMomentum traction sheave in slip (Stage::Velocity): the
     /// rope's speed over the groove v = Ydot [m/s], the friction on the groove sigma F [N] (along
     /// s; the rope receives -sigma F), the momentum balance's right side P_a - P_b - sigma F [N],
     /// the correction P_a - P_b - h_Y [N] (h_Y the rope's own generalized force on Y), the slip
-    /// rate v - dsdTheta thetadot [m/s] and the rate of the friction work sigma F v_slip - c v [W].
+    /// rate v - g'(theta) thetadot [m/s] and the rate of the friction work sigma F v_slip - c v [W].
     struct MomentumSlip {
         double speed = 0, friction = 0, drive = 0, correction = 0, slipRate = 0, workRate = 0;
         int external = -1;  // Y's index among the rope's external coordinates (stations)
@@ -474,9 +441,11 @@ public:
     /// Phi = P_a - P_b - (S xddot)_Y [N] (positive: it would slide towards the rope's start).
     double stickFriction(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
     /// Before the coupled solve (realizeSubsystemDynamicsImpl): every TractionSlip::RopeMomentum
-    /// sheave in slip applies its friction's reaction to its pin (mobilityForces) and has its Y
-    /// condensed out of its rope's S and h (RopeCache::condensed*; CouplingWorkspace::freeSlips).
-    void condenseMomentumSlips(const SimTK::State& s, detail::PositionCache& pc, SimTK::Vector& mobilityForces) const;
+    /// sheave in slip applies its friction's reaction to its pin (on its angle's row: mobilityForces
+    /// or bodyForces) and has its Y condensed out of its rope's S and h (RopeCache::condensed*;
+    /// CouplingWorkspace::freeSlips).
+    void condenseMomentumSlips(const SimTK::State& s, detail::PositionCache& pc, SimTK::Vector& mobilityForces,
+                               SimTK::Vector_<SimTK::SpatialVec>& bodyForces) const;
     /// After it: rope i's Y accelerations from their rows, S_FF Yddot = g_F - S_Fx xddot, into its
     /// externalAccelerations.
     void recoverMomentumSlips(detail::PositionCache& pc, int rope) const;
@@ -495,7 +464,7 @@ public:
     /// kSlipRateHysteresis [m/s].
     double tractionWitness(const SimTK::State& s, int rope, int driven) const;
     /// The transition of traction sheave d (its witness fell through zero): stick -> slip towards the
-    /// tight side, slip -> stick with sStick = s_k - dsdTheta theta (s_k continuous).
+    /// tight side, slip -> stick with sStick = s_k - g(theta) (s_k continuous).
     void changeTractionMode(SimTK::State& s, int rope, int driven) const;
     /// Relative force margin past the capstan limit at which a sticking sheave starts to slip, and
     /// the slip rate past zero at which a slipping one sticks: a zero witness right after a
@@ -546,20 +515,22 @@ public:
 
     /// Accelerations of the coupled vector y (mobile nodes in Ground, then driven material
     /// coordinates) from the bodies' spatial accelerations and the mobilities' udot.
-    /// Needs pc.coupling.nodeOffsets and angleU (set by realizeSubsystemDynamicsImpl).
+    /// Needs pc.coupling.nodeOffsets, angleRows and angleSlopes (set by realizeSubsystemDynamicsImpl).
     void couplingAccelerations(const detail::PositionCache& pc, const SimTK::Vector_<SimTK::SpatialVec>& A_GB,
                                const SimTK::Vector& udot, Eigen::VectorXd& a) const;
     /// The mobility Lambda of the coupled vector y (no Simbody constraint enabled), into ws.Lambda
     /// (sized n x n by the caller); see ReevingCoupling.cpp.
     void mobilityLambda(const SimTK::State& s, detail::CouplingWorkspace& ws) const;
 
-    /// Material coordinates (and rates) of rope r's driven nodes in state s.
-    /// The rotation [rad] of driven node d's pin parent about the pin axis, measured from Ground's
-    /// orientation in (-pi, pi] (0 for a parent that keeps Ground's orientation): what turns a
-    /// wrapped gripping groove's pin angle into its own (DrivenNode::absoluteAngle).
-    double parentTurn(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
-    void drivenCoordinates(const SimTK::State& s, const detail::RopeRecord& r, Eigen::VectorXd& sDriven,
-                           Eigen::VectorXd* sDrivenDot) const;
+    /// Where driven node d of rope r measures its angle in state s (DrivenAngle.h).
+    detail::DrivenAngleSite angleSite(const SimTK::State& s, const detail::RopeRecord& r,
+                                      const detail::RopeRecord::DrivenNode& d) const {
+        return {s, r.nodeSpec(d.node).body, gripUp()};
+    }
+    /// Rope r's driven nodes in state s into its cache c: their angles theta (DrivenAngle) and
+    /// material coordinates s = sRef + g(theta) (DrivenLaw; sRef a TractionSheave's stick offset,
+    /// or its slip state Y in TractionSlip::RopeMomentum slip), with rates: their rates too.
+    void drivenCoordinates(const SimTK::State& s, const detail::RopeRecord& r, detail::RopeCache& c, bool rates) const;
 
     // ---- rope limits (ReevingLimits.cpp) ----------------------------------------------------
     /// Smallest margin to a rope limit over all ropes [m] (Stage::Position): span material length

@@ -143,9 +143,11 @@ std::pair<double, double> ReevingSubsystem::Guts::nodeAxialForces(const State& s
 double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d) const {
     const RopeCache& c = positionCache(s).ropes[r.index];
     if (tractionStates(s).ropes[r.index][d.tractionIndex].mode == TractionMode::Stick) return 0;
-    if (d.momentumSlip)  // v - dsdTheta thetadot: the rope over the groove's top
-        return c.slipRates[d.tractionIndex] - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
-    // The groove's surface where the rope arrives: dsdTheta thetadot, plus sigma R phi_in-dot on a
+    if (d.momentumSlip) {  // v - g'(theta) thetadot: the rope over the groove's top
+        const DrivenAngleSite site = angleSite(s, r, d);
+        return c.slipRates[d.tractionIndex] - d.law.materialRate(d.angle.angle(site), d.angle.rate(site));
+    }
+    // The groove's surface where the rope arrives: g'(theta) thetadot, plus sigma R phi_in-dot on a
     // wrapped sheave (RopeModel::surfaceRate).
     return withRope(r, c, [&](const auto& model, const auto& data) {
         return data.materialRates[d.node] - model.surfaceRate(data, d.node);
@@ -154,11 +156,12 @@ double ReevingSubsystem::Guts::slipRate(const State& s, const RopeRecord& r, con
 
 void ReevingSubsystem::Guts::startMomentumSlip(State& s, const RopeRecord& r, const RopeRecord::DrivenNode& d,
                                                const TractionNodeState& stick) const {
-    // Y and Ydot from the stick phase's s = sStick + dsdTheta theta: s_k and its rate continuous.
-    const MobilizedBody& pin = r.nodeSpec(d.node).body;
+    // Y and Ydot from the stick phase's s = sStick + g(theta): s_k and its rate continuous.
+    const DrivenAngleSite site = angleSite(s, r, d);
+    const double theta = d.angle.angle(site), thetaDot = d.angle.rate(site);
     SimTK::Vector& z = updZ(s);
-    z[r.slipZOffset + 2 * d.tractionIndex] = stick.sStick + d.dsdTheta * pin.getOneQ(s, 0);
-    z[r.slipZOffset + 2 * d.tractionIndex + 1] = d.dsdTheta * pin.getOneU(s, 0);
+    z[r.slipZOffset + 2 * d.tractionIndex] = d.law.materialCoordinate(stick.sStick, theta);
+    z[r.slipZOffset + 2 * d.tractionIndex + 1] = d.law.materialRate(theta, thetaDot);
 }
 
 std::pair<double, double> ReevingSubsystem::Guts::nodeTotalForces(const State& s, const RopeRecord& r, int k) const {
@@ -177,8 +180,9 @@ std::pair<double, double> ReevingSubsystem::Guts::nodeTotalForces(const State& s
 
 double ReevingSubsystem::Guts::maxFriction(const RopeRecord& r, const RopeRecord::DrivenNode& d, double tight,
                                            const State& s) const {
-    // In stick the rope moves with the groove: v = dsdTheta thetadot.
-    const double v = d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+    // In stick the rope moves with the groove: v = g'(theta) thetadot.
+    const DrivenAngleSite site = angleSite(s, r, d);
+    const double v = d.law.materialRate(d.angle.angle(site), d.angle.rate(site));
     // mutation-site: rhoa-v2
     const double pressing = std::max(tight - r.spec.properties.massPerLength * v * v, 0.0);
     // mutation-site: capstan-exponent
@@ -213,7 +217,8 @@ ReevingSubsystem::Guts::MomentumSlip ReevingSubsystem::Guts::momentumSlip(const 
     m.drive = pa - pb - m.friction;
     m.external = r.drivenExternal(r.drivenIndex(d.node));
     m.correction = pa - pb - withRope(r, c, [&](const auto&, const auto& data) { return data.nodeForce[m.external]; });
-    m.slipRate = m.speed - d.dsdTheta * r.nodeSpec(d.node).body.getOneU(s, 0);
+    const DrivenAngleSite site = angleSite(s, r, d);
+    m.slipRate = m.speed - d.law.materialRate(d.angle.angle(site), d.angle.rate(site));
     m.workRate = m.friction * m.slipRate - m.correction * m.speed;
     return m;
 }
@@ -222,7 +227,8 @@ ReevingSubsystem::Guts::MomentumSlip ReevingSubsystem::Guts::momentumSlip(const 
 // momentum balances' right sides, S' = S - S_xF S_FF^-1 S_Fx and h' = h - S_xF S_FF^-1 g_F on the
 // other coordinates (rows and columns F zero), so the coupled solve sees the rope with Y moving as
 // its balance says.
-void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache& pc, SimTK::Vector& mobilityForces) const {
+void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache& pc, SimTK::Vector& mobilityForces,
+                                                   SimTK::Vector_<SimTK::SpatialVec>& bodyForces) const {
     CouplingWorkspace& ws = pc.coupling;
     ws.freeSlips.clear();
     for (const RopeRecord& r : ropes) {
@@ -231,7 +237,11 @@ void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache
             if (!d.traction || !inMomentumSlip(s, r, d)) continue;
             const MomentumSlip ms = momentumSlip(s, r, d);
             ws.freeSlips.push_back({r.index, static_cast<int>(&d - r.driven.data()), ms.external, ms.drive, ms.workRate});
-            mobilityForces[r.nodeSpec(d.node).body.getFirstUIndex(s)] += ms.friction * d.dsdTheta;
+            // The friction's reaction on the groove, sigma F g'(theta), on the angle's row.
+            const DrivenAngleSite site = angleSite(s, r, d);
+            DrivenAngleRow row;
+            d.angle.row(site, row);
+            row.addGeneralizedForce(ms.friction * d.law.slope(d.angle.angle(site)), mobilityForces, bodyForces);
         }
     }
     for (const RopeRecord& r : ropes) {
@@ -337,11 +347,11 @@ void ReevingSubsystem::Guts::changeTractionMode(State& s, int rope, int driven) 
         const double limit = tractionLimit(s, r, d);
         next.mode = limit * pb - pa < limit * pa - pb ? TractionMode::SlipTowardStart : TractionMode::SlipTowardEnd;
     } else if (d.momentumSlip) {
-        // s_k continuous: the stick offset takes over from Y (Y - dsdTheta theta).
-        next.sStick = getZ(s)[r.slipZOffset + 2 * d.tractionIndex] - d.dsdTheta * r.nodeSpec(d.node).body.getOneQ(s, 0);
+        // s_k continuous: the stick offset takes over from Y (Y - g(theta)).
+        next.sStick = d.law.offsetOf(getZ(s)[r.slipZOffset + 2 * d.tractionIndex], d.angle.angle(angleSite(s, r, d)));
         next.mode = TractionMode::Stick;
     } else {
-        // s_k continuous: the surface coordinate where the rope arrives (sStick + dsdTheta theta,
+        // s_k continuous: the surface coordinate where the rope arrives (sStick + g(theta),
         // plus sigma R phi_in on a wrapped sheave) moves onto s_k.
         next.sStick += withRope(r, positionCache(s).ropes[rope], [&](const auto& model, const auto& data) {
             return data.materialCoordinates[d.node] - model.surfaceCoordinate(data, d.node);
@@ -429,7 +439,7 @@ double ReevingSubsystem::getSlipDistance(const State& s, int rope, int node) con
     // offset the stick phases so far have accumulated.
     const RopeCache& c = getGuts().positionCache(s).ropes[rope];
     if (getGuts().inMomentumSlip(s, r, d))  // Y over the groove's top, less the pin's turn
-        return c.slipStates[d.tractionIndex] - d.dsdTheta * r.nodeSpec(node).body.getOneQ(s, 0) - d.sRef;
+        return d.law.offsetOf(c.slipStates[d.tractionIndex], d.angle.angle(getGuts().angleSite(s, r, d))) - d.sRef;
     const double sStick = getGuts().tractionStates(s).ropes[rope][d.tractionIndex].sStick;
     return ReevingSubsystem::Guts::withRope(r, c, [&](const auto& model, const auto& data) {
                return data.materialCoordinates[node] - model.surfaceCoordinate(data, node);

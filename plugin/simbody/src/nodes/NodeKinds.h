@@ -8,15 +8,17 @@
 ///     checked by addRope first), throwing std::invalid_argument with the site's name;
 ///   - addMaterialRelation(site): how the rope's material coordinate at the node is determined
 ///     (RopeRecord::materialKinds: Fixed, Sliding or Driven; a Driven node's DrivenNode record:
-///     s = s_ref + dsdTheta theta, a drum's stored rope, a traction sheave's friction);
+///     s = s_ref + g(theta) with its DrivenLaw g and DrivenAngle theta, a drum's stored rope, a
+///     traction sheave's friction);
 ///   - wrap(site, planeNormal): its groove with SheaveModel::Wrapped (NodeWrap; radius 0: a
 ///     point); planeNormal is the planar rope's, zero for a spatial rope;
 ///   - kTensionEquality: the node's constraint row is the frictionless tension equality (its
 ///     residual counts in getMaxConstraintError);
 ///   - draw(drawing): its Visualizer decoration (NodeDrawing.h).
 /// What every node shares at run time (a station on a body: positions, velocities, the coupled
-/// solve's rows; a Driven node's angle row) is generic in ReevingRealization.cpp and
-/// ReevingCoupling.cpp.
+/// solve's rows) is generic in ReevingRealization.cpp and ReevingCoupling.cpp; a Driven node's
+/// run time is its units' (DrivenAngle.h: how theta and its rate are measured and its row of the
+/// coupled solve; DrivenLaw.h: s(theta) with its derivatives), which the generic code calls.
 
 #include "../ReevingSubsystemGuts.h"
 

@@ -89,7 +89,8 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
                 str(SimTK::Vec3(axis)) +
                 " (its chain of Pin or Planar mobilizers about that axis, Sliders, Translations and Welds): the "
                 "groove's axis must stay the plane normal");
-    const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].dsdTheta;
+    // The sense a positive angle moves the rope: the sign of ds/dtheta at theta = 0.
+    const double dsdTheta = site.rope.driven[site.rope.drivenIndex(site.node)].law.slope(0.0);
     NodeWrap w;
     w.radius = n.radius;
     SimTK::Vec3 grooveAxis = axis;
@@ -109,15 +110,16 @@ NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const Si
     }
     if (turningParent) {  // the sheave's own angle about its axis: its pin's plus its parent's turn
         RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
-        d.absoluteAngle = true;
-        d.axis = grooveAxis;
         if (axisTurns) {  // the axis station: on the pin axis, 1 m from the centre
             w.turningAxis = true;
-            d.turningAxis = true;
-            d.bodyAxis = SimTK::Vec3(n.body.getDefaultOutboardFrame().R().z());
-            d.parentAxis = SimTK::Vec3(n.body.getDefaultInboardFrame().R().z());
-            d.parentPerp = SimTK::Vec3(n.body.getDefaultInboardFrame().R().x());
-            site.rope.axisStations.push_back({site.node, n.point + d.bodyAxis});
+            TurningAxisAngle angle;
+            angle.bodyAxis = SimTK::Vec3(n.body.getDefaultOutboardFrame().R().z());
+            angle.parentAxis = SimTK::Vec3(n.body.getDefaultInboardFrame().R().z());
+            angle.parentPerp = SimTK::Vec3(n.body.getDefaultInboardFrame().R().x());
+            d.angle.unit = angle;
+            site.rope.axisStations.push_back({site.node, n.point + angle.bodyAxis});
+        } else {
+            d.angle.unit = ParentTurnAngle{grooveAxis};
         }
     }
     return w;

@@ -16,7 +16,8 @@ void TurningSheaveNode::validate(const NodeSite& site) {
 void TurningSheaveNode::addMaterialRelation(NodeSite& site) {
     RopeRecord::DrivenNode d = drivenNodeOf(site);
     d.sRef = site.spec.materialCoordinateAtZeroAngle;
-    d.dsdTheta = site.spec.sense * site.spec.radius;  // mutation-site: sheave-sense
+    const double dsdTheta = site.spec.sense * site.spec.radius;  // mutation-site: sheave-sense
+    d.law.unit = LinearDrivenLaw{dsdTheta};
     site.rope.driven.push_back(d);
 }
 

@@ -29,10 +29,10 @@ void WinchDrumNode::addMaterialRelation(NodeSite& site) {
     const double R = site.spec.sense * site.spec.radius;
     if (site.node == 0) {
         d.sRef = 0;
-        d.dsdTheta = -R;
+        d.law.unit = LinearDrivenLaw{-R};
     } else {
         d.sRef = site.rope.spec.unstretchedLength;
-        d.dsdTheta = R;
+        d.law.unit = LinearDrivenLaw{R};
     }
     site.rope.driven.push_back(d);
 }
@@ -42,7 +42,7 @@ NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNorma
     // phi); the stored rope is the rest.
     NodeWrap w = grippingSheaveWrap(site, kName, planeNormal, true);
     if (site.spec.pitch != 0) {
-        // x = p (Y - s_ref) / (2 pi R) along the pin axis, Y = s_ref + dsdTheta theta: stored rope
+        // x = p (Y - s_ref) / (2 pi R) along the pin axis, Y = s_ref + g(theta): stored rope
         // grows with Y at the start and as Y falls at the end.
         const RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
         const double toward = site.node == 0 ? 1.0 : -1.0;
