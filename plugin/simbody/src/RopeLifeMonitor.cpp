@@ -130,7 +130,17 @@ std::vector<RopeLifeMonitor::NodeSample> RopeLifeMonitor::sampleNodes(const SimT
             n.upper = reeving_.getSpanMaterialRange(state, rope_, k).first;
             n.tensionLower = reeving_.getAxialForce(state, rope_, k - 1, n.lower);
             n.tensionUpper = reeving_.getAxialForce(state, rope_, k, n.upper);
-            axis = SimTK::cross(chord(k - 1), chord(k));
+            const RopeNode& node = spec.sheaves[k - 1];
+            if (spec.sheaveModel == SheaveModel::Wrapped) {  // the wrap sense (half a turn: the chords are parallel)
+                const SimTK::Vec3 grooveAxis =
+                    node.kind == RopeNodeKind::DeviationSheave
+                        ? (planeNormal_.normSqr() > 0 ? planeNormal_
+                                                      : SimTK::Vec3(node.body.getBodyRotation(state) * node.axis))
+                        : SimTK::Vec3(-double(node.sense) * lifePinAxisInGround(state, node.body));
+                axis = node.kind == RopeNodeKind::DeviationSheave ? double(node.sense) * grooveAxis : grooveAxis;
+            } else {  // a point sheave: the turn between the two chords
+                axis = SimTK::cross(chord(k - 1), chord(k));
+            }
         }
         if (planeNormal_.normSqr() > 0) {
             const double along = SimTK::dot(axis, planeNormal_);

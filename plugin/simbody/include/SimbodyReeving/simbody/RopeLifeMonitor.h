@@ -123,9 +123,12 @@ struct RopeDamageEstimate {
 /// and back within one sample interval is missed, so sample finer than such reversals).
 ///
 /// The bend's sense: the side of the rope the sheave or drum is on, as the axis b about which the
-/// rope turns when running from its start to its end (at a sheave the chords u_in, u_out of the two
-/// spans, b = u_in x u_out / |...|; at a drum the pin axis times +payoutSense at the start,
-/// -payoutSense at the end). A bend whose b points against that of the section's previous bend
+/// rope turns when running from its start to its end: at a point sheave from the chords u_in, u_out
+/// of the two spans, b = u_in x u_out / |...| (a rope running straight over it has no sense: its
+/// next bend counts as First); at a wrapped sheave its wrap sense (SheaveModel::Wrapped:
+/// DeviationSheave::wrapSense about the plane normal or the groove's axis, -sense times the pin
+/// axis for a TurningSheave or TractionSheave); at a drum the pin axis times +payoutSense at the
+/// start, -payoutSense at the end. A bend whose b points against that of the section's previous bend
 /// (b . b_prev < 0) is a reverse bend and both its halves count reverseBendFactor times; a planar
 /// rope keeps its sides (b = +-n), on a spatial rope b is compared in Ground (the rope's twist
 /// between the sheaves is not modelled). A section on a node at the first sample carries that
