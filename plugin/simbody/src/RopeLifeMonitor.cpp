@@ -157,6 +157,13 @@ int RopeLifeMonitor::sideOf(double sigma, const NodeSample& n) {
     return sigma < n.lower ? -1 : sigma > n.upper ? 1 : 0;
 }
 
+int RopeLifeMonitor::wholeSideOf(double sigma, double halfLength, const NodeSample& n, int previous) {
+    if (sigma + halfLength < n.lower) return -1;  // wholly before the interval
+    if (sigma - halfLength > n.upper) return 1;   // wholly after it
+    if (sigma - halfLength >= n.lower && sigma + halfLength <= n.upper) return 0;  // wholly on it
+    return previous;  // partly on: where it was
+}
+
 int RopeLifeMonitor::binOf(double tension) const {
     const auto& e = options_.tensionBinEdges;
     return static_cast<int>(std::lower_bound(e.begin(), e.end(), tension) - e.begin());
@@ -207,6 +214,7 @@ void RopeLifeMonitor::record(const SimTK::State& state) {
         const double start = sMin_ + i * ls;
         return 0.5 * (start + std::min(start + ls, sMax_));
     };
+    auto halfLengthOf = [&](int i) { return 0.5 * (std::min(sMin_ + (i + 1) * ls, sMax_) - (sMin_ + i * ls)); };
     if (numSamples_ == 0) {  // fix the sections and where they lie
         const RopeSpec& spec = reeving_.getRopeSpec(rope_);
         const int numSpans = reeving_.getNumSpans(rope_);
@@ -233,7 +241,9 @@ void RopeLifeMonitor::record(const SimTK::State& state) {
         const double t0 = lastTime_;
         for (int w = 0; w < numWatched; ++w) {
             const NodeSample &a = lastNodes_[w], &b = nodes[w];
-            // Where the lower (upper) end of the node's interval passed sigma, and the tension there.
+            // Where the lower (upper) end of the node's interval passed the section's centre sigma (in
+            // this sample interval or, clamped, at its start: the section may have straddled it before),
+            // and the tension there.
             auto crossing = [&](double sigma, bool lowerEnd, double& time, double& tension) {
                 const double e0 = lowerEnd ? a.lower : a.upper, e1 = lowerEnd ? b.lower : b.upper;
                 const double lambda = e1 != e0 ? std::clamp((sigma - e0) / (e1 - e0), 0.0, 1.0) : 1.0;
@@ -244,7 +254,7 @@ void RopeLifeMonitor::record(const SimTK::State& state) {
             };
             for (int i = 0; i < numSections(); ++i) {
                 int& side = sectionStates_[i].side[w];
-                const int now = sideOf(centreOf(i), b);
+                const int now = wholeSideOf(centreOf(i), halfLengthOf(i), b, side);
                 if (now == side) continue;
                 const double sigma = centreOf(i);
                 double time = t, tension = 0;

@@ -104,21 +104,26 @@ struct RopeDamageEstimate {
 /// The rope is divided into sections of unstretched length l_s (RopeLifeOptions::sectionLength):
 /// section i covers material coordinates [s_min + i l_s, s_min + (i + 1) l_s), s_min the smallest
 /// material coordinate of the rope at the first sample (with rope on a start drum: the drum's
-/// stored rope included), up to the largest (the last section may be shorter). A section is on a
-/// node while its centre sigma_i lies in the node's interval of material coordinates:
+/// stored rope included), up to the largest (the last section may be shorter). Each node has an
+/// interval of material coordinates:
 ///   - a sheave k (DeviationSheave, TurningSheave, TractionSheave): [s_a, s_b], s_a the end of
 ///     span k - 1 (the arrival tangent point of a wrapped sheave) and s_b the start of span k (the
 ///     departure tangent point); at a point sheave s_a = s_b, so a pass is one crossing;
 ///   - a WinchDrum at the start: sigma < s_a of span 0; at the end: sigma > s_b of span N - 1 (the
 ///     tangent point of a wrapped drum, the node itself of a point drum).
-/// Between two samples each section's side of each node is compared: getting on is a bend
-/// ("onto"), getting off a straightening ("off"), both at the time where the interval's end
-/// passed sigma (linear between the samples). Each onto and each off counts 1/2 bending cycle:
+/// A section goes onto a node once it lies wholly in the node's interval, and off once it lies
+/// wholly outside (past a point sheave: wholly on its other side); while it straddles an end of
+/// the interval it stays where it was. So a rope oscillating by less than a section's length
+/// across a tangent point or a point sheave (a bouncing load) adds no cycles. At the first
+/// sample, the section's centre sigma_i decides. Between two samples each section's side of
+/// each node is compared: getting on is a bend ("onto"), getting off a straightening ("off"),
+/// both at the time where the interval's end passed sigma_i (linear between the samples; the
+/// earlier sample if that happened before). Each onto and each off counts 1/2 bending cycle:
 /// a full pass over a sheave (onto and off) is one cycle, a bend and the straightening
 /// (Feyrer 2015; Verreet 1998: straight - bent - straight), winding onto a drum and off it
 /// 1/2 each, and a section that goes onto a sheave and back off the same side (a stroke
-/// shorter than the arc) is also one cycle (it was bent and straightened). A section whose
-/// centre never reaches a sheave is not counted; sampling does not affect which passes are
+/// shorter than the arc) is also one cycle (it was bent and straightened). A section that never
+/// gets wholly on or past a sheave is not counted; sampling does not affect which passes are
 /// counted, only the times and tensions recorded (a node's interval that sweeps over a section
 /// and back within one sample interval is missed, so sample finer than such reversals).
 ///
@@ -195,6 +200,7 @@ private:
 
     std::vector<NodeSample> sampleNodes(const SimTK::State& state) const;
     static int sideOf(double sigma, const NodeSample& n);
+    static int wholeSideOf(double sigma, double halfLength, const NodeSample& n, int previous);
     void addEvent(int section, int watchedIndex, bool onto, double time, double tension, const SimTK::Vec3& axis);
     int binOf(double tension) const;
 
