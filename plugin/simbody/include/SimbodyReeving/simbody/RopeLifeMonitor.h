@@ -129,8 +129,8 @@ struct RopeDamageEstimate {
 ///
 /// The bend's sense: the side of the rope the sheave or drum is on, as the axis b about which the
 /// rope turns when running from its start to its end: at a point sheave from the chords u_in, u_out
-/// of the two spans, b = u_in x u_out / |...| (a rope running straight over it has no sense: its
-/// next bend counts as First); at a wrapped sheave its wrap sense (SheaveModel::Wrapped:
+/// of the two spans, b = u_in x u_out / |...| (a rope running straight over it has no sense: that
+/// bend counts as First and the next is compared with the one before it); at a wrapped sheave its wrap sense (SheaveModel::Wrapped:
 /// DeviationSheave::wrapSense about the plane normal or the groove's axis, -sense times the pin
 /// axis for a TurningSheave or TractionSheave); at a drum the pin axis times +payoutSense at the
 /// start, -payoutSense at the end. A bend whose b points against that of the section's previous bend
@@ -146,6 +146,8 @@ class RopeLifeMonitor {
 public:
     /// @param reeving the ropes, all added; the monitor keeps a reference to it.
     /// @param rope the rope to count (ReevingSubsystem::addRope's index).
+    /// @param options the rope's diameter, the section length, the reverse-bend weight and the
+    ///        tension bins (RopeLifeOptions).
     /// @throws std::invalid_argument if rope is out of range, ropeDiameter is not finite and > 0,
     ///         sectionLength is not finite and > 0, reverseBendFactor is not given or < 1, the bin
     ///         edges are not finite and increasing, or a sheave or drum of the rope has D/d = 2 R / d
@@ -177,6 +179,7 @@ public:
     /// when the tension is constant), N from `law`. The rope is expected to be discarded (or to
     /// break, as the constants define N) when the damage accumulated reaches 1; 1 / D_i work
     /// cycles for the worst section.
+    /// @param law Feyrer's bending-fatigue law with every constant given (FeyrerBendingLaw).
     /// @param workCycles how many work cycles the recorded run covers [-], > 0.
     /// @throws std::invalid_argument if a constant of `law` is missing or workCycles is not > 0.
     RopeDamageEstimate estimateDamage(const FeyrerBendingLaw& law, double workCycles) const;
