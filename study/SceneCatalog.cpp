@@ -68,6 +68,12 @@ const std::vector<SceneInfo>& scenes() {
           "max_fleet_angle_rad", "max_abs_rope_length_error_m", "max_abs_payload_angle_rad", "initial_hook_height_m", "final_hook_height_m",
           "final_rope_on_drum_m", "max_abs_motor_torque_Nm", "max_abs_motor_power_W", "max_abs_trolley_force_N",
           "final_motion_work_J", "max_abs_motion_work_J", "max_abs_energy_residual_J", "energy_residual_relative",
+          // bending cycles per rope section (RopeLifeMonitor): the most bent one
+          "rope_life.rope_diameter_m", "rope_life.section_length_m", "rope_life.reverse_bend_factor",
+          "rope_life.sections", "rope_life.bend_events", "rope_life.worst_section.index",
+          "rope_life.worst_section.s_start_m", "rope_life.worst_section.s_end_m", "rope_life.worst_section.cycles",
+          "rope_life.worst_section.simple_cycles", "rope_life.worst_section.reverse_cycles",
+          "rope_life.worst_section.max_tension_N",
           "steps", "rhs_evaluations", "wall_seconds", "real_time_factor", "snapshot_times.#", "parameters.g",
           "parameters.railHeight", "parameters.trolleyX0", "parameters.trolleyMass", "parameters.sheavePitch",
           "parameters.sheaveRadius", "parameters.drumRadius", "parameters.drumHeight", "parameters.drumMass",

@@ -23,7 +23,9 @@ const char* kDescription =
     "dynamic_factor (their ratio), lift_off_time; the spring-mass reference 1 + v_h sqrt(k / M) / g.\n";
 
 const char* kFooter =
-    "Outputs in DIR: timeseries.csv, snapshots.dat (rope geometry), summary.json and, with gnuplot,\n"
+    "Outputs in DIR: timeseries.csv, snapshots.dat (rope geometry), rope_bending.csv (bending cycles\n"
+    "per rope section, from the start of the rope), summary.json (its rope_life: the most bent section) and,\n"
+    "with gnuplot,\n"
     "fig_hook_height_sway.png, fig_fall_axial_forces.png, fig_energy.png, fig_snapshots.png (lift-off:\n"
     "fig_lift_off.png too).\n"
     "Exit status: 0 run completed (with --check: the options are valid); 2 bad command line or\n"
@@ -140,6 +142,19 @@ void defineOptions(CLI::App& app, Options& o) {
         ->check(positiveNumber());
     app.add_option("--traverse", o.traverse, "trolley travel of the cycle [m] (default 10; 0 or negative allowed)")
         ->type_name("M")
+        ->check(finiteNumber());
+    app.add_option("--rope-diameter", o.ropeDiameter,
+                   "rope diameter d for the bending count [m] (default 0.02; D/d >= 1\nat every sheave and the drum)")
+        ->type_name("D")
+        ->check(positiveNumber());
+    app.add_option("--section-length", o.sectionLength,
+                   "unstretched length of the rope sections whose bending cycles are\ncounted [m] (default 0.1)")
+        ->type_name("M")
+        ->check(positiveNumber());
+    app.add_option("--reverse-bend-factor", o.reverseBendFactor,
+                   "weight of a reverse bending cycle against a simple one, >= 1\n(default 1: counted as simple; "
+                   "the reverse cycles are reported\nseparately; docs/rope-life.md)")
+        ->type_name("W")
         ->check(finiteNumber());
     app.add_option("--t-end", o.tEnd, "end time [s] (default: the whole cycle, 36 s; lift-off: its duration)")
         ->type_name("T")

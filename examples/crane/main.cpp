@@ -11,6 +11,7 @@
 #include <SimbodyReeving/scenes/CraneScene.h>
 #include <SimbodyReeving/simbody/Integrators.h>
 #include <SimbodyReeving/simbody/InterpolatingTimeStepper.h>
+#include <SimbodyReeving/simbody/RopeLifeMonitor.h>
 #include <SimbodyReeving/simbody/Visualization.h>
 
 #include <algorithm>
@@ -102,7 +103,7 @@ std::string liftOffPhase(const CraneScene& scene, const State& s) {
     return scene.floorForce(s) > 0 ? "load on the floor" : "load lifted";
 }
 
-RunResult run(const Options& o, CraneScene& scene) {
+RunResult run(const Options& o, CraneScene& scene, RopeLifeMonitor& life) {
     RunResult r;
     State s0 = scene.makeInitialState();
     scene.system().realize(s0, Stage::Acceleration);
@@ -133,6 +134,7 @@ RunResult run(const Options& o, CraneScene& scene) {
     auto lastPrint = start;
     bool printed = false;
     r.rows.push_back(observe(scene, ts.getState(), r.energy0));
+    life.record(ts.getState());
     if (std::count(snapshotReports.begin(), snapshotReports.end(), 0)) snap(ts.getState(), phase(ts.getState()));
     for (int n = 1; n <= reports; ++n) {
         if (demo_common::interrupted()) throw Interrupted(ts.getState().getTime());
@@ -162,6 +164,7 @@ RunResult run(const Options& o, CraneScene& scene) {
         }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st, r.energy0));
+        life.record(st);
         viz.report(st);
         if (!scene.reeving().getLimitReached().empty() || integ->isSimulationOver()) {
             // A rope limit (two-blocking, empty drum) requested termination: the run ends here.
@@ -237,9 +240,11 @@ Figures summarize(const RunResult& r, int falls) {
     return f;
 }
 
-void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene, const RunResult& r, const Figures& f) {
+void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene, const RunResult& r, const Figures& f,
+                  const RopeLifeMonitor& life) {
     const int n = scene.falls();
-    OutputFile tsFile(dir / "timeseries.csv"), snFile(dir / "snapshots.dat"), jsFile(dir / "summary.json");
+    OutputFile tsFile(dir / "timeseries.csv"), snFile(dir / "snapshots.dat"), jsFile(dir / "summary.json"),
+        bendFile(dir / "rope_bending.csv");
     std::ofstream& ts = tsFile.stream();
     ts << "t,trolley_x,hook_x,hook_height,sway,payload_angle";
     for (int k = 1; k <= n; ++k) ts << ",fall_" << k;
@@ -256,6 +261,16 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
         ts << '\n';
     }
     writeSnapshots(snFile.stream(), r.snapshots);
+    // Bending cycles per rope section (RopeLifeMonitor): the material coordinates s from the start of
+    // the rope (the drum's stored rope first), cycles weighted by --reverse-bend-factor, the simple
+    // and reverse ones unweighted, the largest tension at a bend event.
+    std::ofstream& bend = bendFile.stream();
+    bend << "section,s_start_m,s_end_m,cycles,simple_cycles,reverse_cycles,max_tension_N\n" << std::setprecision(12);
+    for (int i = 0; i < life.numSections(); ++i) {
+        const RopeSectionCount& c = life.sections()[i];
+        bend << i << ',' << c.start << ',' << c.start + life.sectionLength(i) << ',' << c.cycles << ',' << c.simpleCycles
+             << ',' << c.reverseCycles << ',' << c.maxTension << '\n';
+    }
 
     const auto& p = scene.parameters();
     const Row& last = r.rows.back();
@@ -333,6 +348,25 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     js["max_abs_motion_work_J"] = jsonNumber(f.maxWork);
     js["max_abs_energy_residual_J"] = jsonNumber(f.maxResidual);
     js["energy_residual_relative"] = jsonNumber(f.maxWork > 0 ? f.maxResidual / f.maxWork : 0.0);
+    {
+        // The most bent rope section over the run (no life law: the demo has no rope constants).
+        demo_common::Json rl;
+        rl["rope_diameter_m"] = jsonNumber(o.ropeDiameter);
+        rl["section_length_m"] = jsonNumber(o.sectionLength);
+        rl["reverse_bend_factor"] = jsonNumber(o.reverseBendFactor);
+        rl["sections"] = life.numSections();
+        rl["bend_events"] = static_cast<long>(life.events().size());
+        const int worst = life.mostBentSection();
+        const RopeSectionCount& c = life.sections()[worst];
+        rl["worst_section"] = {{"index", worst},
+                               {"s_start_m", jsonNumber(c.start)},
+                               {"s_end_m", jsonNumber(c.start + life.sectionLength(worst))},
+                               {"cycles", jsonNumber(c.cycles)},
+                               {"simple_cycles", jsonNumber(c.simpleCycles)},
+                               {"reverse_cycles", jsonNumber(c.reverseCycles)},
+                               {"max_tension_N", jsonNumber(c.maxTension)}};
+        js["rope_life"] = rl;
+    }
     js["steps"] = r.steps;
     js["rhs_evaluations"] = r.rhsEvaluations;
     js["wall_seconds"] = jsonNumber(r.wallSeconds);
@@ -377,6 +411,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     demo_common::writeJson(jsFile.stream(), js);
     tsFile.commit();
     snFile.commit();
+    bendFile.commit();
     jsFile.commit();  // last: a summary.json means the outputs are complete
 }
 
@@ -401,8 +436,14 @@ int main(int argc, char** argv) {
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
     std::unique_ptr<CraneScene> scene;
+    std::unique_ptr<RopeLifeMonitor> life;
     try {
         scene = std::make_unique<CraneScene>(o.parameters, o.cycle(), spans);
+        RopeLifeOptions lifeOptions;
+        lifeOptions.ropeDiameter = o.ropeDiameter;
+        lifeOptions.sectionLength = o.sectionLength;
+        lifeOptions.reverseBendFactor = o.reverseBendFactor;
+        life = std::make_unique<RopeLifeMonitor>(scene->reeving(), 0, lifeOptions);
         if (o.check) makeIntegrator(o.integrator, scene->system());
     } catch (const std::exception& e) {
         std::cerr << demo_common::usageErrorText("reeving-crane", e.what());
@@ -416,7 +457,7 @@ int main(int argc, char** argv) {
 
     RunResult result;
     try {
-        result = run(o, *scene);
+        result = run(o, *scene, *life);
     } catch (const Interrupted& e) {
         std::cerr << "\nreeving-crane: interrupted at t = " << e.time << " s; no outputs written\n";
         return demo_common::kInterruptedExitStatus;
@@ -435,7 +476,7 @@ int main(int argc, char** argv) {
     const fs::path out(o.outDir);
     const Figures figures = summarize(result, scene->falls());
     try {
-        writeOutputs(out, o, *scene, result, figures);
+        writeOutputs(out, o, *scene, result, figures, *life);
     } catch (const std::exception& e) {
         std::cerr << "reeving-crane: writing the outputs failed: " << e.what() << "\n";
         return 1;

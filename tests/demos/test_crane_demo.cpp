@@ -115,6 +115,19 @@ nlohmann::json checkSummary(const fs::path& p) {
     for (const char* old : {"static_fall_tension_N", "static_reference_tension_N", "max_fall_tension_N"})
         EXPECT_FALSE(json.contains(old)) << old;
     EXPECT_TRUE(json.contains("snapshot_times") && json["snapshot_times"].is_array());
+    // The most bent rope section (RopeLifeMonitor; rope_bending.csv has every section).
+    EXPECT_TRUE(json.contains("rope_life") && json["rope_life"].is_object());
+    if (json.contains("rope_life")) {
+        const auto& life = json["rope_life"];
+        for (const char* key : {"rope_diameter_m", "section_length_m", "reverse_bend_factor"})
+            EXPECT_TRUE(life.contains(key) && life[key].is_number()) << key;
+        for (const char* key : {"sections", "bend_events"})
+            EXPECT_TRUE(life.contains(key) && life[key].is_number_integer()) << key;
+        EXPECT_TRUE(life.contains("worst_section") && life["worst_section"].is_object());
+        for (const char* key : {"index", "s_start_m", "s_end_m", "cycles", "simple_cycles", "reverse_cycles",
+                                "max_tension_N"})
+            EXPECT_TRUE(life["worst_section"].contains(key) && life["worst_section"][key].is_number()) << key;
+    }
     EXPECT_TRUE(json.contains("parameters") && json["parameters"].is_object() && json["parameters"].size() == 25u);
     expectNoNull(json, "summary");
     return json;
@@ -220,6 +233,52 @@ TEST(CraneDemo, SheaveModels) {
     }
 }
 
+// The default cycle's bending cycles per rope section (rope_bending.csv, summary.json rope_life).
+// Hand count: the lift hauls 4 x 5 = 20 m onto the drum; the arrival point of sheave 1 (hook
+// block, counter-clockwise about +z) moves by 3 x 5 = 15 m, sheave 2's (trolley, clockwise) by
+// 10 m, sheave 3's (hook block) by 5 m, and the lowering runs them back. A fall is about 11.3 m
+// (11 m of hook depth and the block's offsets) plus half a turn on a groove (pi 0.09 = 0.28 m):
+// sheave 3's 5 m reach no other sheave, sheave 2's 10 m reach no other either, but the sections
+// that sheave 2 passes and that are within 15 m of sheave 1 (15 - 11.3 - 0.28 = 3.4 m of rope)
+// run over sheave 2 (first bend, simple), then sheave 1 (the other side: reverse) on the lift and
+// back over sheave 1 (same side as its last bend: simple) and sheave 2 (reverse) on the lowering:
+// 2 simple + 2 reverse cycles, the most of any section (the drum and sheave 1: 1 + 2 = 3 simple).
+TEST(CraneDemo, RopeBendingCountsEachSection) {
+    const fs::path out = scratch("rope_bending");
+    const std::string log = out.string() + ".log";
+    ASSERT_EQ(run("--reverse-bend-factor 2 --no-plots --quiet --out '" + out.string() + "'", log), 0) << slurp(log);
+    size_t rows = 0;
+    const std::vector<std::string> columns = checkCsv(out / "rope_bending.csv", rows);
+    EXPECT_EQ(columns, (std::vector<std::string>{"section", "s_start_m", "s_end_m", "cycles", "simple_cycles",
+                                                 "reverse_cycles", "max_tension_N"}));
+    const nlohmann::json json = checkSummary(out / "summary.json");
+    const auto& life = json["rope_life"];
+    EXPECT_EQ(rows, life.value("sections", 0u));
+    EXPECT_EQ(life.value("reverse_bend_factor", 0.0), 2.0);
+    const auto& worst = life["worst_section"];
+    EXPECT_EQ(worst.value("simple_cycles", -1.0), 2.0);
+    EXPECT_EQ(worst.value("reverse_cycles", -1.0), 2.0);
+    EXPECT_EQ(worst.value("cycles", -1.0), 2.0 + 2.0 * 2.0);
+    // Its largest tension: a fall's share of the hook load, (5000 + 200) 9.81 / 4 = 12.8 kN, and the
+    // lift's dynamics (measured 13.8 kN); bound: within 30 % of the static share.
+    EXPECT_GT(worst.value("max_tension_N", 0.0), 0.9 * 12753.0);
+    EXPECT_LT(worst.value("max_tension_N", 0.0), 1.3 * 12753.0);
+    // The sections with 2 reverse cycles: the 3.4 m above, 0.1 m each (measured 37: 34 with 2 + 2
+    // and 3 at the band's upper edge with 1 simple + 2 reverse, their last pass over sheave 2 partial).
+    std::ifstream in(out / "rope_bending.csv");
+    std::string line;
+    std::getline(in, line);
+    int twoReverse = 0;
+    while (std::getline(in, line)) {
+        std::stringstream ss(line);
+        std::vector<double> v;
+        for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::stod(cell));
+        if (v.size() == 7 && v[5] == 2.0) ++twoReverse;
+    }
+    EXPECT_GE(twoReverse, 30);
+    EXPECT_LE(twoReverse, 40);
+}
+
 TEST(CraneDemo, TwoBlockingEndsTheRunWithExitThree) {
     const fs::path out = scratch("two_blocking");
     const std::string log = out.string() + ".log";
@@ -264,6 +323,10 @@ TEST(CraneDemo, BadInputExitsTwoAndWritesNothing) {
         {"--report-interval nan", "--report-interval: 'nan' is not a finite number"},
         {"--report-interval 1 --t-end 0.5", "--report-interval: 1 s must not exceed --t-end (0.5 s)"},
         {"--out", "--out: 1 required DIR missing"},
+        {"--section-length 0", "--section-length: '0' must be > 0"},
+        {"--rope-diameter 0.7", "RopeLifeMonitor: rope 'hoist rope', node 0: D/d = 2 R / d = 2 * 0.3 / 0.7"},
+        {"--rope-diameter 0.2", "node 1: D/d = 2 R / d = 2 * 0.09 / 0.2 = 0.9 is below 1"},
+        {"--reverse-bend-factor 0.5", "RopeLifeMonitor: reverseBendFactor [-] = 0.5 must be finite and >= 1"},
     };
     for (const auto& [args, needle] : cases) {
         const fs::path out = scratch("bad");
