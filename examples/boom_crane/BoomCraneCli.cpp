@@ -186,6 +186,7 @@ void defineOptions(CLI::App& app, Options& o) {
     app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.05)")
         ->type_name("DT")
         ->check(positiveNumber());
+    demo_common::addRopeLifeOptions(app, o.ropeLife);
     app.add_option("--max-steps", o.maxSteps,
                    "stop with exit status 1 (nothing written) once the integrator\n"
                    "has taken N steps (default: no limit)")

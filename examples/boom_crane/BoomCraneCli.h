@@ -3,6 +3,7 @@
 // common/Cli.h for the shared conventions).
 
 #include "common/Cli.h"
+#include "common/RopeLifeOutput.h"
 
 #include <SimbodyReeving/scenes/BoomCraneScene.h>
 
@@ -28,6 +29,7 @@ struct Options {
     long maxSteps = 0;             // --max-steps; 0: no limit
     int snapshots = 6;             // machine snapshots, evenly spaced over [0, t_end]
     std::string outDir = "out/boom-crane";
+    demo_common::RopeLifeCli ropeLife{0.016};  // both ropes' bending counts: the scene's 16 mm ropes
     bool plots = true, quiet = false, visualize = false, help = false, check = false;
     SimbodyReeving::BoomCraneParameters parameters;  // --boom-angle in degrees sets parameters.boomAngle [rad]
 

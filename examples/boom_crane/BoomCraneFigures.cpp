@@ -1,5 +1,7 @@
 #include "BoomCraneFigures.h"
 
+#include "common/RopeLifeOutput.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -250,6 +252,13 @@ bool makePlots(const fs::path& dir, const std::vector<Snapshot>& snapshots, doub
                    ymax + 1);
     snapshotFigure(gp, snapshots, "fig_snapshots_plan.png", "The boom crane from above (plan view)", "x [m]", "-z [m]",
                    "1:(-$3)", xmin - 1, xmax + 1, zmin - 1, zmax + 1);
+    // Bending cycles along each rope, the reeving beside it (side view at t = 0).
+    for (const char* rope : {"luffing", "hoist"})
+        gp << demo_common::ropeBendingPlot(std::string("fig_rope_bending_") + rope + ".png",
+                                           std::string("rope_bending_") + rope + ".csv",
+                                           std::string("rope_bending_") + rope + ".dat",
+                                           std::string("reeving-boom-crane: bending cycles per section of the ") + rope +
+                                               " rope over the run");
     gp.close();
     const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp";
     if (std::system(cmd.c_str()) != 0) {

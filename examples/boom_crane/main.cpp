@@ -7,6 +7,7 @@
 #include "common/DemoOutput.h"
 #include "common/DemoVisualizer.h"
 #include "common/Interrupt.h"
+#include "common/RopeLifeOutput.h"
 
 #include <SimbodyReeving/scenes/BoomCraneScene.h>
 #include <SimbodyReeving/simbody/Integrators.h>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 namespace fs = std::filesystem;
 using SimTK::Stage;
@@ -69,7 +71,13 @@ struct RunResult {
     long steps = 0, rhsEvaluations = 0;
     double wallSeconds = 0, energy0 = 0;
     std::string limit;  // "" or the rope limit that ended the run
+    // Each rope drawn at t = 0 and its nodes' material coordinates, for fig_rope_bending_<rope>.png.
+    std::array<std::vector<demo_common::RopePathPoint>, kRopes> ropeAtStart;
+    std::array<std::vector<double>, kRopes> nodesAtStart;
 };
+
+/// The bending counts of both ropes (RopeLifeMonitor; index: BoomCraneScene::kLuffingRope, kHoistRope).
+using RopeLifeMonitors = std::array<std::unique_ptr<RopeLifeMonitor>, kRopes>;
 
 Row observe(const BoomCraneScene& scene, const State& s, double energy0) {
     // Stage::Acceleration: the drives' generalized forces (and the QuasiStatic force correction).
@@ -101,7 +109,7 @@ Snapshot snapshotOf(const BoomCraneScene& scene, const State& s, const std::stri
     return {s.getTime(), phase, boomPlaneDirection(scene, s), drawBoomCrane(scene, s)};
 }
 
-RunResult run(const Options& o, BoomCraneScene& scene) {
+RunResult run(const Options& o, BoomCraneScene& scene, RopeLifeMonitors& life) {
     RunResult r;
     State s0 = scene.makeInitialState();
     r.energy0 = scene.reeving().calcMechanicalEnergy(s0);
@@ -126,6 +134,11 @@ RunResult run(const Options& o, BoomCraneScene& scene) {
     auto lastPrint = start;
     bool printed = false;
     r.rows.push_back(observe(scene, ts.getState(), r.energy0));
+    for (int rope = 0; rope < kRopes; ++rope) {
+        life[rope]->record(ts.getState());
+        r.ropeAtStart[rope] = demo_common::sampleRopePath(scene.reeving(), ts.getState(), rope, 41);
+        r.nodesAtStart[rope] = demo_common::nodeMaterialCoordinates(scene.reeving(), ts.getState(), rope);
+    }
     if (wanted(0)) r.snapshots.push_back(snapshotOf(scene, ts.getState(), phaseAt(scene.cycle(), 0)));
     for (int n = 1; n <= reports; ++n) {
         if (demo_common::interrupted()) throw Interrupted(ts.getState().getTime());
@@ -155,6 +168,7 @@ RunResult run(const Options& o, BoomCraneScene& scene) {
         }
         const State& st = ts.getState();
         r.rows.push_back(observe(scene, st, r.energy0));
+        for (auto& monitor : life) monitor->record(st);
         viz.report(st);
         if (!scene.reeving().getLimitReached().empty() || integ->isSimulationOver()) {
             // A rope limit (two-blocking, empty drum, fleet angle) requested termination: the run ends here.
@@ -297,8 +311,18 @@ demo_common::Json parametersJson(const BoomCraneParameters& p) {
     return j;
 }
 
-void writeOutputs(const fs::path& dir, const Options& o, const BoomCraneScene& scene, const RunResult& r, const Figures& f) {
+void writeOutputs(const fs::path& dir, const Options& o, const BoomCraneScene& scene, const RunResult& r, const Figures& f,
+                  const RopeLifeMonitors& life) {
     OutputFile tsFile(dir / "timeseries.csv"), snFile(dir / "snapshots.dat"), jsFile(dir / "summary.json");
+    std::vector<std::unique_ptr<OutputFile>> bendFiles;
+    for (int rope = 0; rope < kRopes; ++rope) {
+        const std::string base = std::string("rope_bending_") + kRopeKeys[rope];
+        bendFiles.push_back(std::make_unique<OutputFile>(dir / (base + ".csv")));
+        demo_common::writeRopeBendingCsv(bendFiles.back()->stream(), *life[rope]);
+        bendFiles.push_back(std::make_unique<OutputFile>(dir / (base + ".dat")));
+        demo_common::writeRopeBendingFigureData(bendFiles.back()->stream(), r.ropeAtStart[rope], r.nodesAtStart[rope],
+                                                *life[rope]);
+    }
     writeTimeseries(tsFile.stream(), r);
     writeSnapshots(snFile.stream(), r.snapshots);
 
@@ -382,6 +406,9 @@ void writeOutputs(const fs::path& dir, const Options& o, const BoomCraneScene& s
     js["max_abs_motion_work_J"] = jsonNumber(f.maxWork);
     js["max_abs_energy_residual_J"] = jsonNumber(f.maxResidual);
     js["energy_residual_relative"] = jsonNumber(f.residualRelative());
+    // Each rope's most bent section over the run (no life law: the demo has no rope constants).
+    Json& ropeLife = js["rope_life"];
+    for (int rope = 0; rope < kRopes; ++rope) ropeLife[kRopeKeys[rope]] = demo_common::ropeLifeSummary(*life[rope], o.ropeLife);
     js["steps"] = r.steps;
     js["rhs_evaluations"] = r.rhsEvaluations;
     js["wall_seconds"] = jsonNumber(r.wallSeconds);
@@ -393,6 +420,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const BoomCraneScene& s
     demo_common::writeJson(jsFile.stream(), js);
     tsFile.commit();
     snFile.commit();
+    for (auto& file : bendFiles) file->commit();
     jsFile.commit();  // last: a summary.json means the outputs are complete
 }
 
@@ -417,8 +445,11 @@ int main(int argc, char** argv) {
     spans.transverseModes = o.transverseModes;
     spans.axialDynamics = o.axialDynamics;
     std::unique_ptr<BoomCraneScene> scene;
+    RopeLifeMonitors life;
     try {
         scene = std::make_unique<BoomCraneScene>(o.parameters, o.cycle(), spans);
+        for (int rope = 0; rope < kRopes; ++rope)
+            life[rope] = std::make_unique<RopeLifeMonitor>(scene->reeving(), rope, o.ropeLife.options());
         if (o.check) makeIntegrator(o.integrator, scene->system());
     } catch (const std::exception& e) {
         std::cerr << demo_common::usageErrorText("reeving-boom-crane", e.what());
@@ -432,7 +463,7 @@ int main(int argc, char** argv) {
 
     RunResult result;
     try {
-        result = run(o, *scene);
+        result = run(o, *scene, life);
     } catch (const Interrupted& e) {
         std::cerr << "\nreeving-boom-crane: interrupted at t = " << e.time << " s; no outputs written\n";
         return demo_common::kInterruptedExitStatus;
@@ -451,7 +482,7 @@ int main(int argc, char** argv) {
     const fs::path out(o.outDir);
     const Figures figures = summarize(result);
     try {
-        writeOutputs(out, o, *scene, result, figures);
+        writeOutputs(out, o, *scene, result, figures, life);
     } catch (const std::exception& e) {
         std::cerr << "reeving-boom-crane: writing the outputs failed: " << e.what() << "\n";
         return 1;

@@ -143,19 +143,7 @@ void defineOptions(CLI::App& app, Options& o) {
     app.add_option("--traverse", o.traverse, "trolley travel of the cycle [m] (default 10; 0 or negative allowed)")
         ->type_name("M")
         ->check(finiteNumber());
-    app.add_option("--rope-diameter", o.ropeDiameter,
-                   "rope diameter d for the bending count [m] (default 0.02; D/d >= 1\nat every sheave and the drum)")
-        ->type_name("D")
-        ->check(positiveNumber());
-    app.add_option("--section-length", o.sectionLength,
-                   "unstretched length of the rope sections whose bending cycles are\ncounted [m] (default 0.1)")
-        ->type_name("M")
-        ->check(positiveNumber());
-    app.add_option("--reverse-bend-factor", o.reverseBendFactor,
-                   "weight of a reverse bending cycle against a simple one, >= 1\n(default 1: counted as simple; "
-                   "the reverse cycles are reported\nseparately; docs/rope-life.md)")
-        ->type_name("W")
-        ->check(finiteNumber());
+    demo_common::addRopeLifeOptions(app, o.ropeLife);
     app.add_option("--t-end", o.tEnd, "end time [s] (default: the whole cycle, 36 s; lift-off: its duration)")
         ->type_name("T")
         ->check(positiveNumber());

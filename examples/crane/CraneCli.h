@@ -3,6 +3,7 @@
 // common/Cli.h for the shared conventions).
 
 #include "common/Cli.h"
+#include "common/RopeLifeOutput.h"
 
 #include <SimbodyReeving/scenes/CraneScene.h>
 
@@ -29,9 +30,7 @@ struct Options {
     int snapshots = 6;             // rope-geometry snapshots, evenly spaced over [0, t_end]
     std::string outDir = "out/crane";
     // Bending cycles per rope section (RopeLifeMonitor; rope_bending.csv, summary.json rope_life).
-    double ropeDiameter = 0.02;      // d [m] (the scene's 20 mm rope)
-    double sectionLength = 0.1;      // [m]
-    double reverseBendFactor = 1.0;  // w_r [-]: 1 counts reverse bends as simple ones (no literature value built in)
+    demo_common::RopeLifeCli ropeLife;  // d = 0.02 m: the scene's 20 mm rope
     bool plots = true, quiet = false, visualize = false, help = false, check = false;
     SimbodyReeving::CraneParameters parameters;  // parameters.scenario == scenario, parameters.hoistSpeed: --hoist-speed
 

@@ -1,5 +1,7 @@
 #include "CraneFigures.h"
 
+#include "common/RopeLifeOutput.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -242,6 +244,9 @@ bool makePlots(const fs::path& dir, const CraneScene& scene, const std::vector<S
            << " using 1:2:3 with lines lc variable\n";
     }
     gp << "unset multiplot\n";
+    // Bending cycles along the rope, the reeving beside it (rope_bending.csv, rope_bending.dat).
+    gp << demo_common::ropeBendingPlot("fig_rope_bending.png", "rope_bending.csv", "rope_bending.dat",
+                                       "reeving-crane: bending cycles per rope section over the run");
     gp.close();
     const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp";
     if (std::system(cmd.c_str()) != 0) {

@@ -7,6 +7,7 @@
 #include "common/DemoOutput.h"
 #include "common/DemoVisualizer.h"
 #include "common/Interrupt.h"
+#include "common/RopeLifeOutput.h"
 
 #include <SimbodyReeving/scenes/CraneScene.h>
 #include <SimbodyReeving/simbody/Integrators.h>
@@ -61,6 +62,8 @@ struct RunResult {
     long steps = 0, rhsEvaluations = 0;
     double wallSeconds = 0, energy0 = 0;
     std::string limit;  // "" or the rope limit that ended the run
+    std::vector<demo_common::RopePathPoint> ropeAtStart;  // the rope drawn at t = 0, for rope_bending.png
+    std::vector<double> nodesAtStart;                    // its nodes' material coordinates at t = 0
 };
 
 Row observe(const CraneScene& scene, const State& s, double energy0) {
@@ -135,6 +138,8 @@ RunResult run(const Options& o, CraneScene& scene, RopeLifeMonitor& life) {
     bool printed = false;
     r.rows.push_back(observe(scene, ts.getState(), r.energy0));
     life.record(ts.getState());
+    r.ropeAtStart = demo_common::sampleRopePath(scene.reeving(), ts.getState(), 0, 41);
+    r.nodesAtStart = demo_common::nodeMaterialCoordinates(scene.reeving(), ts.getState(), 0);
     if (std::count(snapshotReports.begin(), snapshotReports.end(), 0)) snap(ts.getState(), phase(ts.getState()));
     for (int n = 1; n <= reports; ++n) {
         if (demo_common::interrupted()) throw Interrupted(ts.getState().getTime());
@@ -244,7 +249,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
                   const RopeLifeMonitor& life) {
     const int n = scene.falls();
     OutputFile tsFile(dir / "timeseries.csv"), snFile(dir / "snapshots.dat"), jsFile(dir / "summary.json"),
-        bendFile(dir / "rope_bending.csv");
+        bendFile(dir / "rope_bending.csv"), bendFigureFile(dir / "rope_bending.dat");
     std::ofstream& ts = tsFile.stream();
     ts << "t,trolley_x,hook_x,hook_height,sway,payload_angle";
     for (int k = 1; k <= n; ++k) ts << ",fall_" << k;
@@ -261,16 +266,8 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
         ts << '\n';
     }
     writeSnapshots(snFile.stream(), r.snapshots);
-    // Bending cycles per rope section (RopeLifeMonitor): the material coordinates s from the start of
-    // the rope (the drum's stored rope first), cycles weighted by --reverse-bend-factor, the simple
-    // and reverse ones unweighted, the largest tension at a bend event.
-    std::ofstream& bend = bendFile.stream();
-    bend << "section,s_start_m,s_end_m,cycles,simple_cycles,reverse_cycles,max_tension_N\n" << std::setprecision(12);
-    for (int i = 0; i < life.numSections(); ++i) {
-        const RopeSectionCount& c = life.sections()[i];
-        bend << i << ',' << c.start << ',' << c.start + life.sectionLength(i) << ',' << c.cycles << ',' << c.simpleCycles
-             << ',' << c.reverseCycles << ',' << c.maxTension << '\n';
-    }
+    demo_common::writeRopeBendingCsv(bendFile.stream(), life);
+    demo_common::writeRopeBendingFigureData(bendFigureFile.stream(), r.ropeAtStart, r.nodesAtStart, life);
 
     const auto& p = scene.parameters();
     const Row& last = r.rows.back();
@@ -348,25 +345,8 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     js["max_abs_motion_work_J"] = jsonNumber(f.maxWork);
     js["max_abs_energy_residual_J"] = jsonNumber(f.maxResidual);
     js["energy_residual_relative"] = jsonNumber(f.maxWork > 0 ? f.maxResidual / f.maxWork : 0.0);
-    {
-        // The most bent rope section over the run (no life law: the demo has no rope constants).
-        demo_common::Json rl;
-        rl["rope_diameter_m"] = jsonNumber(o.ropeDiameter);
-        rl["section_length_m"] = jsonNumber(o.sectionLength);
-        rl["reverse_bend_factor"] = jsonNumber(o.reverseBendFactor);
-        rl["sections"] = life.numSections();
-        rl["bend_events"] = static_cast<long>(life.events().size());
-        const int worst = life.mostBentSection();
-        const RopeSectionCount& c = life.sections()[worst];
-        rl["worst_section"] = {{"index", worst},
-                               {"s_start_m", jsonNumber(c.start)},
-                               {"s_end_m", jsonNumber(c.start + life.sectionLength(worst))},
-                               {"cycles", jsonNumber(c.cycles)},
-                               {"simple_cycles", jsonNumber(c.simpleCycles)},
-                               {"reverse_cycles", jsonNumber(c.reverseCycles)},
-                               {"max_tension_N", jsonNumber(c.maxTension)}};
-        js["rope_life"] = rl;
-    }
+    // The most bent rope section over the run (no life law: the demo has no rope constants).
+    js["rope_life"] = demo_common::ropeLifeSummary(life, o.ropeLife);
     js["steps"] = r.steps;
     js["rhs_evaluations"] = r.rhsEvaluations;
     js["wall_seconds"] = jsonNumber(r.wallSeconds);
@@ -412,6 +392,7 @@ void writeOutputs(const fs::path& dir, const Options& o, const CraneScene& scene
     tsFile.commit();
     snFile.commit();
     bendFile.commit();
+    bendFigureFile.commit();
     jsFile.commit();  // last: a summary.json means the outputs are complete
 }
 
@@ -439,11 +420,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<RopeLifeMonitor> life;
     try {
         scene = std::make_unique<CraneScene>(o.parameters, o.cycle(), spans);
-        RopeLifeOptions lifeOptions;
-        lifeOptions.ropeDiameter = o.ropeDiameter;
-        lifeOptions.sectionLength = o.sectionLength;
-        lifeOptions.reverseBendFactor = o.reverseBendFactor;
-        life = std::make_unique<RopeLifeMonitor>(scene->reeving(), 0, lifeOptions);
+        life = std::make_unique<RopeLifeMonitor>(scene->reeving(), 0, o.ropeLife.options());
         if (o.check) makeIntegrator(o.integrator, scene->system());
     } catch (const std::exception& e) {
         std::cerr << demo_common::usageErrorText("reeving-crane", e.what());

@@ -5,6 +5,7 @@
 #include "common/DemoOutput.h"
 #include "common/DemoVisualizer.h"
 #include "common/Interrupt.h"
+#include "common/RopeLifeOutput.h"
 
 #include <SimbodyReeving/scenes/ElevatorScene.h>
 #include <SimbodyReeving/simbody/Integrators.h>
@@ -17,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,8 @@ struct Options {
     std::string outDir = "out/elevator";
     bool plots = true, quiet = false, visualize = false, check = false;
     long maxSteps = 0;  // 0: no limit
+    // Bending cycles per section of the hoist ropes (RopeLifeMonitor, rope 0): one 10 mm rope of the set.
+    demo_common::RopeLifeCli ropeLife{0.010};
 };
 
 struct Row {
@@ -55,6 +59,8 @@ struct Result {
     long steps = 0, rhs = 0;
     double wall = 0, duration = 0, carLoad = 0, carPosition = 0;
     int transitions = 0;
+    Json ropeLife;                         // summary.json's rope_life of the hoist ropes
+    std::string bendingCsv, bendingFigure;  // rope_bending_<scenario>.csv and .dat
 };
 
 struct Interrupted : std::runtime_error {
@@ -127,8 +133,12 @@ Result run(const Options& o, ElevatorScenario scenario) {
     integ->setAccuracy(o.accuracy);
     InterpolatingTimeStepper ts(scene.system(), *integ);
     ts.initialize(s0);
+    RopeLifeMonitor life(scene.reeving(), 0, o.ropeLife.options());
     const auto start = std::chrono::steady_clock::now();
     r.rows.push_back(observe(scene, ts.getState(), e0));
+    life.record(ts.getState());
+    const auto ropeAtStart = demo_common::sampleRopePath(scene.reeving(), ts.getState(), 0, 41);
+    const auto nodesAtStart = demo_common::nodeMaterialCoordinates(scene.reeving(), ts.getState(), 0);
     // The car's start above the bottom landing as set (ElevatorParameters::carPosition, else the
     // scenario's own), before the static equilibrium stretches the rope.
     r.carPosition = p.carPosition                                ? *p.carPosition
@@ -151,12 +161,19 @@ Result run(const Options& o, ElevatorScenario scenario) {
             if (ts.stepTo(n * o.reportInterval) != SimTK::Integrator::ReachedStepLimit) break;
         }
         r.rows.push_back(observe(scene, ts.getState(), e0));
+        life.record(ts.getState());
         viz.report(ts.getState());
     }
     r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhs = integ->getNumRealizations();
     r.transitions = scene.reeving().getNumTractionTransitions(ts.getState(), 0, scene.tractionNode());
+    r.ropeLife = demo_common::ropeLifeSummary(life, o.ropeLife);
+    std::ostringstream csv, figure;
+    demo_common::writeRopeBendingCsv(csv, life);
+    demo_common::writeRopeBendingFigureData(figure, ropeAtStart, nodesAtStart, life);
+    r.bendingCsv = csv.str();
+    r.bendingFigure = figure.str();
     return r;
 }
 
@@ -230,6 +247,7 @@ Json summarize(const Result& r) {
     j["machine_work_J"] = jsonNumber(end.machineWork);
     j["max_energy_residual_J"] = jsonNumber(maxResidual);
     j["energy_residual_relative"] = jsonNumber(largest > 0 ? maxResidual / largest : 0.0);
+    j["rope_life"] = r.ropeLife;  // the hoist ropes' most bent section over the scenario
     j["simulated_s"] = jsonNumber(r.duration);
     j["steps"] = r.steps;
     j["rhs_evaluations"] = r.rhs;
@@ -336,7 +354,10 @@ void plot(const fs::path& dir, const std::vector<Result>& results, const Elevato
           << "unset multiplot\nunset xlabel\n";
         g << "set terminal pngcairo size 1500,900 noenhanced\nset output 'elevator_" << r.scenario << "_machine.png'\n";
         writeSnapshots(g, r, parameters);
-        g << "set terminal pngcairo size 1200,900 noenhanced\n";
+        g << demo_common::ropeBendingPlot("elevator_" + r.scenario + "_rope_bending.png",
+                                          "rope_bending_" + r.scenario + ".csv", "rope_bending_" + r.scenario + ".dat",
+                                          "reeving-elevator: " + r.scenario + ", bending cycles per section of the hoist ropes");
+        g << "set terminal pngcairo size 1200,900 noenhanced\nset datafile separator ','\nset key top left\nset grid\n";
     }
     gp.commit();
     const std::string cmd = "cd '" + dir.string() + "' && gnuplot plots.gp";
@@ -353,8 +374,9 @@ int main(int argc, char** argv) {
         "half the rated load, the rope set as one rope) through EN 81-50's traction checks, the hoist ropes\n"
         "over a traction sheave that sticks and slips by the capstan law P_tight = e^(mu alpha) P_slack.\n"
         "Outputs in DIR: timeseries_<scenario>.csv, summary.json (the traction table: held or slipped,\n"
-        "margin) and, with gnuplot, elevator_<scenario>.png (time plots) and elevator_<scenario>_machine.png\n"
-        "(snapshots of the machine).",
+        "margin, the hoist ropes' most bent section), rope_bending_<scenario>.csv (bending cycles per rope\n"
+        "section) and, with gnuplot, elevator_<scenario>.png (time plots), elevator_<scenario>_machine.png\n"
+        "(snapshots of the machine) and elevator_<scenario>_rope_bending.png (cycles along the rope).",
         kProgram);
     applyConventions(app);
     app.footer(
@@ -418,6 +440,7 @@ int main(int argc, char** argv) {
         ->type_name("T")
         ->check(positiveNumber());
     app.add_option("--report-interval", o.reportInterval, "output interval [s] (default 0.01)")->check(positiveNumber());
+    demo_common::addRopeLifeOptions(app, o.ropeLife);
     app.add_option("--max-steps", o.maxSteps,
                    "stop a scenario with exit status 1 (nothing written) once the integrator\n"
                    "has taken N steps (default: no limit)")
@@ -452,10 +475,10 @@ int main(int argc, char** argv) {
         try {
             const ElevatorParameters p = scenarioParameters(o, sc);
             p.validate();
-            if (o.check) {
-                ElevatorScene scene(p, spanOptions(o));
-                makeIntegrator(o.integrator, scene.system());
-            }
+            // The scene, for the bending count's options (D/d at its sheaves); --check: the integrator too.
+            ElevatorScene scene(p, spanOptions(o));
+            [[maybe_unused]] const RopeLifeMonitor bendingCount(scene.reeving(), 0, o.ropeLife.options());
+            if (o.check) makeIntegrator(o.integrator, scene.system());
         } catch (const std::exception& e) {
             const std::string which = scenarios.size() > 1 ? std::string(" (scenario ") + toString(sc) + ")" : "";
             std::cerr << usageErrorText(kProgram, e.what() + which);
@@ -504,7 +527,14 @@ int main(int argc, char** argv) {
     summary["wrap_angle_rad"] = jsonNumber(results.front().rows.front().wrap);
     summary["deflector"] = o.parameters.deflector;
     const fs::path dir(o.outDir);
-    for (const Result& r : results) writeTimeseries(dir / ("timeseries_" + r.scenario + ".csv"), r);
+    for (const Result& r : results) {
+        writeTimeseries(dir / ("timeseries_" + r.scenario + ".csv"), r);
+        for (const auto& [name, text] : {std::pair{".csv", &r.bendingCsv}, std::pair{".dat", &r.bendingFigure}}) {
+            demo_common::OutputFile f(dir / ("rope_bending_" + r.scenario + name));
+            f.stream() << *text;
+            f.commit();
+        }
+    }
     {
         OutputFile f(dir / "summary.json");
         writeJson(f.stream(), summary);

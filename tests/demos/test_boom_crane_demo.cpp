@@ -132,6 +132,21 @@ nlohmann::json checkSummary(const fs::path& p) {
         for (const char* key : {"drum_fleet_within_plain_limit", "drum_fleet_within_grooved_limit"})
             EXPECT_TRUE(rope.contains(key) && rope[key].is_boolean()) << key;
     }
+    // Each rope's most bent section (RopeLifeMonitor; rope_bending_<rope>.csv has every section).
+    for (const char* rope : {"luffing", "hoist"}) {
+        const nlohmann::json life = json.value("rope_life", nlohmann::json::object()).value(rope, nlohmann::json());
+        EXPECT_TRUE(life.is_object()) << rope;
+        if (!life.is_object()) continue;
+        for (const char* key : {"rope_diameter_m", "section_length_m", "reverse_bend_factor"})
+            EXPECT_TRUE(life.contains(key) && life[key].is_number()) << rope << " " << key;
+        EXPECT_EQ(life.contains("worst_section"), life.value("bend_events", 0) > 0) << rope;
+        std::size_t rows = 0;
+        {
+            std::ifstream in(p.parent_path() / (std::string("rope_bending_") + rope + ".csv"));
+            for (std::string line; std::getline(in, line);) ++rows;
+        }
+        EXPECT_EQ(rows, life.value("sections", 0u) + 1) << rope;  // the header and a row per section
+    }
     EXPECT_TRUE(json.contains("snapshot_times") && json["snapshot_times"].is_array());
     EXPECT_TRUE(json.contains("parameters") && json["parameters"].is_object() && json["parameters"].size() == 32u);
     expectNoNull(json, "summary");
@@ -310,6 +325,9 @@ TEST(BoomCraneDemo, BadInputExitsTwoAndWritesNothing) {
         {"--axial-modes 17", "--axial-modes: '17' must be in 0..16"},
         {"--t-end 0", "--t-end: '0' must be > 0"},
         {"--report-interval 1 --t-end 0.5", "--report-interval: 1 s must not exceed --t-end (0.5 s)"},
+        {"--rope-diameter 0.8", "RopeLifeMonitor: rope 'luffing rope', node 0: D/d = 2 R / d = 2 * 0.35 / 0.8"},
+        {"--reverse-bend-factor 0.5", "RopeLifeMonitor: reverseBendFactor [-] = 0.5 must be finite and >= 1"},
+        {"--section-length -1", "--section-length: '-1' must be > 0"},
     };
     for (const auto& [args, needle] : cases) {
         const fs::path out = scratch("bad");

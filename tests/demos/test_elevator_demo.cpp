@@ -83,10 +83,54 @@ TEST(ElevatorDemo, StallSlipsAndTheCarRisesFarLessThanTheRopeTravel) {
 
 // The trip of `roping` (1 or 2): the car's rise is the rope hauled in divided by the roping, up to
 // the change of the car falls' stretch.
+// The trip's bending cycles per section of the hoist ropes (rope_bending_trip.csv), counted by hand.
+// Wrapped sheaves (the default), half a turn on each; the car rises by tripDistance = 12 m.
+// 1:1: the traction sheave (R = 0.32 m) is the only sheave; 12 m of rope pass its arrival tangent
+// point, and the sections that also leave its departure point, 12 - pi R = 10.995 m of rope, go
+// over it once: 1 simple cycle each, 109.9 sections of 0.1 m (the run's rope travel is 12 m to
+// within the change of stretch, millimetres); none more.
+// 2:1: hitch -> car sheave (r = 0.2 m) -> traction sheave -> counterweight sheave (r) -> hitch. The
+// rope moves 24 m over the traction sheave and 12 m over each of the others (relative to them). The
+// rope runs over the traction sheave's top and under the counterweight's sheave: a reverse bend.
+// The sections that pass the traction sheave and then the counterweight's sheave are those within
+// 12 m of the latter's arrival point less what lies between the two (the traction sheave's arc and
+// the counterweight's fall, l_cw = the counterweight sheave's depth below the traction sheave's axis)
+// and the counterweight sheave's own arc: 12 - pi R - l_cw - pi r = 8.366 m at l_cw = 2.0008 m,
+// 83.7 sections with 1 simple + 1 reverse cycle (3 weighted with w_r = 2), the most of any
+// section; the car sheave's sections are not reached by the traction sheave (40 m of fall between).
+void checkTripBending(int roping, const fs::path& out, double counterweightY, const nlohmann::json& life) {
+    const double pi = std::acos(-1.0), R = 0.32, r = 0.2, lCw = -counterweightY;
+    std::vector<std::string> h;
+    const auto sections = readCsv(out / "rope_bending_trip.csv", h);
+    const int cycles = column(h, "cycles"), simple = column(h, "simple_cycles"), reverse = column(h, "reverse_cycles");
+    int once = 0, onceAndReverse = 0;
+    double most = 0;
+    for (const auto& v : sections) {
+        most = std::max(most, v[cycles]);
+        if (v[simple] == 1.0 && v[reverse] == 0.0) ++once;
+        if (v[simple] == 1.0 && v[reverse] == 1.0) ++onceAndReverse;
+    }
+    const auto& worst = life.at("worst_section");
+    if (roping == 1) {
+        // (12 - pi R) / 0.1 = 109.9: the sections that straddle a band edge count half; bound +-1.
+        EXPECT_NEAR(once, (12.0 - pi * R) / 0.1, 1.0) << "measured " << once;
+        EXPECT_EQ(onceAndReverse, 0);
+        EXPECT_EQ(most, 1.0);
+        EXPECT_EQ(worst.at("min_diameter_ratio").get<double>(), 2 * R / 0.01);
+    } else {
+        const double expected = (12.0 - pi * R - lCw - pi * r) / 0.1;  // 83.7 at l_cw = 2.0008 m
+        EXPECT_NEAR(onceAndReverse, expected, 1.5) << "measured " << onceAndReverse;
+        EXPECT_EQ(most, 1.0 + 2.0);
+        EXPECT_EQ(worst.at("simple_cycles").get<double>(), 1.0);
+        EXPECT_EQ(worst.at("reverse_cycles").get<double>(), 1.0);
+        EXPECT_EQ(worst.at("min_diameter_ratio").get<double>(), 2 * r / 0.01);
+    }
+}
+
 void checkTrip(int roping) {
     const fs::path out = scratch("trip" + std::to_string(roping));
-    ASSERT_EQ(run("--scenario trip --roping " + std::to_string(roping) + ":1 --no-plots --quiet --out '" + out.string() +
-                      "'",
+    ASSERT_EQ(run("--scenario trip --roping " + std::to_string(roping) +
+                      ":1 --reverse-bend-factor 2 --no-plots --quiet --out '" + out.string() + "'",
                   out.string() + ".log"),
               0);
     const nlohmann::json s = readJson(out / "summary.json");
@@ -125,6 +169,7 @@ void checkTrip(int roping) {
     // linear strain gradient under its weight with an error at its ends.
     EXPECT_NEAR(rows[0][pa] / atRest, 1.0, 0.02);
     EXPECT_EQ(h.size(), 20u);
+    checkTripBending(roping, out, rows[0][column(h, "counterweight_y_m")], t.at("rope_life"));
 }
 
 TEST(ElevatorDemo, TripFollowsItsProfileWithinTheRopeStretchAndHolds) { checkTrip(1); }
@@ -446,7 +491,8 @@ TEST(ElevatorDemo, BadInputExitsTwoAndWritesNothing) {
                                     std::string("--rated-load abc"), std::string("--roping 3:1"),
                                     std::string("--sheaves bogus"), std::string("--deflector --roping 2:1"),
                                     std::string("--deflector --sheaves point"), std::string("--car-hitch-offset 0.7"),
-                                    std::string("--traction-slip sliding")}) {
+                                    std::string("--traction-slip sliding"), std::string("--rope-diameter 0.8"),
+                                    std::string("--reverse-bend-factor 0.5"), std::string("--section-length 0")}) {
         const fs::path out = scratch("bad");
         EXPECT_EQ(run(args + " --out '" + out.string() + "'", out.string() + ".log"), 2) << args;
         EXPECT_FALSE(fs::exists(out / "summary.json")) << args;

@@ -1,7 +1,8 @@
 // What reeving-study needs from the demos: --check (validate and build the scenes, write nothing)
 // and --max-steps (stop with exit status 1) in reeving-pendulum and reeving-elevator; the
 // elevator's --car-load and --car-position; and the scene catalogue (study/SceneCatalog.cpp) in
-// step with the summary.json each demo writes.
+// step with the summary.json each demo writes; the bundled rope-bending study over the crane's
+// reeving.
 #include "StudyTestSupport.h"
 
 #include "SceneCatalog.h"
@@ -18,6 +19,7 @@ namespace {
 const std::string kPendulum = REEVING_PENDULUM_EXE;
 const std::string kElevator = REEVING_ELEVATOR_EXE;
 const std::string kCrane = REEVING_CRANE_EXE;
+const std::string kStudy = REEVING_STUDY_EXE;
 
 nlohmann::json readJson(const fs::path& file) {
     std::ifstream in(file);
@@ -177,7 +179,8 @@ TEST(StudyDemos, SceneCatalogueMatchesTheDemosSummaries) {
     ProgramRun r = run(quote(kPendulum) + " --axial-modes 1 --t-end 0.05 --no-plots --quiet --out " + quote(dir / "p"), dir);
     ASSERT_EQ(r.status, 0) << r.err;
     expectCatalogued("pendulum", {dir / "p" / "summary.json"});
-    r = run(quote(kElevator) + " --t-end 0.05 --no-plots --quiet --out " + quote(dir / "e"), dir);
+    // The trip for 3 s: the rope has moved over the traction sheave (rope_life's worst section).
+    r = run(quote(kElevator) + " --scenario trip --t-end 3 --no-plots --quiet --out " + quote(dir / "e"), dir);
     ASSERT_EQ(r.status, 0) << r.err;
     expectCatalogued("elevator", {dir / "e" / "summary.json"});
     r = run(quote(kCrane) + " --t-end 0.1 --no-plots --quiet --out " + quote(dir / "c"), dir);
@@ -185,4 +188,47 @@ TEST(StudyDemos, SceneCatalogueMatchesTheDemosSummaries) {
     r = run(quote(kCrane) + " --scenario lift-off --no-plots --quiet --out " + quote(dir / "l"), dir);
     ASSERT_EQ(r.status, 0) << r.err;
     expectCatalogued("crane", {dir / "c" / "summary.json", dir / "l" / "summary.json"});
+}
+
+// studies/crane-rope-bending: the crane's default cycle over its reeving, falls x sheave radius,
+// mapping the most bent section's cycles. Hand counts (docs/rope-life.md's counting rules):
+// - 2 falls (drum -> hook sheave -> dead end on the trolley): the lift hauls 2 x 5 m, the hook
+//   sheave's arrival point moves 5 m, and the rope from there to the drum, a fall of about 11 m, is
+//   longer, so no section reaches the drum after the sheave: the sections the sheave passes run over
+//   it on the lift and back on the lowering, 2 simple cycles, the most of any;
+// - 4 falls: 2 simple + 2 reverse (tests/demos/test_crane_demo.cpp's RopeBendingCountsEachSection
+//   derives it), 4 with the reverse bends weighted 1;
+// and at every sheave radius R the section runs over the sheaves, D/d = 2 R / 0.02 m.
+TEST(StudyDemos, CraneRopeBendingStudyMapsTheWorstSection) {
+    const fs::path dir = scratch("rope_bending_study");
+    const ProgramRun r = run(kStudy + " " + quote(fs::path(STUDIES_DIR) / "crane-rope-bending") + " --out " +
+                                 quote(dir / "out") + " --quiet",
+                             dir);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto rows = csvRows(dir / "out" / "results.csv");
+    ASSERT_EQ(rows.size(), 1u + 15u);
+    const auto& h = rows[0];
+    auto col = [&](const std::string& name) {
+        const auto it = std::find(h.begin(), h.end(), name);
+        EXPECT_NE(it, h.end()) << name;
+        return static_cast<std::size_t>(it - h.begin());
+    };
+    const std::size_t falls = col("falls"), radius = col("set.sheaveRadius"), cycles = col("rope_life.worst_section.cycles"),
+                      simple = col("rope_life.worst_section.simple_cycles"),
+                      reverse = col("rope_life.worst_section.reverse_cycles"),
+                      ratio = col("rope_life.worst_section.min_diameter_ratio");
+    int checked = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        const auto& v = rows[i];
+        const int n = std::stoi(v[falls]);
+        const double R = std::stod(v[radius]);
+        EXPECT_NEAR(std::stod(v[ratio]), 2 * R / 0.02, 1e-9) << "falls " << n << ", R " << R;
+        if (n == 2 || n == 4) {
+            ++checked;
+            EXPECT_EQ(std::stod(v[simple]), 2.0) << "falls " << n << ", R " << R;
+            EXPECT_EQ(std::stod(v[reverse]), n == 2 ? 0.0 : 2.0) << "falls " << n << ", R " << R;
+            EXPECT_EQ(std::stod(v[cycles]), n == 2 ? 2.0 : 4.0) << "falls " << n << ", R " << R;
+        }
+    }
+    EXPECT_EQ(checked, 6);
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace SimbodyReeving {
 
@@ -252,21 +253,29 @@ void RopeLifeMonitor::record(const SimTK::State& state) {
                 time = t0 + lambda * (t - t0);
                 tension = T0 + lambda * (T1 - T0);
             };
-            for (int i = 0; i < numSections(); ++i) {
-                int& side = sectionStates_[i].side[w];
-                const int now = wholeSideOf(centreOf(i), halfLengthOf(i), b, side);
-                if (now == side) continue;
-                const double sigma = centreOf(i);
-                double time = t, tension = 0;
-                if (side != 0) {  // onto, over the end of the interval on its side
-                    crossing(sigma, side < 0, time, tension);
-                    addEvent(i, w, true, time, tension, b.bendAxis);
+            // A section's side of the interval changes only where an end of the interval swept over
+            // part of it since the previous sample: visit the sections over each end's sweep (with
+            // one section's margin), in ascending order; a section met twice has changed already.
+            for (const auto& [e0, e1] : {std::pair{a.lower, b.lower}, std::pair{a.upper, b.upper}}) {
+                if (!std::isfinite(e0) || !std::isfinite(e1)) continue;  // a drum's open side
+                const int first = std::max(0, static_cast<int>(std::floor((std::min(e0, e1) - sMin_) / ls)) - 1);
+                const int last = std::min(numSections() - 1, static_cast<int>(std::floor((std::max(e0, e1) - sMin_) / ls)) + 1);
+                for (int i = first; i <= last; ++i) {
+                    int& side = sectionStates_[i].side[w];
+                    const int now = wholeSideOf(centreOf(i), halfLengthOf(i), b, side);
+                    if (now == side) continue;
+                    const double sigma = centreOf(i);
+                    double time = t, tension = 0;
+                    if (side != 0) {  // onto, over the end of the interval on its side
+                        crossing(sigma, side < 0, time, tension);
+                        addEvent(i, w, true, time, tension, b.bendAxis);
+                    }
+                    if (now != 0) {  // off, over the end on the side it leaves to
+                        crossing(sigma, now < 0, time, tension);
+                        addEvent(i, w, false, time, tension, b.bendAxis);
+                    }
+                    side = now;
                 }
-                if (now != 0) {  // off, over the end on the side it leaves to
-                    crossing(sigma, now < 0, time, tension);
-                    addEvent(i, w, false, time, tension, b.bendAxis);
-                }
-                side = now;
             }
         }
     }
