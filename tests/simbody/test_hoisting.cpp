@@ -553,7 +553,7 @@ TEST(Hoisting, EachNodeKindStandsWhereItsTypeAllows) {
     // The kind-specific handles: the right kind, or std::invalid_argument naming both kinds.
     EXPECT_EQ(reeving.getRope(1).getWinchDrum(0).getNodeIndex(), 0);
     EXPECT_EQ(reeving.getRope(3).getTurningSheave(1).getRopeIndex(), 3);
-    EXPECT_EQ(&reeving.getRope(4).getTractionSheave(1).getReevingSubsystem(), &reeving);
+    EXPECT_EQ(&reeving.getRope(4).getTractionSheave(1).getReevingSubsystem().getGuts(), &reeving.getGuts());
     EXPECT_THROW_MESSAGE(reeving.getRope(0).getWinchDrum(0), std::invalid_argument,
                          "ReevingSubsystem: rope 'Anchor': node 0 (Anchor) is not a WinchDrum");
     EXPECT_THROW_MESSAGE(reeving.getRope(3).getTractionSheave(1), std::invalid_argument,

@@ -188,7 +188,7 @@ struct SpanOptions {
     /// acceleration bias (third derivatives of U) the equations of motion. With the plain clamp
     /// max(eps, 0) the rates jump whenever a strain quadrature point goes slack or taut, and each
     /// jump changes T at fixed velocities; with a C1 rounding the accelerations still
-    /// jump and adaptive steps collapse to 1e-15 s there. With the quintic T + U is an invariant
+    /// jump, and an adaptive step shrinks towards round-off at each jump. With the quintic T + U is an invariant
     /// again, provided the integrator resolves the rounding: a step that carries a span's strain
     /// across (0, eps_s) at once can fool its error estimate, the more so the smaller eps_s
     /// (docs/stability.md, "Slack and snap: the rounding of the tension-only law"). Outside (0, eps_s) the law is exact; inside,

@@ -25,9 +25,9 @@ enum class SheaveModel {
     /// The rope wraps the groove: the spans end at the tangent points of the groove circle (radius
     /// DeviationSheave::radius, in the rope's plane) and the rope on the arc between them, of length
     /// R alpha, carries its mass (RopeModel's NodeWrap, GrooveArc; WrapStationMap maps the bodies'
-    /// motion to the tangent points and arc lengths). The wrap sense is DeviationSheave::wrapSense: +1 when
-    /// the rope, running from its start to its end, turns counter-clockwise about the plane normal
-    /// on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
+    /// motion to the tangent points and arc lengths). The wrap sense is
+    /// DeviationSheave::wrapSense: +1 when the rope, running from its start to its end, turns
+    /// counter-clockwise about the plane normal on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
     /// TractionSheave nodes of planar ropes (a TurningSheave's or TractionSheave's wrap sense follows
     /// from its sense and pin axis, see TurningSheave; a TractionSheave without a given wrap angle
     /// then takes the geometry's, see TractionSheave) and WinchDrum nodes (see WinchDrum). On a
@@ -181,8 +181,8 @@ struct TurningSheave {
 /// the groove's friction coefficient mu [-] >= 0 (an effective one: a V or undercut groove's
 /// wedge factor included), the wrap angle alpha [rad] (0, the default: from the geometry), the
 /// material coordinate at the sheave at pin angle 0 with no slip yet [m] (as for a TurningSheave;
-/// TractionSheaveHandle::getSlipDistance counts from it), the sense (as for a TurningSheave) and the point on the pin
-/// axis (body frame). It starts in stick.
+/// TractionSheaveHandle::getSlipDistance counts from it), the sense (as for a TurningSheave) and
+/// the point on the pin axis (body frame). It starts in stick.
 ///
 /// The wrap angle from the geometry (wrapAngle 0), at every evaluation: with SheaveModel::Point the
 /// turning angle between the two chords at the sheave's centre, alpha = pi - angle(p_a - r_k,
@@ -637,7 +637,8 @@ public:
     int getRopeIndex() const { return rope_; }
     /// The node's index on its rope: 0 the start, 1..N-1 the sheaves in path order, N the end.
     int getNodeIndex() const { return node_; }
-    /// The subsystem the rope belongs to.
+    /// The subsystem the rope belongs to (the System's handle to it: the same subsystem as the
+    /// ReevingSubsystem the rope was added to, not necessarily the same object).
     const ReevingSubsystem& getReevingSubsystem() const;
 
 protected:
