@@ -245,8 +245,8 @@ public:
         payload_ = MobilizedBody::Free(matter_.updGround(), Transform(), body, Transform());
         SimbodyReeving::RopeSpec rope;
         rope.name = "single span";
-        rope.start = {matter_.Ground(), Vec3(0)};
-        rope.end = {payload_, Vec3(0, p.d, 0)};
+        rope.start = SimbodyReeving::RopeAnchor{matter_.Ground(), Vec3(0)};
+        rope.end = SimbodyReeving::RopeAnchor{payload_, Vec3(0, p.d, 0)};
         rope.properties = {p.rhoA, p.EA, 0.0};
         rope.unstretchedLength = p.L;
         rope.spanDefaults.axialModes = na;

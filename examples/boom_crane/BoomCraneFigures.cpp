@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <variant>
 
 namespace fs = std::filesystem;
 using SimbodyReeving::BoomCraneScene;
@@ -94,12 +95,14 @@ std::vector<Polyline> drawBoomCrane(const BoomCraneScene& scene, const SimTK::St
     const SimbodyReeving::ReevingSubsystem& reeving = scene.reeving();
     for (int rope : {BoomCraneScene::kLuffingRope, BoomCraneScene::kHoistRope}) {
         const SimbodyReeving::RopeSpec& spec = reeving.getRopeSpec(rope);
-        const SimTK::MobilizedBody& drum = spec.start.body;
+        const SimTK::MobilizedBody& drum = std::get<SimbodyReeving::WinchDrum>(spec.start).body;
         lines.push_back(bodyLine(Ink::Drum, drum, s, circle(Vec3(0), Vec3(0, 0, 1), p.drumRadius)));
         lines.push_back(bodyLine(Ink::Drum, drum, s, {Vec3(0), Vec3(p.drumRadius, 0, 0)}));
-        for (const SimbodyReeving::RopeNode& sheave : spec.sheaves)
-            lines.push_back(bodyLine(Ink::Sheave, sheave.body, s, circle(sheave.point, sheave.axis, sheave.radius)));
-        const Vec3 end = spec.end.body.findStationLocationInGround(s, spec.end.point);
+        for (const SimbodyReeving::RopeSheave& node : spec.sheaves)
+            if (const auto* sheave = std::get_if<SimbodyReeving::DeviationSheave>(&node))
+                lines.push_back(bodyLine(Ink::Sheave, sheave->body, s, circle(sheave->centre, sheave->axis, sheave->radius)));
+        const auto& deadEnd = std::get<SimbodyReeving::RopeAnchor>(spec.end);
+        const Vec3 end = deadEnd.body.findStationLocationInGround(s, deadEnd.station);
         const double m = 0.1;
         lines.push_back({Ink::Sheave, {end - Vec3(m, 0, 0), end + Vec3(m, 0, 0)}});
         lines.push_back({Ink::Sheave, {end - Vec3(0, m, 0), end + Vec3(0, m, 0)}});
@@ -115,7 +118,7 @@ std::vector<Polyline> drawBoomCrane(const BoomCraneScene& scene, const SimTK::St
         };
         for (int k = 0; k < BoomCraneScene::kSpans; ++k) {
             if (k > 0 && spec.sheaveModel == SimbodyReeving::SheaveModel::Wrapped &&
-                spec.sheaves[k - 1].kind == SimbodyReeving::RopeNodeKind::DeviationSheave)
+                std::holds_alternative<SimbodyReeving::DeviationSheave>(spec.sheaves[k - 1]))
                 append(reeving.sampleArc(s, rope, k, 13));
             append(reeving.sampleSpan(s, rope, k, 24));
         }

@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <variant>
 
 namespace fs = std::filesystem;
 using SimbodyReeving::CraneScene;
@@ -119,7 +120,7 @@ std::vector<Polyline> drawCrane(const CraneScene& scene, const SimTK::State& s) 
     };
     for (int k = 0; k < n; ++k) {
         if (k > 0 && spec.sheaveModel == SimbodyReeving::SheaveModel::Wrapped &&
-            spec.sheaves[k - 1].kind == SimbodyReeving::RopeNodeKind::DeviationSheave)
+            std::holds_alternative<SimbodyReeving::DeviationSheave>(spec.sheaves[k - 1]))
             append(reeving.sampleArc(s, 0, k, 13));
         append(reeving.sampleSpan(s, 0, k, 24));
     }

@@ -100,16 +100,17 @@ Row observe(const ElevatorScene& scene, const State& s, double e0) {
     r.pCwt = scene.counterweightSideForce(s);
     r.ratio = r.pCar / r.pCwt;
     const int node = scene.tractionNode();
-    r.limit = rv.getTractionLimit(s, 0, node);
+    const SimbodyReeving::TractionSheaveHandle traction = scene.tractionSheave();
+    r.limit = traction.getTractionLimit(s);
     r.wrap = scene.tractionWrapAngle(s);
     // Every sheave of the hoist rope with a wrap angle: all of them wrapped, the traction sheave's
     // given one with point sheaves.
     const bool wrapped = rv.getRopeSpec(0).sheaveModel == SimbodyReeving::SheaveModel::Wrapped;
     for (int k = 1; k < rv.getNumSpans(0); ++k)
         if (wrapped || k == node) r.sheaveWraps.emplace_back(k, rv.getWrapAngle(s, 0, k));
-    r.mode = static_cast<int>(rv.getTractionMode(s, 0, node));
-    r.slipRate = rv.getSlipRate(s, 0, node);
-    r.slipDistance = rv.getSlipDistance(s, 0, node);
+    r.mode = static_cast<int>(traction.getTractionMode(s));
+    r.slipRate = traction.getSlipRate(s);
+    r.slipDistance = traction.getSlipDistance(s);
     r.frictionWork = rv.getTotalFrictionWork(s);
     r.dampingWork = rv.getDampingWork(s);
     r.machineWork = scene.workMeter().getWork(s);
@@ -167,7 +168,7 @@ Result run(const Options& o, ElevatorScenario scenario) {
     r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.steps = integ->getNumStepsTaken();
     r.rhs = integ->getNumRealizations();
-    r.transitions = scene.reeving().getNumTractionTransitions(ts.getState(), 0, scene.tractionNode());
+    r.transitions = scene.tractionSheave().getNumTractionTransitions(ts.getState());
     r.ropeLife = demo_common::ropeLifeSummary(life, o.ropeLife);
     std::ostringstream csv, figure;
     demo_common::writeRopeBendingCsv(csv, life);

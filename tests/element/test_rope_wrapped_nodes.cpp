@@ -3,6 +3,7 @@
 // (WrapGeometry) mapping a sheave's motion to the rope's external coordinates as a Simbody layer
 // does: the Atwood machine's inertia and drive, the rope's length, and the energy of a sheave that
 // swings and bounces in a rope loop.
+#include "SimbodyReeving/element/GrooveArc.h"
 #include "SimbodyReeving/element/RopeModel.h"
 #include "SimbodyReeving/element/WrapGeometry.h"
 

@@ -171,7 +171,7 @@ TEST(CraneScene, StaticEquilibriumSharesTheLoadEquallyAmongTheFalls) {
         EXPECT_NEAR(std::abs(scene.ropeOnDrum(s) - p.ropeOnDrum), p.drumRadius * std::abs(drumFallLean(scene, s)), 1e-12);
         // The drum motor holds the load against the rope's torque (the payout sense is +1: the rope
         // turns the drum the positive way).
-        const double ropeTorque = scene.reeving().getDrivenNodeTorque(s, 0, 0);
+        const double ropeTorque = scene.reeving().getRope(0).getWinchDrum(0).getTorque(s);
         EXPECT_GT(ropeTorque, 0.9 * p.drumRadius * share) << n;
         // Equal in exact arithmetic: measured 2.2e-15 relative; margin 45x.
         EXPECT_NEAR(scene.motorTorque(s), -ropeTorque, 1e-13 * ropeTorque) << n;

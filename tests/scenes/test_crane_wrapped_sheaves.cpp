@@ -119,15 +119,22 @@ MeasuredRope measureRopeFromGeometry(const CraneScene& scene, const State& state
     scene.system().realize(c, Stage::Position);
     const RopeSpec& spec = scene.reeving().getRopeSpec(0);
     const int n = static_cast<int>(spec.sheaves.size()) + 1;  // spans
-    auto node = [&](int k) -> const RopeNode& { return k == 0 ? spec.start : k == n ? spec.end : spec.sheaves[k - 1]; };
+    const WinchDrum& drum = std::get<WinchDrum>(spec.start);  // then deviation sheaves, and a dead end
     std::vector<t::PlanarGroove> grooves;
     for (int k = 0; k <= n; ++k) {
-        const RopeNode& nd = node(k);
-        const Vec3 centre = nd.body.findStationLocationInGround(c, nd.point);
-        const bool isDrum = nd.kind == RopeNodeKind::WinchDrum;
-        const bool wrappedSheave = nd.kind == RopeNodeKind::DeviationSheave && spec.sheaveModel == SheaveModel::Wrapped;
-        grooves.push_back({Eigen::Vector2d(centre[0], centre[1]), isDrum || wrappedSheave ? nd.radius : 0.0,
-                           isDrum ? 1 : nd.sense});
+        if (k == 0) {
+            const Vec3 centre = drum.body.findStationLocationInGround(c, drum.centre);
+            grooves.push_back({Eigen::Vector2d(centre[0], centre[1]), drum.radius, 1});
+        } else if (k == n) {
+            const RopeAnchor& end = std::get<RopeAnchor>(spec.end);
+            const Vec3 centre = end.body.findStationLocationInGround(c, end.station);
+            grooves.push_back({Eigen::Vector2d(centre[0], centre[1]), 0.0, 1});
+        } else {
+            const DeviationSheave& sheave = std::get<DeviationSheave>(spec.sheaves[k - 1]);
+            const Vec3 centre = sheave.body.findStationLocationInGround(c, sheave.centre);
+            const bool wrapped = spec.sheaveModel == SheaveModel::Wrapped;
+            grooves.push_back({Eigen::Vector2d(centre[0], centre[1]), wrapped ? sheave.radius : 0.0, sheave.wrapSense});
+        }
     }
     std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> tangents;
     for (int j = 0; j < n; ++j) tangents.push_back(t::spanTangentPoints(grooves[j], grooves[j + 1]));
@@ -148,10 +155,10 @@ MeasuredRope measureRopeFromGeometry(const CraneScene& scene, const State& state
     for (int k = 1; k < n; ++k)
         if (grooves[k].radius > 0)
             m.arcs += grooves[k].radius * t::grooveWrapAngle(grooves[k], tangents[k - 1].second, tangents[k].first);
-    const double R = spec.start.radius, theta = scene.drum().getOneQ(c, 0);
+    const double R = drum.radius, theta = scene.drum().getOneQ(c, 0);
     double phi = t::polarAngle(grooves[0].centre, tangents[0].first) - 0.5 * SimTK::Pi;
     if (phi < -SimTK::Pi) phi += 2 * SimTK::Pi;
-    m.stored = spec.start.ropeOnDrum - R * theta + R * phi;
+    m.stored = drum.ropeOnDrum - R * theta + R * phi;
     m.length += m.arcs + m.stored;
     return m;
 }
@@ -236,7 +243,7 @@ TEST(CraneWrappedSheaves, SheavesHoldHalfTurnsAtRest) {
         const double arcs = (n - 1) * SimTK::Pi * p.sheaveRadius;
         const RopeSpec& spec = scene.reeving().getRopeSpec(0);
         const MeasuredRope measured = measureRopeFromGeometry(scene, s);
-        const double lengthError = measured.length - (spec.unstretchedLength + spec.start.ropeOnDrum);
+        const double lengthError = measured.length - (spec.unstretchedLength + std::get<WinchDrum>(spec.start).ropeOnDrum);
         std::printf("[ crane ] %2d falls wrapped: max |alpha - pi| %.3e rad, rope on sheaves - (n - 1) pi R %.3e m, "
                     "arcs from the tangent points - (n - 1) pi R %.3e m, rope length from the geometry %.3e m\n",
                     n, worst, scene.ropeOnSheaves(s) - arcs, measured.arcs - arcs, lengthError);
@@ -346,7 +353,7 @@ TEST(CraneWrappedSheaves, DefaultCycleConservesTheRopesLength) {
     const CraneParameters p = crane(4);
     CraneScene scene(p, CraneCycle::liftTraverseLower(), spans());
     const State s0 = scene.makeInitialState();
-    const double length = scene.reeving().getRopeSpec(0).unstretchedLength + scene.reeving().getRopeSpec(0).start.ropeOnDrum;
+    const double length = scene.reeving().getRopeSpec(0).unstretchedLength + std::get<WinchDrum>(scene.reeving().getRopeSpec(0).start).ropeOnDrum;
     SimTK::RungeKuttaMersonIntegrator integ(scene.system());
     integ.setAccuracy(1e-6);
     InterpolatingTimeStepper ts(scene.system(), integ);
@@ -442,7 +449,7 @@ TEST(CraneWrappedSheaves, SwingingLoadWithDrivesHeldKeepsItsEnergy) {
         maxLean = std::max(maxLean, scene.largestFallLean(st));
         const RopeSpec& spec = scene.reeving().getRopeSpec(0);
         worstLength = std::max(worstLength, std::abs(measureRopeFromGeometry(scene, st).length -
-                                                     (spec.unstretchedLength + spec.start.ropeOnDrum)));
+                                                     (spec.unstretchedLength + std::get<WinchDrum>(spec.start).ropeOnDrum)));
         for (int j = 1; j < n; ++j) {
             minWrap = std::min(minWrap, scene.sheaveWrapAngle(st, j));
             maxWrap = std::max(maxWrap, scene.sheaveWrapAngle(st, j));

@@ -317,7 +317,7 @@ TEST(ElevatorScene, DeflectorSetsTheWrapAngleAtEveryCarPosition) {
         worst = std::max(worst, std::abs(alpha - expected));
         lowest = std::min(lowest, alpha);
         highest = std::max(highest, alpha);
-        EXPECT_NEAR(scene.reeving().getTractionLimit(s, 0, 1), std::exp(p.friction * expected), 1e-12);
+        EXPECT_NEAR(scene.reeving().getRope(0).getTractionSheave(1).getTractionLimit(s), std::exp(p.friction * expected), 1e-12);
     }
     EXPECT_LE(worst, 1e-9);
     EXPECT_GT(highest - lowest, 0.01);
@@ -351,7 +351,7 @@ TEST(ElevatorScene, DeflectorWrapAngleFollowsTheCarThroughATrip) {
         worst = std::max(worst, std::abs(alpha - deflectedWrapAngle(p, scene.carHeight(s))));
         if (i == 0) first = alpha;
         last = alpha;
-        EXPECT_EQ(scene.reeving().getTractionMode(s, 0, 1), TractionMode::Stick) << s.getTime();
+        EXPECT_EQ(scene.reeving().getRope(0).getTractionSheave(1).getTractionMode(s), TractionMode::Stick) << s.getTime();
     }
     std::printf("trip with deflector: wrap angle %.6f -> %.6f rad, worst off the closed form %.1e rad\n", first, last,
                 worst);

@@ -19,7 +19,9 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 using namespace SimbodyReeving;
@@ -77,17 +79,11 @@ struct Hoist {
         for (int k = 1; k <= n; ++k) {
             const bool bottom = k % 2 == 1;
             const double x = k * pitch;
-            RopeNode node;
             if (k < n)
-                node = bottom ? RopeNode(DeviationSheave{*hook, Vec3(x - xHook, 0, 0), 0.1})
-                              : RopeNode(DeviationSheave{matter.Ground(), Vec3(x, H, 0), 0.1});
+                spec.sheaves.push_back(bottom ? DeviationSheave{*hook, Vec3(x - xHook, 0, 0), 0.1}
+                                              : DeviationSheave{matter.Ground(), Vec3(x, H, 0), 0.1});
             else
-                node = bottom ? RopeNode(RopeAnchor{*hook, Vec3(x - xHook, 0, 0)})
-                              : RopeNode(RopeAnchor{matter.Ground(), Vec3(x, H, 0)});
-            if (k < n)
-                spec.sheaves.push_back(node);
-            else
-                spec.end = node;
+                spec.end = bottom ? RopeAnchor{*hook, Vec3(x - xHook, 0, 0)} : RopeAnchor{matter.Ground(), Vec3(x, H, 0)};
         }
         spec.properties = rope;
         spec.unstretchedLength = n * fall;
@@ -139,7 +135,7 @@ TEST(Hoisting, LockedDrumReproducesTheFixedAnchor) {
         SimTK::Motion::Steady(drum, 0.0);
         ReevingSubsystem reeving(system, Vec3(0, -kG, 0));
         RopeSpec spec;
-        spec.start = withDrum ? RopeNode(WinchDrum{drum, 0.3, 50.0}) : RopeNode(RopeAnchor{matter.Ground(), Vec3(0)});
+        spec.start = withDrum ? RopeEnd(WinchDrum{drum, 0.3, 50.0}) : RopeEnd(RopeAnchor{matter.Ground(), Vec3(0)});
         spec.sheaves = {DeviationSheave{matter.Ground(), Vec3(3, 0, 0), 0.1}};
         spec.end = RopeAnchor{payload, Vec3(0, 0.3, 0)};
         spec.properties = RopeProperties{0.6205, 16.5e6, 30.9};
@@ -203,7 +199,7 @@ TEST(Hoisting, ConstantDrumSpeedLiftsAtROmegaOverN) {
                         st.getTime(), work, h.reeving->calcMechanicalEnergy(st) - E0,
                         h.reeving->calcRopePotentialEnergy(st), h.reeving->calcRopeKineticEnergy(st),
                         h.system.calcKineticEnergy(st), h.system.calcPotentialEnergy(st), h.meter->getPower(st),
-                        h.reeving->getDrivenNodePower(st, 0, 0), h.reeving->getMaterialCoordinate(st, 0, 0));
+                        h.reeving->getRope(0).getWinchDrum(0).getPower(st), h.reeving->getMaterialCoordinate(st, 0, 0));
         if (k == 10) y1 = h.y(st);
         // Each fall's bottom carries the same pull T_b: the hook's balance M (g + a) = T_b sum cos(alpha_k).
         std::vector<double> cosAlpha;
@@ -411,12 +407,12 @@ TEST(Hoisting, DrumRunningOutOfRopeEndsTheRun) {
     const State& end = integ.getState();
     const std::string& why = h.reeving->getLimitReached();
     std::printf("[ hoist ] drum empty: t = %.6f s, rope on drum %.2e m: %s\n", end.getTime(),
-                h.reeving->getRopeOnDrum(end, 0, 0), why.c_str());
+                h.reeving->getRope(0).getWinchDrum(0).getRopeOnDrum(end), why.c_str());
     EXPECT_EQ(integ.getTerminationReason(), SimTK::Integrator::EventHandlerRequestedTermination);
     EXPECT_NE(why.find("winch drum at node 0 ran out of rope"), std::string::npos) << why;
     // 1 m at R omega = 1 m/s: measured 1.2e-14 s and 1.2e-14 m; margins 85x.
     EXPECT_NEAR(end.getTime(), 1.0, 1e-12);
-    EXPECT_NEAR(h.reeving->getRopeOnDrum(end, 0, 0), 0.0, 1e-12);
+    EXPECT_NEAR(h.reeving->getRope(0).getWinchDrum(0).getRopeOnDrum(end), 0.0, 1e-12);
 }
 
 // An end drum hauling its single span in: the span reaches its minimum and the run ends.
@@ -492,24 +488,12 @@ TEST(Hoisting, BadDrumAndSheaveInputIsAnInvalidArgument) {
     RopeSpec r = good();
     for (const auto& [bad, text] : {std::pair{0.0, "0"}, std::pair{-0.3, "-0.3"}, std::pair{SimTK::NaN, "nan"}}) {
         r = good();
-        r.start.radius = bad;
+        std::get<WinchDrum>(r.start).radius = bad;
         expectInvalid(r, std::string("start node (WinchDrum, node 0) radius [m] = ") + text + " must be finite and > 0");
     }
     r = good();
     r.start = WinchDrum{alienDrum, 0.3, 10.0};
     expectInvalid(r, "start node (WinchDrum, node 0) is on a body of another system's matter subsystem");
-    r = good();
-    r.start = DeviationSheave{matter.Ground(), Vec3(0), 0.1};
-    expectInvalid(r, "start node (DeviationSheave, node 0): a rope end must be an Anchor or a WinchDrum (a sheave "
-                     "needs a span on both sides)");
-    r = good();
-    r.end = TurningSheave{drum, 0.3, 1.0};
-    expectInvalid(r, "end node (TurningSheave, node 2): a rope end must be an Anchor or a WinchDrum");
-    r = good();
-    r.sheaves = {WinchDrum{drum, 0.3, 10.0}};
-    r.start = RopeAnchor{matter.Ground(), Vec3(0)};
-    expectInvalid(r, "sheave 0 (WinchDrum, node 1): a node inside the path must be a DeviationSheave, TurningSheave "
-                     "or TractionSheave");
     r = good();
     r.start = WinchDrum{freeBody, 0.3, 10.0};
     expectInvalid(r, "start node (WinchDrum, node 0): its body must be a MobilizedBody::Pin");
@@ -529,51 +513,54 @@ TEST(Hoisting, BadDrumAndSheaveInputIsAnInvalidArgument) {
     EXPECT_NO_THROW(reeving.addRope(r));
 }
 
-// Where each node kind may stand (its unit's kAtEnds / kInPath, nodes/NodeKinds.h): every kind at
-// the rope's start and as its one sheave, accepted or rejected with the placement message.
-TEST(Hoisting, EachNodeKindStandsWhereItsUnitAllows) {
+// Where each node kind may stand is a type: a rope's ends are RopeEnd (RopeAnchor, WinchDrum), its
+// path RopeSheave (DeviationSheave, TurningSheave, TractionSheave); a kind elsewhere does not compile
+// (tests/api also builds such sources and expects them to fail). Every kind where it may stand is
+// accepted.
+static_assert(std::is_assignable_v<RopeEnd&, RopeAnchor> && std::is_assignable_v<RopeEnd&, WinchDrum>);
+static_assert(!std::is_assignable_v<RopeEnd&, DeviationSheave> && !std::is_assignable_v<RopeEnd&, TurningSheave> &&
+              !std::is_assignable_v<RopeEnd&, TractionSheave>);
+static_assert(std::is_assignable_v<RopeSheave&, DeviationSheave> && std::is_assignable_v<RopeSheave&, TurningSheave> &&
+              std::is_assignable_v<RopeSheave&, TractionSheave>);
+static_assert(!std::is_assignable_v<RopeSheave&, RopeAnchor> && !std::is_assignable_v<RopeSheave&, WinchDrum>);
+
+TEST(Hoisting, EachNodeKindStandsWhereItsTypeAllows) {
     SimTK::MultibodySystem system;
     SimTK::SimbodyMatterSubsystem matter(system);
     SimTK::GeneralForceSubsystem forces(system);
     MobilizedBody::Pin pin(matter.Ground(), SimTK::Transform(Vec3(1, 0, 0)), wheel(1), SimTK::Transform());
     MobilizedBody::Slider load(matter.Ground(), vertical(Vec3(0, -3, 0)), pointMass(100), vertical(Vec3(0)));
     ReevingSubsystem reeving(system, Vec3(0, -kG, 0));
-    struct Kind {
-        const char* name;
-        RopeNode node;
-        bool atEnds, inPath;
+    auto rope = [&](const char* name, RopeEnd start, RopeSheave sheave) {
+        RopeSpec r;
+        r.name = name;
+        r.start = std::move(start);
+        r.sheaves = {std::move(sheave)};
+        r.end = RopeAnchor{load, Vec3(0)};
+        r.properties = {0.6, 1e6, 0};
+        r.unstretchedLength = 5;
+        r.planeNormal = Vec3(0, 0, 1);
+        return r;
     };
-    const std::vector<Kind> kinds = {
-        {"Anchor", RopeAnchor{matter.Ground(), Vec3(0, 1, 0)}, true, false},
-        {"DeviationSheave", DeviationSheave{matter.Ground(), Vec3(0, 1, 0), 0.1}, false, true},
-        {"WinchDrum", WinchDrum{pin, 0.3, 10.0}, true, false},
-        {"TurningSheave", TurningSheave{pin, 0.3, 1.0}, false, true},
-        {"TractionSheave", TractionSheave{pin, 0.3, 0.2, 0.0, 1.0, 1, Vec3(0)}, false, true},
-    };
-    for (const Kind& k : kinds) {
-        for (bool atEnd : {true, false}) {
-            RopeSpec r;
-            r.name = k.name;
-            r.start = atEnd ? k.node : RopeNode(RopeAnchor{matter.Ground(), Vec3(-1, 0, 0)});
-            r.sheaves = {atEnd ? RopeNode(DeviationSheave{matter.Ground(), Vec3(1, 0.5, 0), 0.1}) : k.node};
-            r.end = RopeAnchor{load, Vec3(0)};
-            r.properties = {0.6, 1e6, 0};
-            r.unstretchedLength = 5;
-            r.planeNormal = Vec3(0, 0, 1);
-            const std::string where = atEnd ? std::string("start node (") + k.name + ", node 0)"
-                                            : std::string("sheave 0 (") + k.name + ", node 1)";
-            if (atEnd ? k.atEnds : k.inPath) {
-                EXPECT_NO_THROW(reeving.addRope(r)) << where;
-            } else {
-                EXPECT_THROW_MESSAGE(reeving.addRope(r), std::invalid_argument,
-                                     "ReevingSubsystem: rope '" + std::string(k.name) + "': " + where +
-                                         (atEnd ? ": a rope end must be an Anchor or a WinchDrum"
-                                                : ": a node inside the path must be a DeviationSheave, TurningSheave "
-                                                  "or TractionSheave"));
-            }
-        }
-    }
+    const RopeEnd anchor = RopeAnchor{matter.Ground(), Vec3(-1, 0, 0)};
+    const RopeSheave idler = DeviationSheave{matter.Ground(), Vec3(1, 0.5, 0), 0.1};
+    EXPECT_NO_THROW(reeving.addRope(rope("Anchor", RopeAnchor{matter.Ground(), Vec3(0, 1, 0)}, idler)));
+    EXPECT_NO_THROW(reeving.addRope(rope("WinchDrum", WinchDrum{pin, 0.3, 10.0}, idler)));
+    EXPECT_NO_THROW(reeving.addRope(rope("DeviationSheave", anchor, DeviationSheave{matter.Ground(), Vec3(0, 1, 0), 0.1})));
+    EXPECT_NO_THROW(reeving.addRope(rope("TurningSheave", anchor, TurningSheave{pin, 0.3, 1.0})));
+    EXPECT_NO_THROW(reeving.addRope(rope("TractionSheave", anchor, TractionSheave{pin, 0.3, 0.2, 0.0, 1.0, 1, Vec3(0)})));
     EXPECT_EQ(reeving.getNumRopes(), 5);
+    // The kind-specific handles: the right kind, or std::invalid_argument naming both kinds.
+    EXPECT_EQ(reeving.getRope(1).getWinchDrum(0).getNodeIndex(), 0);
+    EXPECT_EQ(reeving.getRope(3).getTurningSheave(1).getRopeIndex(), 3);
+    EXPECT_EQ(&reeving.getRope(4).getTractionSheave(1).getReevingSubsystem().getGuts(), &reeving.getGuts());
+    EXPECT_THROW_MESSAGE(reeving.getRope(0).getWinchDrum(0), std::invalid_argument,
+                         "ReevingSubsystem: rope 'Anchor': node 0 (Anchor) is not a WinchDrum");
+    EXPECT_THROW_MESSAGE(reeving.getRope(3).getTractionSheave(1), std::invalid_argument,
+                         "ReevingSubsystem: rope 'TurningSheave': node 1 (TurningSheave) is not a TractionSheave");
+    EXPECT_THROW_MESSAGE(reeving.getRope(1).getWinchDrum(3), std::invalid_argument,
+                         "ReevingSubsystem: rope 'WinchDrum': node index = 3 is outside 0..2");
+    EXPECT_THROW(reeving.getRope(5), std::invalid_argument);
 }
 
 // Long hauls: one span hauled in from 100 m to its 0.5 m minimum by an end drum, with

@@ -78,12 +78,12 @@ TEST(ReevingSubsystem, BadRopeInputThrowsNamingIt) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     {
         RopeSpec r = good();
-        r.end.body = MobilizedBody();  // a path needs two points on bodies
+        std::get<RopeAnchor>(r.end).body = MobilizedBody();  // a path needs two points on bodies
         expectInvalid([&] { reeving.addRope(r); }, "ReevingSubsystem: rope 'rope': end node (Anchor, node 2) has no body");
     }
     {
         RopeSpec r = good();
-        r.sheaves[0].point = Vec3(0);  // coincides with the start anchor
+        std::get<DeviationSheave>(r.sheaves[0]).centre = Vec3(0);  // coincides with the start anchor
         expectInvalid([&] { reeving.addRope(r); },
                       "ReevingSubsystem: rope 'rope': path points 0 and 1 coincide (same body, station (0, 0, 0))");
     }
@@ -93,7 +93,7 @@ TEST(ReevingSubsystem, BadRopeInputThrowsNamingIt) {
         expectInvalid([&] { reeving.addRope(r); },
                       std::string("ReevingSubsystem: rope 'rope': unstretchedLength [m] = ") + text + " must be finite and > 0");
         r = good();
-        r.sheaves[0].radius = bad;
+        std::get<DeviationSheave>(r.sheaves[0]).radius = bad;
         expectInvalid([&] { reeving.addRope(r); }, std::string("ReevingSubsystem: rope 'rope': sheave 0 (DeviationSheave, node 1) radius [m] = ") +
                                                        text + " must be finite and > 0");
         r = good();
@@ -103,11 +103,11 @@ TEST(ReevingSubsystem, BadRopeInputThrowsNamingIt) {
     }
     {
         RopeSpec r = good();
-        r.start.point = Vec3(nan, 0, 0);
+        std::get<RopeAnchor>(r.start).station = Vec3(nan, 0, 0);
         expectInvalid([&] { reeving.addRope(r); },
                       "ReevingSubsystem: rope 'rope': start node (Anchor, node 0) point [m] = (nan, 0, 0) must be finite");
         r = good();
-        r.sheaves[0].point = Vec3(0, SimTK::Infinity, 0);
+        std::get<DeviationSheave>(r.sheaves[0]).centre = Vec3(0, SimTK::Infinity, 0);
         expectInvalid([&] { reeving.addRope(r); },
                       "ReevingSubsystem: rope 'rope': sheave 0 (DeviationSheave, node 1) point [m] = (0, inf, 0) must be finite");
     }

@@ -246,7 +246,7 @@ SceneOutcome randomScene(Hostile& h) {
     spec.start = RopeAnchor{matter.Ground(), h.point(30)};
     const int sheaves = h.integer(0, 3);
     double path = 0;
-    Vec3 previous = spec.start.point;
+    Vec3 previous = std::get<RopeAnchor>(spec.start).station;
     for (int k = 0; k < sheaves; ++k) {
         const bool onBlock = h.chance(0.3);
         const Vec3 at = onBlock ? h.point(0.5) : h.point(30);

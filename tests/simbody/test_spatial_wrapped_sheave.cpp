@@ -335,7 +335,7 @@ TEST(SpatialWrappedSheave, HeldDrumWithALoadSwingingInSpace) {
         const Vec3 T = reeving.sampleSpan(s, 0, 0, 2).front();
         return std::atan2(T[1], T[0]);
     };
-    const double stored0 = reeving.getRopeOnDrum(state, 0, 0), angle0 = tangentAngle(state);
+    const double stored0 = reeving.getRope(0).getWinchDrum(0).getRopeOnDrum(state), angle0 = tangentAngle(state);
     RungeKuttaMersonIntegrator integ(system);
     integ.setAccuracy(1e-10);
     TimeStepper ts(system, integ);
@@ -349,7 +349,7 @@ TEST(SpatialWrappedSheave, HeldDrumWithALoadSwingingInSpace) {
         const double fleet = reeving.getFleetAngles(s, 0, 0).first;
         fleetLow = std::min(fleetLow, fleet);
         fleetHigh = std::max(fleetHigh, fleet);
-        const double stored = reeving.getRopeOnDrum(s, 0, 0);
+        const double stored = reeving.getRope(0).getWinchDrum(0).getRopeOnDrum(s);
         // Clockwise rope (sigma = -1): the tangent point turning counter-clockwise unwinds R per radian.
         rolled = std::max(rolled, std::abs(stored - stored0));
         worstRoll = std::max(worstRoll, std::abs((stored - stored0) + kR * (tangentAngle(s) - angle0)));

@@ -217,12 +217,12 @@ Measured run(const Options& o) {
         const State& s = integ.getState();
         p.system.realize(s, Stage::Velocity);
         // E - E0 + W_friction + W_damping = W_drives, against the largest term.
-        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getFrictionWork(s, 0, 1);
+        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s);
         const double wd = p.reeving->getDampingWork(s), wm = p.meter->getWork(s);
         worst = std::max(worst, std::abs(de + wf + wd - wm));
         w.largest = std::max({w.largest, std::abs(de), std::abs(wf), std::abs(wd), std::abs(wm)});
         if (s.getTime() < 0.5 - 1e-12) continue;
-        if (p.reeving->getTractionMode(s, 0, 1) != expected) w.modeAsExpected = false;
+        if (p.reeving->getRope(0).getTractionSheave(1).getTractionMode(s) != expected) w.modeAsExpected = false;
         // The end forces at Stage::Position (the condensed strain, what the law acts on).
         State sv = s;
         sv.invalidateAllCacheAtOrAbove(Stage::Dynamics);
@@ -232,7 +232,7 @@ Measured run(const Options& o) {
         const double tight = o.sigma() > 0 ? pa : pb, slack = o.sigma() > 0 ? pb : pa;
         double off = 0;
         const double alpha = geometricWrapAngle(p, sv, o, &off), K = std::exp(kMu * alpha);
-        const double c = kRhoA * kSpeed * kSpeed, v = p.reeving->getSlipRate(sv, 0, 1), c2 = kRhoA * v * v;
+        const double c = kRhoA * kSpeed * kSpeed, v = p.reeving->getRope(0).getTractionSheave(1).getSlipRate(sv), c2 = kRhoA * v * v;
         w.withTerm = std::max(w.withTerm, std::abs((tight - c) / (slack - c) / K - 1));
         w.withoutTerm = std::max(w.withoutTerm, std::abs(tight / slack / K - 1));
         w.slipSpeedTerm = std::max(w.slipSpeedTerm, std::abs((tight - c2) / (slack - c2) / K - 1));
@@ -412,14 +412,14 @@ Transient runTransient(sr::SheaveModel model, double sheaveInertia) {
         ts.stepTo(5e-4 * i);
         const State& s = integ.getState();
         p.system.realize(s, Stage::Acceleration);
-        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getFrictionWork(s, 0, 1);
+        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s);
         const double wd = p.reeving->getDampingWork(s), wm = p.meter->getWork(s);
         worstEnergy = std::max(worstEnergy, std::abs(de + wf + wd - wm));
         largestEnergy = std::max({largestEnergy, std::abs(de), std::abs(wf), std::abs(wd), std::abs(wm)});
-        const sr::TractionMode mode = p.reeving->getTractionMode(s, 0, 1);
+        const sr::TractionMode mode = p.reeving->getRope(0).getTractionSheave(1).getTractionMode(s);
         if (mode == sr::TractionMode::Stick) continue;
         // Ydot: the slip rate plus the groove's surface speed R thetadot (sense +1).
-        const double thetaDot = p.sheave.getOneU(s, 0), v = p.reeving->getSlipRate(s, 0, 1) + kR * thetaDot;
+        const double thetaDot = p.sheave.getOneU(s, 0), v = p.reeving->getRope(0).getTractionSheave(1).getSlipRate(s) + kR * thetaDot;
         w.grooveSpeed = kR * thetaDot, w.ropeSpeed = v;
         const Vector& z = s.getZ();
         const Vector& zdot = s.getZDot();

@@ -143,11 +143,11 @@ TEST(TractionSheave, MassesStayAtRestExactlyWhileTheRatioIsWithinTheCapstanLimit
         const State& s = integ.getState();
         const double moved = a.mass1.getOneQ(s, 0) - y0;
         if (fraction < 1) {
-            EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::Stick);
-            EXPECT_EQ(a.reeving->getNumTractionTransitions(s, 0, 1), 0);
+            EXPECT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::Stick);
+            EXPECT_EQ(a.reeving->getRope(0).getTractionSheave(1).getNumTractionTransitions(s), 0);
             EXPECT_LE(std::abs(moved), 1e-10);  // measured 1.8e-12 m (rope creep at the Newton's tolerance)
         } else {
-            EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart);
+            EXPECT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::SlipTowardStart);
             EXPECT_LT(moved, -1e-3);  // mass 1 goes down
         }
         std::printf("fraction %.2f: moved %.3e m\n", fraction, moved);
@@ -174,13 +174,13 @@ TEST(TractionSheave, SlippingMassesAccelerateAsTheCapstanAtwoodMachine) {
                 measured / expected - 1);
     // Required within 0.5 %; measured -6.4e-4 (the rope's 0.1 kg and its oscillation on the masses).
     EXPECT_NEAR(measured / expected, 1.0, 5e-3);
-    const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.energy(s) - e0;
+    const double wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s), de = a.energy(s) - e0;
     std::printf("energy: dE %.6e J, W_friction %.6e J, residual %.3e\n", de, wf, de + wf);
     EXPECT_GT(wf, 0);
     // Measured 6.5e-10 of 171 J (RK-Merson 1e-8); margin 15x (1e-6 required).
     EXPECT_LE(std::abs(de + wf), 1e-8 * std::max(std::abs(de), wf));
-    EXPECT_NEAR(a.reeving->getTractionRatio(s, 0, 1), kLimit, 1e-9);  // the Newton's 1e-14 strain tolerance
-    EXPECT_GT(a.reeving->getSlipRate(s, 0, 1), 0);
+    EXPECT_NEAR(a.reeving->getRope(0).getTractionSheave(1).getTractionRatio(s), kLimit, 1e-9);  // the Newton's 1e-14 strain tolerance
+    EXPECT_GT(a.reeving->getRope(0).getTractionSheave(1).getSlipRate(s), 0);
 }
 
 TEST(TractionSheave, SlowlyGrowingLoadStartsTheSlipAtTheCapstanRatio) {
@@ -207,7 +207,7 @@ TEST(TractionSheave, SlowlyGrowingLoadStartsTheSlipAtTheCapstanRatio) {
     auto balance = [&] {
         const State& st = integ.getState();
         a.system.realize(st, Stage::Velocity);
-        const double de = a.energy(st) - e0, wf = a.reeving->getFrictionWork(st, 0, 1), wl = a.load->getWork(st);
+        const double de = a.energy(st) - e0, wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(st), wl = a.load->getWork(st);
         worst = std::max(worst, std::abs(de + wf - wl));
         largest = std::max({largest, std::abs(de), wf, std::abs(wl)});
     };
@@ -219,12 +219,12 @@ TEST(TractionSheave, SlowlyGrowingLoadStartsTheSlipAtTheCapstanRatio) {
         ts.stepTo(i * 1e-2);
         balance();
     }
-    ASSERT_EQ(a.reeving->getTractionMode(integ.getState(), 0, 1), sr::TractionMode::Stick);
+    ASSERT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(integ.getState()), sr::TractionMode::Stick);
     for (int i = 1; i <= 2000; ++i) {
         const double t = 0.72 + i * dt;
         ts.stepTo(t);
         balance();
-        if (tSlip < 0 && a.reeving->getTractionMode(integ.getState(), 0, 1) != sr::TractionMode::Stick) tSlip = t;
+        if (tSlip < 0 && a.reeving->getRope(0).getTractionSheave(1).getTractionMode(integ.getState()) != sr::TractionMode::Stick) tSlip = t;
     }
     ASSERT_GT(tSlip, 0);
     const double loadRatio = (m1 * kG + rate * tSlip) / (m2 * kG);
@@ -238,11 +238,11 @@ TEST(TractionSheave, SlowlyGrowingLoadStartsTheSlipAtTheCapstanRatio) {
         balance();
     }
     const State& s = integ.getState();
-    const double wf = a.reeving->getFrictionWork(s, 0, 1), wl = a.load->getWork(s);
+    const double wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s), wl = a.load->getWork(s);
     std::printf("load as the drive: W_load %.6e J, W_friction %.6e J, largest term %.6e J, worst residual %.3e J "
                 "(%.2e)\n",
                 wl, wf, largest, worst, worst / largest);
-    EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart);
+    EXPECT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::SlipTowardStart);
     EXPECT_GT(wf, 0);
     // Measured 1.0e-10 J of the largest term 0.77 J (1.3e-10; RK-Merson 1e-10); bound 5e-9 of it (37x).
     // The terms it verifies: the load's work (0.084 J, 0.11 of the largest) and the friction work
@@ -299,7 +299,7 @@ TEST(TractionSheave, DrivenSheaveMovesAStickingLoadAtItsSurfaceSpeed) {
     // the stretch 1 + 1e-4).
     const double speed = (chord(s) - c1) / 1.0;
     std::printf("driven: start fall lengthens at %.7f m/s vs R omega %.7f\n", speed, R * omega);
-    EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::Stick);
+    EXPECT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::Stick);
     EXPECT_NEAR(speed / (R * omega), 1.0, 1e-3);  // required within 0.1 %; measured 2.1e-5 (the stretch 1e-4 changing)
 }
 
@@ -328,14 +328,14 @@ SwingBalance runSwing(const Atwood::Options& o) {
         ts.stepTo(0.05 * i);
         const State& s = integ.getState();
         a.system.realize(s, Stage::Velocity);
-        const double de = a.energy(s) - e0, wf = a.reeving->getFrictionWork(s, 0, 1), wd = a.meter->getWork(s);
+        const double de = a.energy(s) - e0, wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s), wd = a.meter->getWork(s);
         const double wdamp = a.reeving->getDampingWork(s);
         b.worst = std::max(b.worst, std::abs(de + wf + wdamp - wd));
         b.largest = std::max({b.largest, std::abs(de), wf, wdamp, std::abs(wd)});
     }
     const State& s = integ.getState();
-    b.transitions = a.reeving->getNumTractionTransitions(s, 0, 1);
-    b.frictionWork = a.reeving->getFrictionWork(s, 0, 1);
+    b.transitions = a.reeving->getRope(0).getTractionSheave(1).getNumTractionTransitions(s);
+    b.frictionWork = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s);
     b.dampingWork = a.reeving->getDampingWork(s);
     std::printf("swing: %d transitions, W_friction %.4f J, W_damping %.4f J, largest term %.4f J, worst residual "
                 "%.3e J (%.2e)\n",
@@ -428,20 +428,20 @@ SwingEvents runSwingThroughEvents(const Atwood::Options& o) {
             if (status != Integrator::ReachedEventTrigger) continue;
             State& adv = integ.updAdvancedState();
             a.system.realize(adv, Stage::Velocity);
-            const int n0 = a.reeving->getNumTractionTransitions(adv, 0, 1);
-            const bool stick = a.reeving->getTractionMode(adv, 0, 1) == sr::TractionMode::Stick;
+            const int n0 = a.reeving->getRope(0).getTractionSheave(1).getNumTractionTransitions(adv);
+            const bool stick = a.reeving->getRope(0).getTractionSheave(1).getTractionMode(adv) == sr::TractionMode::Stick;
             const double k0 = a.reeving->calcRopeKineticEnergy(adv), m0 = a.energy(adv);
-            const double f0 = a.reeving->getFrictionWork(adv, 0, 1);
+            const double f0 = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(adv);
             HandleEventsResults results;
             a.system.handleEvents(adv, Event::Cause::Triggered, integ.getTriggeredEvents(),
                                   HandleEventsOptions(integ.getConstraintToleranceInUse()), results);
             a.system.realize(adv, Stage::Velocity);
-            if (a.reeving->getNumTractionTransitions(adv, 0, 1) != n0) {
+            if (a.reeving->getRope(0).getTractionSheave(1).getNumTractionTransitions(adv) != n0) {
                 Transition tr;
                 tr.toSlip = stick;
                 tr.dKinetic = a.reeving->calcRopeKineticEnergy(adv) - k0;
                 tr.dMechanical = a.energy(adv) - m0;
-                tr.dFriction = a.reeving->getFrictionWork(adv, 0, 1) - f0;
+                tr.dFriction = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(adv) - f0;
                 w.transitions.push_back(tr);
             }
             integ.reinitialize(results.getLowestModifiedStage(),
@@ -449,13 +449,13 @@ SwingEvents runSwingThroughEvents(const Atwood::Options& o) {
         }
         const State& s = integ.getState();
         a.system.realize(s, Stage::Acceleration);
-        const double de = a.energy(s) - e0, wf = a.reeving->getFrictionWork(s, 0, 1), wd = a.meter->getWork(s);
+        const double de = a.energy(s) - e0, wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s), wd = a.meter->getWork(s);
         const double wdamp = a.reeving->getDampingWork(s);
         b.worst = std::max(b.worst, std::abs(de + wf + wdamp - wd));
         b.largest = std::max({b.largest, std::abs(de), wf, wdamp, std::abs(wd)});
-        const sr::TractionMode mode = a.reeving->getTractionMode(s, 0, 1);
+        const sr::TractionMode mode = a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s);
         if (!momentum || mode == sr::TractionMode::Stick) continue;
-        const double ydot = a.reeving->getSlipRate(s, 0, 1) + R * a.sheave.getOneU(s, 0);
+        const double ydot = a.reeving->getRope(0).getTractionSheave(1).getSlipRate(s) + R * a.sheave.getOneU(s, 0);
         const Vector& z = s.getZ();
         const Vector& zdot = s.getZDot();
         int found = -1, matches = 0;
@@ -490,8 +490,8 @@ SwingEvents runSwingThroughEvents(const Atwood::Options& o) {
         ++w.samples;
     }
     const State& s = integ.getState();
-    b.transitions = a.reeving->getNumTractionTransitions(s, 0, 1);
-    b.frictionWork = a.reeving->getFrictionWork(s, 0, 1);
+    b.transitions = a.reeving->getRope(0).getTractionSheave(1).getNumTractionTransitions(s);
+    b.frictionWork = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s);
     b.dampingWork = a.reeving->getDampingWork(s);
     double slipJump = 0, stickJump = 0, booked = 0;
     for (const Transition& tr : w.transitions) {
@@ -595,11 +595,11 @@ TEST_P(TractionSheaveSlackSide, SlipsAndHoldsTheLoadWhenTheOtherFallGoesSlack) {
     const double rise = a.mass1.getOneQ(s, 0) - y1, travel = 0.3 * 2.0 * 2.0;
     std::printf("slack side, mu %.1f: mode %d, mass 1 rose %.4e m of %.2f m driven, slip distance %.4f m, "
                 "mass 2 at %.4f m\n",
-                mu, static_cast<int>(a.reeving->getTractionMode(s, 0, 1)), rise, travel,
-                a.reeving->getSlipDistance(s, 0, 1), a.mass2.getOneQ(s, 0));
-    EXPECT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart);  // mass 1 side tight
+                mu, static_cast<int>(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s)), rise, travel,
+                a.reeving->getRope(0).getTractionSheave(1).getSlipDistance(s), a.mass2.getOneQ(s, 0));
+    EXPECT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::SlipTowardStart);  // mass 1 side tight
     EXPECT_LT(std::abs(rise), 0.05 * travel);  // it slips: the load is not hauled up
-    EXPECT_GT(std::abs(a.reeving->getSlipDistance(s, 0, 1)), 0.8 * travel);
+    EXPECT_GT(std::abs(a.reeving->getRope(0).getTractionSheave(1).getSlipDistance(s)), 0.8 * travel);
 }
 
 INSTANTIATE_TEST_SUITE_P(Friction, TractionSheaveSlackSide, ::testing::Values(0.2, 10.0));

@@ -198,7 +198,7 @@ Measured run(const Options& o) {
         const State& s = integ.getState();
         p.system.realize(s, Stage::Velocity);
         // E - E0 + W_friction + W_damping = W_drives, against the largest term.
-        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getFrictionWork(s, 0, 1);
+        const double de = p.reeving->calcMechanicalEnergy(s) - e0, wf = p.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s);
         const double wd = p.reeving->getDampingWork(s), wm = p.meter->getWork(s);
         worst = std::max(worst, std::abs(de + wf + wd - wm));
         w.largest = std::max({w.largest, std::abs(de), std::abs(wf), std::abs(wd), std::abs(wm)});
@@ -208,12 +208,12 @@ Measured run(const Options& o) {
         p.system.realize(sv, Stage::Velocity);
         const double pa = p.reeving->getAxialForce(sv, 0, 0, p.reeving->getSpanMaterialRange(sv, 0, 0).second);
         const double pb = p.reeving->getAxialForce(sv, 0, 1, p.reeving->getSpanMaterialRange(sv, 0, 1).first);
-        const double v = p.reeving->getSlipRate(sv, 0, 1);
+        const double v = p.reeving->getRope(0).getTractionSheave(1).getSlipRate(sv);
         w.pa.push_back(pa);
         w.pb.push_back(pb);
         w.rate.push_back(v);
         if (s.getTime() < 0.5 - 1e-12) continue;
-        if (p.reeving->getTractionMode(s, 0, 1) != sr::TractionMode::SlipTowardStart) w.modeAsExpected = false;
+        if (p.reeving->getRope(0).getTractionSheave(1).getTractionMode(s) != sr::TractionMode::SlipTowardStart) w.modeAsExpected = false;
         // alpha measured from the tangent points (the spans' end positions, in L).
         double alpha = closedFormWrapAngle(o);
         if (o.model == sr::SheaveModel::Wrapped) {

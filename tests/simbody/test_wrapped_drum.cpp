@@ -125,7 +125,7 @@ TEST(WrappedDrum, HeldDrumAndSwingingLoadKeepLengthAndEnergy) {
     ts.initialize(s.state);
     double worstLength = 0, worstStored = 0, worstEnergy = 0, largestKinetic = 0, rolledOn = 0, rolledOff = 0,
            worstRoll = 0;
-    const double stored0 = s.reeving->getRopeOnDrum(s.state, 0, 0);
+    const double stored0 = s.reeving->getRope(0).getWinchDrum(0).getRopeOnDrum(s.state);
     const double phi0 = measureDrumGeometry(s, s.state).tangentAngle;
     for (int i = 1; i <= 150; ++i) {
         ts.stepTo(0.02 * i);
@@ -133,7 +133,7 @@ TEST(WrappedDrum, HeldDrumAndSwingingLoadKeepLengthAndEnergy) {
         s.system.realize(st, Stage::Velocity);
         const DrumGeometry g = measureDrumGeometry(s, st);
         worstLength = std::max(worstLength, std::abs(g.arcFromTop + g.spanMaterial - L));
-        const double stored = s.reeving->getRopeOnDrum(st, 0, 0);
+        const double stored = s.reeving->getRope(0).getWinchDrum(0).getRopeOnDrum(st);
         worstStored = std::max(worstStored, std::abs(stored - (kStored + g.arcFromTop)));
         const double kinetic = s.system.calcKineticEnergy(st) + s.reeving->calcRopeKineticEnergy(st);
         largestKinetic = std::max(largestKinetic, kinetic);

@@ -64,7 +64,7 @@ struct SlewingTower {
         rope.properties = {rhoA, EA, 0.0};
         rope.spanDefaults.axialModes = 0;       // straight spans of uniform strain: their material
         rope.spanDefaults.transverseModes = 0;  // is their length over their stretch
-        rope.start = anchorOnTower ? sr::RopeNode(sr::RopeAnchor{tower, anchor}) : sr::RopeNode(sr::RopeAnchor{matter.Ground(), anchor});
+        rope.start = anchorOnTower ? sr::RopeAnchor{tower, anchor} : sr::RopeAnchor{matter.Ground(), anchor};
         if (gripping) {
             sheave = MobilizedBody::Pin(tower, Transform(Rotation(UnitVec3(axis), ZAxis), centre),
                                         Body::Rigid(MassProperties(40, Vec3(0), Inertia(0.9, 0.9, 1.8))), Transform());

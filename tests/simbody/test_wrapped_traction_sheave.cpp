@@ -104,8 +104,8 @@ TEST(WrappedTractionSheave, StickLimitUsesTheGeometrysWrapAngle) {
         const double alpha = a.analyticWrapAngle(a.state);
         EXPECT_LT(alpha, Pi - 0.05);  // the lean is real: 0.12 rad
         EXPECT_NEAR(a.reeving->getWrapAngle(a.state, 0, 1), alpha, 1e-12);
-        EXPECT_NEAR(a.reeving->getTractionLimit(a.state, 0, 1), std::exp(kMu * alpha), 1e-12);
-        const double ratio = a.reeving->getTractionRatio(a.state, 0, 1);
+        EXPECT_NEAR(a.reeving->getRope(0).getTractionSheave(1).getTractionLimit(a.state), std::exp(kMu * alpha), 1e-12);
+        const double ratio = a.reeving->getRope(0).getTractionSheave(1).getTractionRatio(a.state);
         const int slipping = a.reeving->updateTractionModes(a.state);
         EXPECT_EQ(slipping, ratio > std::exp(kMu * alpha) ? 1 : 0) << "m1 " << m1 << " ratio " << ratio;
         EXPECT_EQ(slipping, m1 > 180 ? 1 : 0);  // e^(mu alpha) = 1.83: 1.6 holds, 2.0 slips
@@ -132,21 +132,21 @@ TEST(WrappedTractionSheave, SlipKeepsTheCapstanRatioOfTheChangingWrapAngle) {
         ts.stepTo(0.05 * i);
         const State& s = integ.getState();
         a.system.realize(s, Stage::Velocity);
-        ASSERT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart) << s.getTime();
+        ASSERT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::SlipTowardStart) << s.getTime();
         const double alpha = a.analyticWrapAngle(s);
         if (i == 1) firstAlpha = alpha;
         lastAlpha = alpha;
         worstAngle = std::max(worstAngle, std::abs(a.reeving->getWrapAngle(s, 0, 1) - alpha));
-        worstRatio = std::max(worstRatio, std::abs(a.reeving->getTractionRatio(s, 0, 1) / std::exp(kMu * alpha) - 1));
-        const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.reeving->calcMechanicalEnergy(s) - e0;
+        worstRatio = std::max(worstRatio, std::abs(a.reeving->getRope(0).getTractionSheave(1).getTractionRatio(s) / std::exp(kMu * alpha) - 1));
+        const double wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s), de = a.reeving->calcMechanicalEnergy(s) - e0;
         worstEnergy = std::max(worstEnergy, std::abs(de + wf) / wf);
-        EXPECT_GT(a.reeving->getSlipRate(s, 0, 1), 0);
+        EXPECT_GT(a.reeving->getRope(0).getTractionSheave(1).getSlipRate(s), 0);
     }
     const State& s = integ.getState();
     std::printf("slip: alpha %.6f -> %.6f rad, mass 1 at %.3f m; worst ratio %.2e, angle %.2e rad, energy %.2e of "
                 "W_friction %.3f J\n",
                 firstAlpha, lastAlpha, a.mass1.getOneQ(s, 0), worstRatio, worstAngle, worstEnergy,
-                a.reeving->getFrictionWork(s, 0, 1));
+                a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s));
     EXPECT_GT(std::abs(lastAlpha - firstAlpha), 0.01);  // the geometry did change the law
     EXPECT_LE(worstRatio, 1e-9);
     EXPECT_LE(worstAngle, 1e-12);
@@ -167,8 +167,8 @@ TEST(WrappedTractionSheave, PointSheaveTakesTheChordsAngleOfTheCurrentGeometry) 
         const double alpha = a.analyticWrapAngle(a.state);
         EXPECT_LT(alpha, Pi - 0.1);  // the chords lean: 0.24 rad
         EXPECT_NEAR(a.reeving->getWrapAngle(a.state, 0, 1), alpha, 1e-14);
-        EXPECT_NEAR(a.reeving->getTractionLimit(a.state, 0, 1), std::exp(kMu * alpha), 1e-14);
-        const double ratio = a.reeving->getTractionRatio(a.state, 0, 1);
+        EXPECT_NEAR(a.reeving->getRope(0).getTractionSheave(1).getTractionLimit(a.state), std::exp(kMu * alpha), 1e-14);
+        const double ratio = a.reeving->getRope(0).getTractionSheave(1).getTractionRatio(a.state);
         EXPECT_EQ(a.reeving->updateTractionModes(a.state), ratio > std::exp(kMu * alpha) ? 1 : 0) << ratio;
     }
     WrappedAtwood a(250.0, 100.0, 0.0, sr::SheaveModel::Point);
@@ -184,13 +184,13 @@ TEST(WrappedTractionSheave, PointSheaveTakesTheChordsAngleOfTheCurrentGeometry) 
         ts.stepTo(0.05 * i);
         const State& s = integ.getState();
         a.system.realize(s, Stage::Velocity);
-        ASSERT_EQ(a.reeving->getTractionMode(s, 0, 1), sr::TractionMode::SlipTowardStart) << s.getTime();
+        ASSERT_EQ(a.reeving->getRope(0).getTractionSheave(1).getTractionMode(s), sr::TractionMode::SlipTowardStart) << s.getTime();
         const double alpha = a.analyticWrapAngle(s);
         if (i == 1) firstAlpha = alpha;
         lastAlpha = alpha;
         worstAngle = std::max(worstAngle, std::abs(a.reeving->getWrapAngle(s, 0, 1) - alpha));
-        worstRatio = std::max(worstRatio, std::abs(a.reeving->getTractionRatio(s, 0, 1) / std::exp(kMu * alpha) - 1));
-        const double wf = a.reeving->getFrictionWork(s, 0, 1), de = a.reeving->calcMechanicalEnergy(s) - e0;
+        worstRatio = std::max(worstRatio, std::abs(a.reeving->getRope(0).getTractionSheave(1).getTractionRatio(s) / std::exp(kMu * alpha) - 1));
+        const double wf = a.reeving->getRope(0).getTractionSheave(1).getFrictionWork(s), de = a.reeving->calcMechanicalEnergy(s) - e0;
         worstEnergy = std::max(worstEnergy, std::abs(de + wf) / wf);
     }
     std::printf("point slip: alpha %.6f -> %.6f rad; worst ratio %.2e, angle %.2e rad, energy %.2e of W_friction\n",
@@ -207,7 +207,7 @@ TEST(WrappedTractionSheave, GivenWrapAngleOverridesTheGeometry) {
     WrappedAtwood a(250.0, 100.0, 2.5 * Pi);
     a.system.realize(a.state, Stage::Position);
     EXPECT_EQ(a.reeving->getWrapAngle(a.state, 0, 1), 2.5 * Pi);
-    EXPECT_NEAR(a.reeving->getTractionLimit(a.state, 0, 1), std::exp(kMu * 2.5 * Pi), 1e-12);
+    EXPECT_NEAR(a.reeving->getRope(0).getTractionSheave(1).getTractionLimit(a.state), std::exp(kMu * 2.5 * Pi), 1e-12);
     EXPECT_EQ(a.reeving->updateTractionModes(a.state), 0);  // 2.5 < e^(0.5 pi) = 4.8: holds
 }
 

@@ -100,7 +100,7 @@ TEST(WrappedTurningSheave, RopeOnTheGrooveTurnsWithTheSheave) {
     for (double theta : {0.0, 0.7, -2.0, 9.0}) {
         m.pin->setAngle(s, theta);
         m.system.realize(s, SimTK::Stage::Position);
-        const double sRef = m.reeving->getRopeSpec(0).sheaves[0].materialCoordinateAtZeroAngle;
+        const double sRef = std::get<TurningSheave>(m.reeving->getRopeSpec(0).sheaves[0]).materialCoordinateAtZeroAngle;
         worst = std::max(worst, std::abs(m.reeving->getMaterialCoordinate(s, 0, 1) - (sRef + R * theta - R * kPi / 2)));
         EXPECT_NEAR(m.reeving->getArcLength(s, 0, 1), kPi * R, 1e-12);
         EXPECT_NEAR(m.reeving->getWrapAngle(s, 0, 1), kPi, 1e-12);

@@ -1,6 +1,9 @@
 #include "SimbodyReeving/element/RopeModel.h"
 
 #include "RopeWorkspace.h"
+#include "SimbodyReeving/element/AxialCondensation.h"
+#include "SimbodyReeving/element/BandedLU.h"
+#include "SimbodyReeving/element/GrooveArc.h"
 #include "SimbodyReeving/element/WrapStationMap.h"
 
 #include <Eigen/Geometry>
@@ -76,6 +79,19 @@ void applyRowTerms(const Term* t, const Term* end, const double* M, const double
     }
 }
 }  // namespace
+
+template <int Dim>
+RopeModel<Dim>::~RopeModel() = default;
+template <int Dim>
+RopeModel<Dim>::RopeModel(const RopeModel&) = default;
+template <int Dim>
+RopeModel<Dim>& RopeModel<Dim>::operator=(const RopeModel&) = default;
+template <int Dim>
+RopeModel<Dim>::RopeModel(RopeModel&&) noexcept = default;
+template <int Dim>
+RopeModel<Dim>& RopeModel<Dim>::operator=(RopeModel&&) noexcept = default;
+template <int Dim>
+int RopeModel<Dim>::numWrappedNodes() const { return static_cast<int>(arcs_.size()); }
 
 template <int Dim>
 RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength,
@@ -474,8 +490,8 @@ const double* RopeModel<Dim>::elementMass(const RopeData<Dim>& data, int e, int&
 }
 
 template <int Dim>
-void RopeModel<Dim>::arcCoordinates(int node, const Eigen::VectorXd& x, double s,
-                                    typename GrooveArc<Dim>::Coordinates& a) const {
+template <class Coordinates>
+void RopeModel<Dim>::arcCoordinates(int node, const Eigen::VectorXd& x, double s, Coordinates& a) const {
     using Arc = GrooveArc<Dim>;
     const int o = nodeOffset_[node];
     a.template segment<Dim>(Arc::centreIndex()) = x.template segment<Dim>(o + wrappedCentreOffset());
@@ -1992,7 +2008,22 @@ double RopeModel<Dim>::constraintError(const RopeData<Dim>& data, int k) const {
 }
 
 template <int Dim>
-RopeData<Dim>::RopeData() : workspace_(std::make_unique<detail::RopeWorkspace<Dim>>()) {}
+RopeData<Dim>::Scratch::Scratch() : p_(std::make_unique<detail::RopeWorkspace<Dim>>()) {}
+template <int Dim>
+RopeData<Dim>::Scratch::~Scratch() = default;
+template <int Dim>
+RopeData<Dim>::Scratch::Scratch(const Scratch& o) : p_(std::make_unique<detail::RopeWorkspace<Dim>>(*o.p_)) {}
+template <int Dim>
+typename RopeData<Dim>::Scratch& RopeData<Dim>::Scratch::operator=(const Scratch& o) {
+    if (this != &o) p_ = std::make_unique<detail::RopeWorkspace<Dim>>(*o.p_);
+    return *this;
+}
+template <int Dim>
+RopeData<Dim>::Scratch::Scratch(Scratch&&) noexcept = default;
+template <int Dim>
+typename RopeData<Dim>::Scratch& RopeData<Dim>::Scratch::operator=(Scratch&&) noexcept = default;
+template <int Dim>
+RopeData<Dim>::RopeData() = default;
 template <int Dim>
 RopeData<Dim>::~RopeData() = default;
 template <int Dim>

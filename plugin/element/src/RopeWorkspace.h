@@ -3,7 +3,9 @@
 /// Internal to the element layer (not installed): the scratch of a RopeModel evaluation, held by
 /// RopeData behind a pointer so it stays out of the public headers.
 
+#include "SimbodyReeving/element/AxialCondensation.h"
 #include "SimbodyReeving/element/BandedLU.h"
+#include "SimbodyReeving/element/GrooveArc.h"
 #include "SimbodyReeving/element/RopeModel.h"
 #include "SimbodyReeving/element/WrapStationMap.h"
 #include "StoredRope.h"

@@ -472,7 +472,7 @@ double BoomCraneScene::hoistTorque(const SimTK::State& s) const { return -hoistD
 
 double BoomCraneScene::ropeOnDrum(const SimTK::State& s, int rope) const {
     checkRopeNode("ropeOnDrum", rope, 0, 0, 0);
-    return reeving_->getRopeOnDrum(s, rope, 0);
+    return reeving_->getRope(rope).getWinchDrum(0).getRopeOnDrum(s);
 }
 
 double BoomCraneScene::energyResidual(const SimTK::State& s, double e0) const {

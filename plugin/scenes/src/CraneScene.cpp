@@ -580,7 +580,7 @@ double CraneScene::fallTopForce(const SimTK::State& s, int fall) const {
 
 double CraneScene::drumSpeed(const SimTK::State& s) const { return drum_->getOneU(s, 0); }
 
-double CraneScene::ropeOnDrum(const SimTK::State& s) const { return reeving_->getRopeOnDrum(s, 0, 0); }
+double CraneScene::ropeOnDrum(const SimTK::State& s) const { return reeving_->getRope(0).getWinchDrum(0).getRopeOnDrum(s); }
 
 double CraneScene::motorTorque(const SimTK::State& s) const {
     return -drum_->getOneTau(s, SimTK::MobilizerUIndex(0));
@@ -627,7 +627,7 @@ double CraneScene::ropeLengthError(const SimTK::State& s) const {
         l += range.second - range.first;
     }
     const RopeSpec& spec = reeving_->getRopeSpec(0);  // (wrapped: the rope stored up to the drum's top)
-    return l - (spec.unstretchedLength + spec.start.ropeOnDrum);
+    return l - (spec.unstretchedLength + std::get<WinchDrum>(spec.start).ropeOnDrum);
 }
 
 double CraneScene::ropeOnSheaves(const SimTK::State& s) const {

@@ -341,6 +341,8 @@ double ElevatorScene::pitSheaveHeight(const SimTK::State& s) const {
 double ElevatorScene::carVelocity(const SimTK::State& s) const { return car_->getOneU(s, 0); }
 double ElevatorScene::carAcceleration(const SimTK::State& s) const { return car_->getOneUDot(s, 0); }
 double ElevatorScene::ropeTravel(const SimTK::State& s) const { return parameters_.sheaveRadius * sheave_->getOneQ(s, 0); }
+TractionSheaveHandle ElevatorScene::tractionSheave() const { return reeving_->getRope(0).getTractionSheave(tractionNode()); }
+
 // Spans tractionNode() - 1 and tractionNode() meet at the traction sheave.
 double ElevatorScene::carSideForce(const SimTK::State& s) const {
     const int span = tractionNode() - 1;

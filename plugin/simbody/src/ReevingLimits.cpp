@@ -163,27 +163,29 @@ const RopeRecord::DrivenNode& drivenNodeAt(const RopeRecord& r, int node, const 
 }
 }  // namespace
 
-double ReevingSubsystem::getDrivenNodeTorque(const State& s, int rope, int node) const {
-    const Guts& g = getGuts();
+double PinnedNodeHandle::getTorque(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const ReevingSubsystem::Guts& g = guts();
     const RopeRecord& r = ropeAt(g, rope);
     const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum or TurningSheave");
     if (s.getSystemStage() < Stage::Dynamics)
-        throw std::logic_error("ReevingSubsystem::getDrivenNodeTorque: realize the state to Stage::Dynamics first");
+        throw std::logic_error("PinnedNodeHandle::getTorque: realize the state to Stage::Dynamics first");
     const RopeCache& c = g.positionCache(s).ropes[rope];
     const Eigen::VectorXd reaction = g.ropeReaction(s, r, c);
     const int driven = r.drivenIndex(node);  // g'(theta) f_s: the rope's force on s as a torque
     return d.law.slope(c.drivenAngles[driven]) * reaction[r.drivenExternal(driven)];
 }
 
-double ReevingSubsystem::getDrivenNodePower(const State& s, int rope, int node) const {
-    const double torque = getDrivenNodeTorque(s, rope, node);
-    return torque * ropeAt(getGuts(), rope).nodeSpec(node).body.getOneU(s, 0);
+double PinnedNodeHandle::getPower(const State& s) const {
+    const double torque = getTorque(s);
+    return torque * ropeAt(guts(), getRopeIndex()).nodeSpec(getNodeIndex()).body.getOneU(s, 0);
 }
 
-double ReevingSubsystem::getRopeOnDrum(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
+double WinchDrumHandle::getRopeOnDrum(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
     const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum");
-    return ropeOnDrum(getGuts().positionCache(s).ropes[rope], r, d);
+    return ropeOnDrum(guts().positionCache(s).ropes[rope], r, d);
 }
 
 const std::string& ReevingSubsystem::getLimitReached() const { return getGuts().limitReached(); }

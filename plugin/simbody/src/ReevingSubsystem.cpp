@@ -23,6 +23,70 @@ namespace SimbodyReeving {
 
 using namespace detail;
 
+// ---- rope specs --------------------------------------------------------------------------------
+
+RopeNode RopeSpec::node(int k) const {
+    if (k < 0 || k >= numNodes())
+        throw std::out_of_range("RopeSpec::node: node index = " + std::to_string(k) + " is outside 0.." +
+                                std::to_string(numNodes() - 1));
+    const auto widen = [](const auto& kind) { return RopeNode(kind); };
+    if (k == 0) return std::visit(widen, start);
+    if (k == numNodes() - 1) return std::visit(widen, end);
+    return std::visit(widen, sheaves[static_cast<std::size_t>(k - 1)]);
+}
+
+namespace detail {
+NodeSpec toNodeSpec(const RopeNode& node) {
+    NodeSpec n;
+    struct Fill {
+        NodeSpec& n;
+        void operator()(const RopeAnchor& a) const {
+            n.kind = NodeKind::Anchor;
+            n.body = a.body;
+            n.point = a.station;
+        }
+        void operator()(const DeviationSheave& d) const {
+            n.kind = NodeKind::DeviationSheave;
+            n.body = d.body;
+            n.point = d.centre;
+            n.radius = d.radius;
+            n.sense = d.wrapSense;
+            n.axis = d.axis;
+        }
+        void operator()(const WinchDrum& w) const {
+            n.kind = NodeKind::WinchDrum;
+            n.body = w.body;
+            n.point = w.centre;
+            n.radius = w.radius;
+            n.sense = w.payoutSense;
+            n.ropeOnDrum = w.ropeOnDrum;
+            n.pitch = w.pitch;
+        }
+        void operator()(const TurningSheave& t) const {
+            n.kind = NodeKind::TurningSheave;
+            n.body = t.body;
+            n.point = t.centre;
+            n.radius = t.radius;
+            n.sense = t.sense;
+            n.materialCoordinateAtZeroAngle = t.materialCoordinateAtZeroAngle;
+        }
+        void operator()(const TractionSheave& t) const {
+            n.kind = NodeKind::TractionSheave;
+            n.body = t.body;
+            n.point = t.centre;
+            n.radius = t.radius;
+            n.sense = t.sense;
+            n.materialCoordinateAtZeroAngle = t.materialCoordinateAtZeroAngle;
+            n.frictionCoefficient = t.frictionCoefficient;
+            n.wrapAngle = t.wrapAngle;
+            n.slipModel = t.slipModel;
+        }
+    };
+    std::visit(Fill{n}, node);
+    return n;
+}
+}  // namespace detail
+
 
 // ---- ReevingSubsystem ------------------------------------------------------------------------
 
@@ -101,10 +165,11 @@ void ReevingSubsystem::Guts::checkStateGravity(const State& s) const {
                                "and realize the topology again");
 }
 
-int ReevingSubsystem::addRope(const RopeSpec& specIn) {
+RopeHandle ReevingSubsystem::addRope(const RopeSpec& specIn) {
     Guts& g = updGuts();
     RopeRecord r;
     r.spec = specIn;
+    for (int k = 0; k < r.spec.numNodes(); ++k) r.nodeSpecs.push_back(toNodeSpec(r.spec.node(k)));
     const RopeSpec& spec = r.spec;
     const std::string who = "rope '" + spec.name + "': ";
     const SimTK::SimbodyMatterSubsystem* matter =
@@ -114,19 +179,13 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
             : nullptr;
     auto number = [](const std::string& what, double v, const char* must) { return mustBe(what, v, must); };
     for (int k = 0; k < r.numNodes(); ++k) {
-        const RopeNode& n = r.nodeSpec(k);
-        const bool end = k == 0 || k == r.numNodes() - 1;
+        const NodeSpec& n = r.nodeSpec(k);
         const std::string name = who + (k == 0                  ? std::string("start node")
                                         : k == r.numNodes() - 1 ? std::string("end node")
                                                                 : "sheave " + std::to_string(k - 1)) +
                                  " (" + nodeKindName(n.kind) + ", node " + std::to_string(k) + ")";
         visitNodeKind(n.kind, [&](auto unit) {
             using Unit = decltype(unit);
-            if (end && !Unit::kAtEnds)
-                invalid(name + ": a rope end must be an Anchor or a WinchDrum (a sheave needs a span on both sides)");
-            if (!end && !Unit::kInPath)
-                invalid(name + ": a node inside the path must be a DeviationSheave, TurningSheave or TractionSheave (a "
-                               "rope fastened mid-path is two ropes)");
             if (n.body.isEmptyHandle()) invalid(name + " has no body");
             if (matter && &n.body.getMatterSubsystem() != matter)
                 invalid(name + " is on a body of another system's matter subsystem");
@@ -164,7 +223,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     // g(theta), nodes/DrivenLaw.h) at drums and turning sheaves.
     r.materialKinds.resize(r.numNodes());
     for (int k = 0; k < r.numNodes(); ++k) {
-        const RopeNode& n = r.nodeSpec(k);
+        const NodeSpec& n = r.nodeSpec(k);
         const std::string name = nodeKindName(n.kind);
         NodeSite site{r, k, n, name};
         visitNodeKind(n.kind, [&](auto unit) { decltype(unit)::addMaterialRelation(site); });
@@ -176,7 +235,7 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
     if (spec.sheaveModel == SheaveModel::Wrapped) {
         const Vec3 normal = r.planar ? Vec3(SimTK::UnitVec3(spec.planeNormal)) : Vec3(0);
         for (int k = 0; k < r.numNodes(); ++k) {
-            const RopeNode& n = r.nodeSpec(k);
+            const NodeSpec& n = r.nodeSpec(k);
             const std::string name = nodeKindName(n.kind);
             const NodeSite site{r, k, n, name};
             r.wraps[k] = visitNodeKind(n.kind, [&](auto unit) { return decltype(unit)::wrap(site, normal); });
@@ -229,7 +288,45 @@ int ReevingSubsystem::addRope(const RopeSpec& specIn) {
                                    r.driven[d].momentumSlip);
     g.ropes.push_back(std::move(r));
     invalidateSubsystemTopologyCache();
-    return static_cast<int>(g.ropes.size()) - 1;
+    return RopeHandle(g, static_cast<int>(g.ropes.size()) - 1);
+}
+
+RopeHandle ReevingSubsystem::getRope(int rope) const {
+    ropeAt(getGuts(), rope);
+    return RopeHandle(getGuts(), rope);
+}
+
+// ---- handles ---------------------------------------------------------------------------------
+
+const ReevingSubsystem& RopeNodeHandle::getReevingSubsystem() const {
+    return ReevingSubsystem::downcast(SimTK::ForceSubsystem::downcast(guts_->getOwnerSubsystemHandle()));
+}
+
+int RopeHandle::getNumNodes() const { return ropeAt(*guts_, index_).numNodes(); }
+
+namespace {
+/// Node `node` of rope r, checked to be of kind `kind` (its handle's).
+void checkNodeKind(const RopeRecord& r, int node, NodeKind kind) {
+    if (node < 0 || node >= r.numNodes())
+        invalid("rope '" + r.spec.name + "': node index = " + std::to_string(node) + " is outside 0.." +
+                std::to_string(r.numNodes() - 1));
+    if (r.nodeSpec(node).kind != kind)
+        invalid("rope '" + r.spec.name + "': node " + std::to_string(node) + " (" +
+                nodeKindName(r.nodeSpec(node).kind) + ") is not a " + nodeKindName(kind));
+}
+}  // namespace
+
+WinchDrumHandle RopeHandle::getWinchDrum(int node) const {
+    checkNodeKind(ropeAt(*guts_, index_), node, NodeKind::WinchDrum);
+    return WinchDrumHandle(*guts_, index_, node);
+}
+TurningSheaveHandle RopeHandle::getTurningSheave(int node) const {
+    checkNodeKind(ropeAt(*guts_, index_), node, NodeKind::TurningSheave);
+    return TurningSheaveHandle(*guts_, index_, node);
+}
+TractionSheaveHandle RopeHandle::getTractionSheave(int node) const {
+    checkNodeKind(ropeAt(*guts_, index_), node, NodeKind::TractionSheave);
+    return TractionSheaveHandle(*guts_, index_, node);
 }
 
 int ReevingSubsystem::getNumRopes() const { return static_cast<int>(getGuts().ropes.size()); }

@@ -45,11 +45,37 @@ inline std::string str(const SimTK::Vec3& v) {
     return o.str();
 }
 
+/// The kind of a rope node (the alternative of its RopeNode): the closed set the internals dispatch
+/// on (nodes/NodeKinds.h).
+enum class NodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave, TractionSheave };
+
+/// A rope node's spec as one flat record, converted once from its kind's struct at addRope: the
+/// fields its kind does not have keep their defaults.
+struct NodeSpec {
+    NodeKind kind = NodeKind::Anchor;
+    SimTK::MobilizedBody body;  // Ground allowed for Anchor and DeviationSheave; a Pin for the others
+    SimTK::Vec3 point{0};       // station (Anchor) or centre, in the body frame [m]
+    double radius = 0;          // sheaves and drums [m]
+    int sense = 1;              // WinchDrum: payoutSense; TurningSheave, TractionSheave: sense;
+                                // DeviationSheave: wrapSense
+    double ropeOnDrum = 0;      // WinchDrum [m]
+    double pitch = 0;           // WinchDrum [m]
+    double materialCoordinateAtZeroAngle = 0;  // TurningSheave, TractionSheave [m]
+    double frictionCoefficient = 0;            // TractionSheave [-]
+    double wrapAngle = 0;                      // TractionSheave [rad]; 0: from the geometry
+    TractionSlip slipModel = TractionSlip::CapstanConstraint;  // TractionSheave
+    SimTK::Vec3 axis{0};        // DeviationSheave of a spatial wrapped rope: the groove's axis
+};
+
+/// The flat record of a node (see NodeSpec).
+NodeSpec toNodeSpec(const NodeSpec& node);
+
 /// Model (fixed for a simulation; the planar model is built at realizeTopology, the spatial one is
 /// state, see SpatialFrames):
 /// One rope: its spec, its model (planar or spatial) and where its state lives.
 struct RopeRecord {
     RopeSpec spec;
+    std::vector<NodeSpec> nodeSpecs;  // per node: its spec as a flat record (toNodeSpec)
     bool planar = false;
     Eigen::Vector3d e1, e2, normal;  // plane basis (planar ropes)
     Eigen::Matrix<double, 3, 2> planeBasis = Eigen::Matrix<double, 3, 2>::Zero();  // [e1 e2]
@@ -115,14 +141,10 @@ struct RopeRecord {
 
     int numSpans() const { return static_cast<int>(spec.sheaves.size()) + 1; }
     int numNodes() const { return numSpans() + 1; }
-    const RopeNode& nodeSpec(int k) const {
-        if (k == 0) return spec.start;
-        if (k == numNodes() - 1) return spec.end;
-        return spec.sheaves[k - 1];
-    }
+    const NodeSpec& nodeSpec(int k) const { return nodeSpecs[static_cast<std::size_t>(k)]; }
     // Node k: (body, station)
     std::pair<const SimTK::MobilizedBody*, SimTK::Vec3> node(int k) const {
-        const RopeNode& n = nodeSpec(k);
+        const NodeSpec& n = nodeSpec(k);
         return {&n.body, n.point};
     }
     /// Number of stations the rope's model takes: its nodes, then its axis stations.

@@ -1,4 +1,4 @@
-// ReevingSubsystem::Guts: traction sheaves (RopeNodeKind::TractionSheave). Stick is a Driven node
+// ReevingSubsystem::Guts: traction sheaves (NodeKind::TractionSheave). Stick is a Driven node
 // whose offset is state; slip makes the node MaterialNode::Slipping with the capstan ratio of the
 // slip's direction; the transitions are events; the friction work is a Z entry. Written once for
 // planar (RopeModel<2>) and spatial (RopeModel<3>) ropes: Guts::withRope and tractionPhaseModel.
@@ -419,45 +419,50 @@ void detail::installTractionHandler(System& system, SubsystemIndex reeving, int 
 
 // ---- public queries ---------------------------------------------------------------------------
 
-TractionMode ReevingSubsystem::getTractionMode(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
-    return getGuts().tractionStates(s).ropes[rope][tractionAt(r, node).tractionIndex].mode;
+TractionMode TractionSheaveHandle::getTractionMode(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
+    return guts().tractionStates(s).ropes[rope][tractionAt(r, node).tractionIndex].mode;
 }
 
-double ReevingSubsystem::getSlipRate(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
+double TractionSheaveHandle::getSlipRate(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
     const RopeRecord::DrivenNode& d = tractionAt(r, node);
     if (s.getSystemStage() < Stage::Velocity)
-        throw std::logic_error("ReevingSubsystem::getSlipRate: realize the state to Stage::Velocity first");
-    return getGuts().slipRate(s, r, d);
+        throw std::logic_error("TractionSheaveHandle::getSlipRate: realize the state to Stage::Velocity first");
+    return guts().slipRate(s, r, d);
 }
 
-double ReevingSubsystem::getSlipDistance(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
+double TractionSheaveHandle::getSlipDistance(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
     const RopeRecord::DrivenNode& d = tractionAt(r, node);
     // The slip of the current phase (s_k off the surface where it arrives; 0 in stick) plus the
     // offset the stick phases so far have accumulated.
-    const RopeCache& c = getGuts().positionCache(s).ropes[rope];
-    if (getGuts().inMomentumSlip(s, r, d))  // Y over the groove's top, less the pin's turn
-        return d.law.offsetOf(c.slipStates[d.tractionIndex], d.angle.angle(getGuts().angleSite(s, r, d))) - d.sRef;
-    const double sStick = getGuts().tractionStates(s).ropes[rope][d.tractionIndex].sStick;
+    const RopeCache& c = guts().positionCache(s).ropes[rope];
+    if (guts().inMomentumSlip(s, r, d))  // Y over the groove's top, less the pin's turn
+        return d.law.offsetOf(c.slipStates[d.tractionIndex], d.angle.angle(guts().angleSite(s, r, d))) - d.sRef;
+    const double sStick = guts().tractionStates(s).ropes[rope][d.tractionIndex].sStick;
     return ReevingSubsystem::Guts::withRope(r, c, [&](const auto& model, const auto& data) {
                return data.materialCoordinates[node] - model.surfaceCoordinate(data, node);
            }) + sStick - d.sRef;
 }
 
-double ReevingSubsystem::getTractionRatio(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
+double TractionSheaveHandle::getTractionRatio(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
     tractionAt(r, node);
-    const auto [pa, pb] = getGuts().nodeAxialForces(s, r, node);
+    const auto [pa, pb] = guts().nodeAxialForces(s, r, node);
     return pb > 0 ? pa / pb : std::numeric_limits<double>::quiet_NaN();
 }
 
-double ReevingSubsystem::getTractionLimit(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
+double TractionSheaveHandle::getTractionLimit(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
     const RopeRecord::DrivenNode& d = tractionAt(r, node);
-    getGuts().positionCache(s);  // Stage::Position: the wrap angle is resolved
-    return getGuts().tractionLimit(s, r, d);
+    guts().positionCache(s);  // Stage::Position: the wrap angle is resolved
+    return guts().tractionLimit(s, r, d);
 }
 
 double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const {
@@ -479,18 +484,20 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
             " is neither a TractionSheave, a wrapped sheave nor a sheave of a planar rope: it has no wrap angle");
 }
 
-double ReevingSubsystem::getFrictionPower(const State& s, int rope, int node) const {
-    const double v = getSlipRate(s, rope, node);
-    const RopeRecord& r = ropeAt(getGuts(), rope);
-    if (getGuts().inMomentumSlip(s, r, r.driven[r.drivenIndex(node)])) return getGuts().momentumSlip(s, r, r.driven[r.drivenIndex(node)]).workRate;
+double TractionSheaveHandle::getFrictionPower(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const double v = getSlipRate(s);
+    const RopeRecord& r = ropeAt(guts(), rope);
+    if (guts().inMomentumSlip(s, r, r.driven[r.drivenIndex(node)])) return guts().momentumSlip(s, r, r.driven[r.drivenIndex(node)]).workRate;
     if (v == 0) return 0;
-    const auto [pa, pb] = getGuts().nodeAxialForces(s, ropeAt(getGuts(), rope), node);
+    const auto [pa, pb] = guts().nodeAxialForces(s, ropeAt(guts(), rope), node);
     return (pa - pb) * v;
 }
 
-double ReevingSubsystem::getFrictionWork(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
-    return getGuts().getZ(s)[r.tractionZOffset + tractionAt(r, node).tractionIndex];
+double TractionSheaveHandle::getFrictionWork(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
+    return guts().getZ(s)[r.tractionZOffset + tractionAt(r, node).tractionIndex];
 }
 
 double ReevingSubsystem::getTotalFrictionWork(const State& s) const {
@@ -500,9 +507,10 @@ double ReevingSubsystem::getTotalFrictionWork(const State& s) const {
     return w;
 }
 
-int ReevingSubsystem::getNumTractionTransitions(const State& s, int rope, int node) const {
-    const RopeRecord& r = ropeAt(getGuts(), rope);
-    return getGuts().tractionStates(s).ropes[rope][tractionAt(r, node).tractionIndex].transitions;
+int TractionSheaveHandle::getNumTractionTransitions(const State& s) const {
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
+    return guts().tractionStates(s).ropes[rope][tractionAt(r, node).tractionIndex].transitions;
 }
 
 int ReevingSubsystem::updateTractionModes(State& s) const {

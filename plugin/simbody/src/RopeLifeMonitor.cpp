@@ -5,7 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 namespace SimbodyReeving {
 
@@ -26,7 +28,17 @@ SimTK::Vec3 lifePinAxisInGround(const SimTK::State& s, const SimTK::MobilizedBod
     return SimTK::Vec3((pin.getBodyRotation(s) * pin.getOutboardFrame(s).R()).z());
 }
 
-bool lifeIsSheaveOrDrum(RopeNodeKind kind) { return kind != RopeNodeKind::Anchor; }
+/// The radius of a sheave or drum [m]; 0 at an anchor.
+double lifeNodeRadius(const RopeNode& node) {
+    return std::visit(
+        [](const auto& n) -> double {
+            if constexpr (std::is_same_v<std::decay_t<decltype(n)>, RopeAnchor>)
+                return 0.0;
+            else
+                return n.radius;
+        },
+        node);
+}
 
 }  // namespace
 
@@ -82,11 +94,12 @@ RopeLifeMonitor::RopeLifeMonitor(const ReevingSubsystem& reeving, int rope, cons
     const RopeSpec& spec = reeving.getRopeSpec(rope);
     const int numNodes = reeving.getNumSpans(rope) + 1;
     for (int k = 0; k < numNodes; ++k) {
-        const RopeNode& node = k == 0 ? spec.start : k + 1 == numNodes ? spec.end : spec.sheaves[k - 1];
-        if (!lifeIsSheaveOrDrum(node.kind)) continue;
-        const double ratio = 2.0 * node.radius / d;
+        const RopeNode node = spec.node(k);
+        if (std::holds_alternative<RopeAnchor>(node)) continue;
+        const double radius = lifeNodeRadius(node);
+        const double ratio = 2.0 * radius / d;
         if (!(ratio >= 1))
-            lifeMonitorInvalid("rope '" + spec.name + "', node " + std::to_string(k) + ": D/d = 2 R / d = 2 * " + lifeNumber(node.radius) +
+            lifeMonitorInvalid("rope '" + spec.name + "', node " + std::to_string(k) + ": D/d = 2 R / d = 2 * " + lifeNumber(radius) +
                     " / " + lifeNumber(d) + " = " + lifeNumber(ratio) + " is below 1 (a sheave narrower than the rope)");
         watchedNodes_.push_back(k);
         diameterRatios_.push_back(ratio);
@@ -119,26 +132,35 @@ std::vector<RopeLifeMonitor::NodeSample> RopeLifeMonitor::sampleNodes(const SimT
             n.lower = -kLifeInf;
             n.upper = s;
             n.tensionLower = n.tensionUpper = reeving_.getAxialForce(state, rope_, 0, s);
-            axis = double(spec.start.sense) * lifePinAxisInGround(state, spec.start.body);
+            const WinchDrum& drum = std::get<WinchDrum>(spec.start);
+            axis = double(drum.payoutSense) * lifePinAxisInGround(state, drum.body);
         } else if (k == numSpans) {  // a drum at the end
             const double s = reeving_.getSpanMaterialRange(state, rope_, numSpans - 1).second;
             n.lower = s;
             n.upper = kLifeInf;
             n.tensionLower = n.tensionUpper = reeving_.getAxialForce(state, rope_, numSpans - 1, s);
-            axis = -double(spec.end.sense) * lifePinAxisInGround(state, spec.end.body);
+            const WinchDrum& drum = std::get<WinchDrum>(spec.end);
+            axis = -double(drum.payoutSense) * lifePinAxisInGround(state, drum.body);
         } else {  // a sheave: from the end of span k - 1 to the start of span k
             n.lower = reeving_.getSpanMaterialRange(state, rope_, k - 1).second;
             n.upper = reeving_.getSpanMaterialRange(state, rope_, k).first;
             n.tensionLower = reeving_.getAxialForce(state, rope_, k - 1, n.lower);
             n.tensionUpper = reeving_.getAxialForce(state, rope_, k, n.upper);
-            const RopeNode& node = spec.sheaves[k - 1];
+            const RopeSheave& node = spec.sheaves[k - 1];
             if (spec.sheaveModel == SheaveModel::Wrapped) {  // the wrap sense (half a turn: the chords are parallel)
-                const SimTK::Vec3 grooveAxis =
-                    node.kind == RopeNodeKind::DeviationSheave
-                        ? (planeNormal_.normSqr() > 0 ? planeNormal_
-                                                      : SimTK::Vec3(node.body.getBodyRotation(state) * node.axis))
-                        : SimTK::Vec3(-double(node.sense) * lifePinAxisInGround(state, node.body));
-                axis = node.kind == RopeNodeKind::DeviationSheave ? double(node.sense) * grooveAxis : grooveAxis;
+                if (const auto* idler = std::get_if<DeviationSheave>(&node)) {
+                    const SimTK::Vec3 grooveAxis = planeNormal_.normSqr() > 0
+                                                       ? planeNormal_
+                                                       : SimTK::Vec3(idler->body.getBodyRotation(state) * idler->axis);
+                    axis = double(idler->wrapSense) * grooveAxis;
+                } else {  // a TurningSheave or TractionSheave: -sense times its pin axis
+                    std::visit(
+                        [&](const auto& pinned) {
+                            if constexpr (!std::is_same_v<std::decay_t<decltype(pinned)>, DeviationSheave>)
+                                axis = -double(pinned.sense) * lifePinAxisInGround(state, pinned.body);
+                        },
+                        node);
+                }
             } else {  // a point sheave: the turn between the two chords
                 axis = SimTK::cross(chord(k - 1), chord(k));
             }
@@ -221,8 +243,9 @@ void RopeLifeMonitor::record(const SimTK::State& state) {
         const int numSpans = reeving_.getNumSpans(rope_);
         sMin_ = reeving_.getSpanMaterialRange(state, rope_, 0).first;
         sMax_ = reeving_.getSpanMaterialRange(state, rope_, numSpans - 1).second;
-        if (spec.start.kind == RopeNodeKind::WinchDrum) sMin_ -= reeving_.getRopeOnDrum(state, rope_, 0);
-        if (spec.end.kind == RopeNodeKind::WinchDrum) sMax_ += reeving_.getRopeOnDrum(state, rope_, numSpans);
+        const RopeHandle rope = reeving_.getRope(rope_);
+        if (std::holds_alternative<WinchDrum>(spec.start)) sMin_ -= rope.getWinchDrum(0).getRopeOnDrum(state);
+        if (std::holds_alternative<WinchDrum>(spec.end)) sMax_ += rope.getWinchDrum(numSpans).getRopeOnDrum(state);
         const int numSections = std::max(1, static_cast<int>(std::ceil((sMax_ - sMin_) / ls - 1e-9)));
         const int numBins = static_cast<int>(options_.tensionBinEdges.size()) + 1;
         sections_.assign(numSections, RopeSectionCount{});

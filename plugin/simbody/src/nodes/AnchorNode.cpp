@@ -1,4 +1,4 @@
-// RopeNodeKind::Anchor: a rope end fastened to a body.
+// NodeKind::Anchor: a rope end fastened to a body.
 
 #include "NodeKinds.h"
 

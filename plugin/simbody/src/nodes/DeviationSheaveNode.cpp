@@ -1,4 +1,4 @@
-// RopeNodeKind::DeviationSheave: a frictionless idler; s from the tension equality (paper eq 32).
+// NodeKind::DeviationSheave: a frictionless idler; s from the tension equality (paper eq 32).
 
 #include "NodeKinds.h"
 
@@ -17,7 +17,7 @@ void DeviationSheaveNode::addMaterialRelation(NodeSite& site) {
 }
 
 NodeWrap DeviationSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
-    const RopeNode& n = site.spec;
+    const NodeSpec& n = site.spec;
     const std::string name = "rope '" + site.rope.spec.name + "': sheave " + std::to_string(site.node);
     if (n.sense != 1 && n.sense != -1)
         invalid(name + " wrap sense = " + std::to_string(n.sense) + " must be +1 or -1");

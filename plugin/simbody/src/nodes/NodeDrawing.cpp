@@ -70,7 +70,7 @@ void TractionSheaveNode::draw(const NodeDrawing& drawing) { TurningSheaveNode::d
 
 void WinchDrumNode::draw(const NodeDrawing& drawing) {
     // Core and flanges; the drawn length holds the rope stored at pin angle 0 on one layer.
-    const RopeNode& n = drawing.spec();
+    const NodeSpec& n = drawing.spec();
     const double d = drawing.ropeDiameter;
     const Vec3 centre = drawing.centre();
     const auto [axis, radial] = pinAxes(drawing.state, n.body);
@@ -89,7 +89,7 @@ void WinchDrumNode::draw(const NodeDrawing& drawing) {
     // The stored rope, wound from its fastening (body-fixed, radial direction) in layers of
     // turnsPerLayer turns; body angle phi = sense u / rho along the wound length u, so the point
     // where the rope leaves the drum stays put in Ground while the drum turns.
-    const double stored = drawing.reeving.getRopeOnDrum(drawing.state, drawing.rope.index, drawing.node);
+    const double stored = drawing.reeving.getRope(drawing.rope.index).getWinchDrum(drawing.node).getRopeOnDrum(drawing.state);
     const Vec3 tangent = SimTK::cross(axis, radial);
     const int turnsPerLayer = std::max(1, static_cast<int>(std::floor(length / d)));
     const int segmentsPerTurn = 16;

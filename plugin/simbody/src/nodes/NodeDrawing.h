@@ -18,7 +18,7 @@ struct NodeDrawing {
     int node;
     double ropeDiameter;
     SimTK::Array_<SimTK::DecorativeGeometry>& geometry;
-    const RopeNode& spec() const { return rope.nodeSpec(node); }
+    const NodeSpec& spec() const { return rope.nodeSpec(node); }
     SimTK::Vec3 centre() const { return toSimTK(Eigen::Vector3d(cache.nodes3.col(node))); }
 };
 

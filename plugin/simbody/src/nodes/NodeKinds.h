@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// Internal to the plugin: each RopeNodeKind as its own unit. A unit is a struct of static members
+/// Internal to the plugin: each NodeKind as its own unit. A unit is a struct of static members
 /// (a closed set, dispatched once by visitNodeKind: no virtual call, and a new kind is one new unit
 /// plus one case there):
-///   - kName, kAtEnds, kInPath: its name in messages and where in a path it may stand;
+///   - kName: its name in messages;
 ///   - validate(site): its own fields (the common ones, body, matter subsystem and point, are
 ///     checked by addRope first), throwing std::invalid_argument with the site's name;
 ///   - addMaterialRelation(site): how the rope's material coordinate at the node is determined
@@ -34,7 +34,7 @@ struct NodeDrawing;  // NodeDrawing.h
 struct NodeSite {
     RopeRecord& rope;
     int node;
-    const RopeNode& spec;
+    const NodeSpec& spec;
     const std::string& name;
 };
 
@@ -57,7 +57,7 @@ bool keepsDirection(const SimTK::MobilizedBody& b, const SimTK::Vec3& direction)
 /// An end fastened to a body: s fixed (0 at the start, L at the end). Ends only.
 struct AnchorNode {
     static constexpr const char* kName = "Anchor";
-    static constexpr bool kAtEnds = true, kInPath = false, kTensionEquality = false;
+    static constexpr bool kTensionEquality = false;
     static void validate(const NodeSite&) {}
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite&, const SimTK::Vec3&) { return {}; }
@@ -67,7 +67,7 @@ struct AnchorNode {
 /// A frictionless idler (paper eq 30/32): s solved from the tension equality. Inside a path.
 struct DeviationSheaveNode {
     static constexpr const char* kName = "DeviationSheave";
-    static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = true;
+    static constexpr bool kTensionEquality = true;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
@@ -77,7 +77,7 @@ struct DeviationSheaveNode {
 /// A drum at a rope end on a Pin: s = s_end - or + sense R theta, its stored rope. Ends only.
 struct WinchDrumNode {
     static constexpr const char* kName = "WinchDrum";
-    static constexpr bool kAtEnds = true, kInPath = false, kTensionEquality = false;
+    static constexpr bool kTensionEquality = false;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
@@ -87,7 +87,7 @@ struct WinchDrumNode {
 /// A sheave on a Pin that grips the rope: s = s_ref + sense R theta. Inside a path.
 struct TurningSheaveNode {
     static constexpr const char* kName = "TurningSheave";
-    static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;
+    static constexpr bool kTensionEquality = false;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
@@ -98,7 +98,7 @@ struct TurningSheaveNode {
 /// slip: the capstan law, ReevingTraction.cpp). Inside a path of a planar or spatial rope.
 struct TractionSheaveNode {
     static constexpr const char* kName = "TractionSheave";
-    static constexpr bool kAtEnds = false, kInPath = true, kTensionEquality = false;
+    static constexpr bool kTensionEquality = false;
     static void validate(const NodeSite& site);
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
@@ -106,21 +106,21 @@ struct TractionSheaveNode {
 };
 
 /// Calls f with the unit of kind (a value of its empty struct) and returns what it returns: the
-/// one switch over RopeNodeKind.
+/// one switch over NodeKind.
 template <class F>
-decltype(auto) visitNodeKind(RopeNodeKind kind, F&& f) {
+decltype(auto) visitNodeKind(NodeKind kind, F&& f) {
     switch (kind) {
-        case RopeNodeKind::Anchor: return f(AnchorNode{});
-        case RopeNodeKind::DeviationSheave: return f(DeviationSheaveNode{});
-        case RopeNodeKind::WinchDrum: return f(WinchDrumNode{});
-        case RopeNodeKind::TurningSheave: return f(TurningSheaveNode{});
-        case RopeNodeKind::TractionSheave: return f(TractionSheaveNode{});
+        case NodeKind::Anchor: return f(AnchorNode{});
+        case NodeKind::DeviationSheave: return f(DeviationSheaveNode{});
+        case NodeKind::WinchDrum: return f(WinchDrumNode{});
+        case NodeKind::TurningSheave: return f(TurningSheaveNode{});
+        case NodeKind::TractionSheave: return f(TractionSheaveNode{});
     }
-    invalid("unknown RopeNodeKind " + std::to_string(static_cast<int>(kind)));
+    invalid("unknown NodeKind " + std::to_string(static_cast<int>(kind)));
 }
 
 /// The kind's name in messages ("Anchor", "DeviationSheave", ...).
-inline const char* nodeKindName(RopeNodeKind kind) {
+inline const char* nodeKindName(NodeKind kind) {
     return visitNodeKind(kind, [](auto unit) { return decltype(unit)::kName; });
 }
 

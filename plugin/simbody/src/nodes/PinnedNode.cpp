@@ -48,7 +48,7 @@ std::string mustBe(const std::string& what, double value, const char* must) {
 }
 
 void validatePinnedNode(const NodeSite& site) {
-    const RopeNode& n = site.spec;
+    const NodeSpec& n = site.spec;
     if (!std::isfinite(n.radius) || !(n.radius > 0)) invalid(mustBe(site.name + " radius [m]", n.radius, "finite and > 0"));
     if (!SimTK::MobilizedBody::Pin::isInstanceOf(n.body))
         invalid(site.name + ": its body must be a MobilizedBody::Pin (the rope turns it about the pin axis)");
@@ -69,7 +69,7 @@ RopeRecord::DrivenNode drivenNodeOf(NodeSite& site) {
 
 NodeWrap grippingSheaveWrap(const NodeSite& site, const char* kindName, const SimTK::Vec3& planeNormal,
                             bool turningParent) {
-    const RopeNode& n = site.spec;
+    const NodeSpec& n = site.spec;
     const std::string name =
         "rope '" + site.rope.spec.name + "': " + kindName + " at node " + std::to_string(site.node);
     const SimTK::MobilizedBody& parent = n.body.getParentMobilizedBody();

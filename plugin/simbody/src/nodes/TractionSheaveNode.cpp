@@ -1,4 +1,4 @@
-// RopeNodeKind::TractionSheave: a sheave on a pin that grips the rope by friction. Built as a
+// NodeKind::TractionSheave: a sheave on a pin that grips the rope by friction. Built as a
 // TurningSheave in stick; its slip phases and events are in ReevingTraction.cpp.
 
 #include "PinnedNode.h"
@@ -10,7 +10,7 @@ namespace detail {
 
 void TractionSheaveNode::validate(const NodeSite& site) {
     TurningSheaveNode::validate(site);
-    const RopeNode& n = site.spec;
+    const NodeSpec& n = site.spec;
     if (!std::isfinite(n.frictionCoefficient) || n.frictionCoefficient < 0)
         invalid(mustBe(site.name + " frictionCoefficient [-]", n.frictionCoefficient, "finite and >= 0"));
     if (!std::isfinite(n.wrapAngle) || n.wrapAngle < 0 || n.wrapAngle > 20 * SimTK::Pi)

@@ -1,4 +1,4 @@
-// RopeNodeKind::TurningSheave: a sheave on a pin that grips the rope, s = s_ref + sense R theta.
+// NodeKind::TurningSheave: a sheave on a pin that grips the rope, s = s_ref + sense R theta.
 
 #include "PinnedNode.h"
 

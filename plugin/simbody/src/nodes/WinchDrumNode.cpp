@@ -1,4 +1,4 @@
-// RopeNodeKind::WinchDrum: a drum at a rope end; s turns with its pin, the rest is stored rope.
+// NodeKind::WinchDrum: a drum at a rope end; s turns with its pin, the rest is stored rope.
 
 #include "PinnedNode.h"
 

@@ -4,9 +4,6 @@
 /// sheave tension-equality constraint (paper eq 32) by coordinate partitioning, and the rope's
 /// dynamics reduced to its node accelerations (for an exact coupling with rigid bodies).
 
-#include "SimbodyReeving/element/AxialCondensation.h"
-#include "SimbodyReeving/element/BandedLU.h"
-#include "SimbodyReeving/element/GrooveArc.h"
 #include "SimbodyReeving/element/SpanModel.h"
 
 #include <Eigen/Core>
@@ -108,32 +105,16 @@ struct NodeWrap {
 
 template <int Dim>
 class RopeModel;
+// Implementation types of the element layer (not installed): named here, defined in its sources.
 struct WrapStationMapData;
+class BandedLU;
+template <int Dim>
+class AxialCondensation;
+template <int Dim>
+class GrooveArc;
 namespace detail {
 template <int Dim>
-struct RopeWorkspace;  // the scratch of an evaluation (plugin/element/src/RopeWorkspace.h)
-
-/// An owning pointer whose copies deep-copy the pointee, so a class holding one keeps value
-/// semantics while the pointee's type stays incomplete in public headers (its members are
-/// instantiated only where the type is complete).
-template <class T>
-class ClonedPtr {
-public:
-    ClonedPtr() = default;
-    explicit ClonedPtr(std::unique_ptr<T> p) : p_(std::move(p)) {}
-    ClonedPtr(const ClonedPtr& o) : p_(o.p_ ? std::make_unique<T>(*o.p_) : nullptr) {}
-    ClonedPtr& operator=(const ClonedPtr& o) {
-        if (this != &o) p_ = o.p_ ? std::make_unique<T>(*o.p_) : nullptr;
-        return *this;
-    }
-    ClonedPtr(ClonedPtr&&) noexcept = default;
-    ClonedPtr& operator=(ClonedPtr&&) noexcept = default;
-    ~ClonedPtr() = default;
-    T& operator*() const { return *p_; }
-
-private:
-    std::unique_ptr<T> p_;
-};
+struct RopeWorkspace;  // the scratch of an evaluation
 }  // namespace detail
 
 /// The results of a RopeModel's evaluation ("Data" of a RopeModel, as Pinocchio's Model/Data): what
@@ -202,10 +183,24 @@ struct RopeData {
 
 private:
     friend class RopeModel<Dim>;
+    /// Owns the scratch; its copies deep-copy it (members defined where the type is complete).
+    class Scratch {
+    public:
+        Scratch();
+        ~Scratch();
+        Scratch(const Scratch& other);
+        Scratch& operator=(const Scratch& other);
+        Scratch(Scratch&& other) noexcept;
+        Scratch& operator=(Scratch&& other) noexcept;
+        detail::RopeWorkspace<Dim>& operator*() const { return *p_; }
+
+    private:
+        std::unique_ptr<detail::RopeWorkspace<Dim>> p_;
+    };
     detail::RopeWorkspace<Dim>& ws() { return *workspace_; }
     detail::RopeWorkspace<Dim>& scratch() const { return *workspace_; }  // (evaluation scratch)
     const detail::RopeWorkspace<Dim>& ws() const { return *workspace_; }
-    detail::ClonedPtr<detail::RopeWorkspace<Dim>> workspace_;
+    Scratch workspace_;
 };
 
 /// A rope of N spans between N + 1 nodes: node 0 is the rope's start, nodes 1..N-1 are sheaves
@@ -254,6 +249,11 @@ public:
     ///         NodeWrap::turningAxis on a point node, a Slipping node or a planar rope.
     RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
               std::vector<NodeWrap> wraps = {});
+    ~RopeModel();                                      ///< (its parts' types are complete in the .cpp)
+    RopeModel(const RopeModel& other);                 ///< copy
+    RopeModel& operator=(const RopeModel& other);      ///< copy
+    RopeModel(RopeModel&& other) noexcept;             ///< move
+    RopeModel& operator=(RopeModel&& other) noexcept;  ///< move
 
     int numSpans() const { return static_cast<int>(spans_.size()); }  ///< N
     int numNodes() const { return numSpans() + 1; }                   ///< N + 1
@@ -288,7 +288,7 @@ public:
     /// 0 and 0 where the groove does not walk).
     double grooveLayRate(int node) const { return layRate_[node]; }
     double grooveLayOffset(int node) const { return layOffset_[node]; }  ///< [m], see grooveLayRate
-    int numWrappedNodes() const { return static_cast<int>(arcs_.size()); }  ///< nodes with a groove arc
+    int numWrappedNodes() const;  ///< nodes with a groove arc
     /// The rope on the groove of wrapped node k (its mass, radius and sense).
     /// @throws std::invalid_argument if node is not wrapped.
     const GrooveArc<Dim>& arc(int node) const;
@@ -490,7 +490,7 @@ public:
     /// the same linear system as the condensation's Newton step (the stationarity rows gain f).
     /// The result, data.inertialCorrection, feeds recoveredSpanCoordinates: strain and
     /// force queries then agree with the Dynamic model's slow response up to O((omega_slow /
-    /// omega_axial)^2) instead of O(acceleration / g) (measured in docs/verification.md, "Quasi-static against dynamic axial modes"). The dynamics
+    /// omega_axial)^2) instead of O(acceleration / g) (docs/verification.md, "Quasi-static against dynamic axial modes"). The dynamics
     /// themselves are not changed (they stay conservative). No-op without condensed spans.
     void recoverInertialStrain(RopeData<Dim>& data, const Eigen::VectorXd& nodeAccelerations,
                                const Eigen::VectorXd& qmddot) const;
@@ -562,7 +562,8 @@ private:
         return arcIndex_[node] >= 0 ? x[nodeOffset_[node] + wrappedArcLengthOffset()] : 0.0;
     }
     /// The coordinates of node k's groove arc (GrooveArc layout) from x and the node's s.
-    void arcCoordinates(int node, const Eigen::VectorXd& x, double s, typename GrooveArc<Dim>::Coordinates& a) const;
+    template <class Coordinates>
+    void arcCoordinates(int node, const Eigen::VectorXd& x, double s, Coordinates& a) const;
     /// Adds the mode-acceleration correction (recoverInertialStrain) to span j's coordinates q.
     void addInertialCorrection(int j, const RopeData<Dim>& data, Eigen::VectorXd& q) const;
     /// Element e's mass matrix storage in data (spans 0..N-1, then the arcs) and its size.

@@ -128,8 +128,8 @@ enum class AxialDynamics {
 /// sag under its own weight at its current tension, and the kinetic energy keeps the rope mass
 /// carried by that sag as the span moves, but it has no string vibration. T + U stays an exact
 /// invariant. Use it when the transverse vibration of a span is not of interest and its frequency is
-/// well above the motion of the bodies (the rope's sag is quasi-static; its effect on the Table 1
-/// pendulum: docs/performance.md, "Quasi-static transverse modes"). A span that is slack and straight has no transverse stiffness from its
+/// well above the motion of the bodies (the rope's sag is quasi-static; docs/performance.md,
+/// "Quasi-static transverse modes"). A span that is slack and straight has no transverse stiffness from its
 /// tension; a tension-only rope's condensed transverse amplitudes are then held by
 /// SpanOptions::quasiStaticTransverseSlackStiffness.
 /// Requires ElasticEnergyModel::Consistent, AxialDynamics::QuasiStatic when n_a > 0 (transverse
@@ -188,7 +188,7 @@ struct SpanOptions {
     /// acceleration bias (third derivatives of U) the equations of motion. With the plain clamp
     /// max(eps, 0) the rates jump whenever a strain quadrature point goes slack or taut, and each
     /// jump changes T at fixed velocities; with a C1 rounding the accelerations still
-    /// jump and adaptive steps collapse to 1e-15 s there. With the quintic T + U is an invariant
+    /// jump, and an adaptive step shrinks towards round-off at each jump. With the quintic T + U is an invariant
     /// again, provided the integrator resolves the rounding: a step that carries a span's strain
     /// across (0, eps_s) at once can fool its error estimate, the more so the smaller eps_s
     /// (docs/stability.md, "Slack and snap: the rounding of the tension-only law"). Outside (0, eps_s) the law is exact; inside,
@@ -261,8 +261,8 @@ struct SpanData {
     double potentialEnergy() const { return strainEnergy() + gravityEnergy; }  ///< strain + gravity [J]
 
     ChordFrame<Dim> frame;  ///< A_e and its derivatives at this state
-    /// Not written by evaluate() any more (M is assembled in closed form and Q_v without forming
-    /// B); kept so that code naming it still compiles.
+    /// B(q) of rdot = B qdot at one point: not written by evaluate() (M is assembled in closed form
+    /// and Q_v without forming B).
     Jacobian velocityJacobian;
 };
 
@@ -438,13 +438,12 @@ public:
     /// linear law or a strain above the tension-only transition, F(eps) and f(eps) d eps/dq; the
     /// PaperLiteral eps |u_perp'|^2 and its gradient; AxialCondensation's Phi_i, dU/dl and their
     /// derivatives) is a cosine series with at most 4 n_max < 2N half-waves, which the midpoint
-    /// rule integrates exactly (GaussLegendre.h). Measured against 200 Gauss-Legendre points in
-    /// tests/element/test_strain_quadrature.cpp.
+    /// rule integrates exactly.
     ///
     /// Where a tension-only span has slack points (strain below the transition strain somewhere),
     /// the clamped integrand is not a cosine series and neither rule is exact: the span then keeps
     /// its Gauss-Legendre rule (strainTautEverywhere is false), whose many points resolve the slack
-    /// region better (with 3 midpoint points the elevator's stall at mu = 10 no longer slipped).
+    /// region better.
     /// The switch between the rules is continuous to round-off: where the bound holds, both rules
     /// give the same integrals. maxStrain() looks at the Gauss-Legendre points.
     static int automaticStrainPoints(int axialModes, int transverseModes);

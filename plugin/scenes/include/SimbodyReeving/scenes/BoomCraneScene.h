@@ -196,7 +196,7 @@ public:
     double luffTorque(const SimTK::State& s) const;
     /// Torque the hoist drum's motor applies about its axis [N m] (Stage::Acceleration).
     double hoistTorque(const SimTK::State& s) const;
-    double ropeOnDrum(const SimTK::State& s, int rope) const;  ///< [m] (ReevingSubsystem::getRopeOnDrum)
+    double ropeOnDrum(const SimTK::State& s, int rope) const;  ///< [m] (WinchDrumHandle::getRopeOnDrum)
     /// E_mech(t) - e0 - W_motion(t) [J] (Stage::Velocity; e0 = E_mech of the initial state).
     double energyResidual(const SimTK::State& s, double e0) const;
     /// Ground positions of rope `rope`'s nodes 0..4 (drum axis points, sheave centres, dead end) [m].

@@ -247,7 +247,7 @@ public:
     /// QuasiStatic mode-acceleration correction, see ReevingSubsystem::getAxialForce).
     double fallTopForce(const SimTK::State& s, int fall) const;
     double drumSpeed(const SimTK::State& s) const;       ///< theta dot [rad/s] (Stage::Velocity)
-    double ropeOnDrum(const SimTK::State& s) const;      ///< [m] (ReevingSubsystem::getRopeOnDrum)
+    double ropeOnDrum(const SimTK::State& s) const;      ///< [m] (WinchDrumHandle::getRopeOnDrum)
     /// Torque the hoist motor applies to the drum about its axis [N m] (Stage::Acceleration): the
     /// generalized force that enforces the hoist profile.
     double motorTorque(const SimTK::State& s) const;

@@ -2,7 +2,7 @@
 /// @file
 /// A traction elevator, roped 1:1 or 2:1, as a ready Simbody scene: car and counterweight on vertical
 /// guide rails (sliders), one rope (the rope set as one rope of the set's rhoA and EA) over a traction
-/// sheave (RopeNodeKind::TractionSheave) at the top of the hoistway, and the four scenarios of
+/// sheave (a TractionSheave node) at the top of the hoistway, and the four scenarios of
 /// EN 81-50's traction checks.
 
 #include "SimbodyReeving/scenes/MotionProfile.h"
@@ -154,9 +154,10 @@ public:
     double carTotalMass() const;
     /// The end of the scenario's run [s].
     double duration() const;
-    /// The traction sheave's node in the rope (1 in 1:1, 2 in 2:1): the node argument of the
-    /// ReevingSubsystem's traction queries (getTractionMode(state, 0, tractionNode()), ...).
+    /// The traction sheave's node in the hoist rope (rope 0): 1 in 1:1, 2 in 2:1.
     int tractionNode() const { return parameters_.roping; }
+    /// The traction sheave's handle: its mode, slip and friction (TractionSheaveHandle).
+    TractionSheaveHandle tractionSheave() const;
 
     /// The state at t = 0: static equilibrium (in stick) of car, counterweight and rope (in Loading
     /// with the car's mass at 125 % of the rated load; in Stall with the counterweight settled on

@@ -11,46 +11,11 @@
 
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace SimbodyReeving {
 
-/// The kinds of rope node: a closed set the ReevingSubsystem dispatches on (wrap geometry or
-/// friction would be new kinds). Each kind fixes how the node's position and its material
-/// coordinate s are determined (RopeModel's MaterialNode in brackets):
-///   - Anchor: a rope end fastened to a station of a body [Fixed: s_0 = 0, s_N = L].
-///   - DeviationSheave: a frictionless, massless sheave in the path [Sliding: the axial forces of
-///     both spans are equal there, paper eq 32].
-///   - WinchDrum: a rope end wound on a drum that turns with a MobilizedBody::Pin [Driven]:
-///     at the rope's end node s_N = L + sense R theta, at its start node s_0 = -sense R theta, with
-///     theta the pin angle (its q) and sense = +1 when a positive theta pays rope out.
-///   - TurningSheave: a sheave in the path on a MobilizedBody::Pin that the rope turns without slip,
-///     a drive sheave (motor on the pin) or an idler with inertia [Driven]:
-///     s_k = s_ref + sense R theta. With sense = +1 a positive theta raises s_k: material that was
-///     on the end side of the sheave passes to the start side (the rope moves from the end side
-///     towards the start); sense = -1 reverses that.
-/// Driven nodes: the material coordinate tracks R theta exactly (a holonomic tie), i.e. the rope
-/// on the drum or sheave is taken as inextensible. Rope leaves a span at the strain it has there;
-/// its strain energy leaves the model with it, through the rope's generalized force on s, so the
-/// energy balance stays exact: the work of whatever drives the pin equals the change of the
-/// system's mechanical energy (MotionWorkMeter, getDrivenNodePower). Tracking R theta / stretch
-/// instead (rope wound at its strain) would make s depend on the strain: not holonomic, and
-/// different only by the strain (~1e-3) in the hoisting speed. The rope stored on a WinchDrum keeps
-/// its mass: a ring of rhoA (ropeOnDrum - sense R theta) at radius R on the node, whose weight and
-/// inertia load the drum's body and whose kinetic and gravity energy are part of the rope's
-/// (RopeModel::setStoredRope; without it the drum torque would depend on the height datum). Do not
-/// add that rope to the drum body's mass as well. The node's position is the point on the pin axis;
-/// the wrap arc is not modelled (point sheaves, as the paper).
-///   - TractionSheave: a sheave in the path on a MobilizedBody::Pin whose groove drives the rope by
-///     friction (an elevator's machine sheave), coefficient mu, wrap angle alpha; with P_a, P_b the
-///     axial forces of the spans before and after it:
-///       stick [Driven]: s_k = s_stick + sense R theta while e^(-mu alpha) <= P_a / P_b <= e^(mu alpha);
-///       slip [Slipping]: s_k is free, P_tight = e^(mu alpha) P_slack (Euler-Eytelwein), the tight
-///       side the one the rope slides towards relative to the groove; the friction force P_a - P_b
-///       turns the pin (torque sense R (P_a - P_b)) and dissipates (P_a - P_b) v_slip >= 0.
-///     Transitions are events (TractionMode): stick -> slip when the ratio reaches a limit, slip ->
-///     stick when the slip rate returns to zero; s_k is continuous through both. See TractionSheave.
-enum class RopeNodeKind { Anchor, DeviationSheave, WinchDrum, TurningSheave, TractionSheave };
 
 /// How a rope meets its deviation sheaves (RopeSpec::sheaveModel).
 enum class SheaveModel {
@@ -58,11 +23,11 @@ enum class SheaveModel {
     /// material coordinate; the rope on the groove has no length and no mass.
     Point,
     /// The rope wraps the groove: the spans end at the tangent points of the groove circle (radius
-    /// RopeNode::radius, in the rope's plane) and the rope on the arc between them, of length
+    /// DeviationSheave::radius, in the rope's plane) and the rope on the arc between them, of length
     /// R alpha, carries its mass (RopeModel's NodeWrap, GrooveArc; WrapStationMap maps the bodies'
-    /// motion to the tangent points and arc lengths). The wrap sense is RopeNode::sense: +1 when
-    /// the rope, running from its start to its end, turns counter-clockwise about the plane normal
-    /// on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
+    /// motion to the tangent points and arc lengths). The wrap sense is
+    /// DeviationSheave::wrapSense: +1 when the rope, running from its start to its end, turns
+    /// counter-clockwise about the plane normal on the groove, -1 clockwise. Applies to the DeviationSheave, TurningSheave and
     /// TractionSheave nodes of planar ropes (a TurningSheave's or TractionSheave's wrap sense follows
     /// from its sense and pin axis, see TurningSheave; a TractionSheave without a given wrap angle
     /// then takes the geometry's, see TractionSheave) and WinchDrum nodes (see WinchDrum). On a
@@ -109,42 +74,11 @@ enum class TractionSlip {
     RopeMomentum,
 };
 
-/// The phase of a TractionSheave (ReevingSubsystem::getTractionMode).
+/// The phase of a TractionSheave (TractionSheaveHandle::getTractionMode).
 enum class TractionMode {
     Stick,            ///< the rope moves with the groove
     SlipTowardStart,  ///< the rope slides over the groove towards the rope's start (span k - 1 tight)
     SlipTowardEnd,    ///< towards the rope's end (span k tight)
-};
-
-/// One node of a rope's path (see RopeNodeKind). Build it with the kind's struct below (RopeAnchor,
-/// DeviationSheave, WinchDrum, TurningSheave), which converts to a RopeNode; the two-argument
-/// {body, station} and three-argument {body, centre, radius} forms make an Anchor and a
-/// DeviationSheave, as RopeSpec's fields accepted before the other kinds existed.
-struct RopeNode {
-    RopeNodeKind kind = RopeNodeKind::Anchor;  ///< what the node is (anchor, sheave, drum...)
-    SimTK::MobilizedBody body;  ///< Ground allowed for Anchor and DeviationSheave; a Pin for the others
-    SimTK::Vec3 point{0};       ///< station (Anchor) or centre, in the body frame [m]
-    double radius = 0;          ///< sheaves and drums [m], > 0
-    /// WinchDrum, TurningSheave: +1 or -1 (see RopeNodeKind); DeviationSheave of a rope with
-    /// SheaveModel::Wrapped: its wrap sense, +1 or -1.
-    int sense = 1;
-    double ropeOnDrum = 0;      ///< WinchDrum: rope stored on the drum at theta = 0 [m], >= 0
-    double pitch = 0;           ///< WinchDrum: the exit point's axial advance per turn [m] (WinchDrum::pitch)
-    double materialCoordinateAtZeroAngle = 0;  ///< TurningSheave, TractionSheave: s_ref [m]
-    double frictionCoefficient = 0;  ///< TractionSheave: mu [-], >= 0
-    double wrapAngle = 0;            ///< TractionSheave: alpha [rad], in [0, 20 pi]; 0: from the geometry
-    TractionSlip slipModel = TractionSlip::CapstanConstraint;  ///< TractionSheave: how it slips
-    /// DeviationSheave of a spatial rope with SheaveModel::Wrapped: the groove's axis n in the body
-    /// frame [-], a unit vector (|n| within 1e-12 of 1); the rope's wrap sense is about it. Not
-    /// read for planar ropes (their grooves turn about the plane normal).
-    SimTK::Vec3 axis{0};
-
-    RopeNode() = default;
-    /// An Anchor at `station` of `body`.
-    RopeNode(const SimTK::MobilizedBody& anchorBody, const SimTK::Vec3& station) : body(anchorBody), point(station) {}
-    /// A DeviationSheave of radius `sheaveRadius` centred at `centre` of `body`.
-    RopeNode(const SimTK::MobilizedBody& sheaveBody, const SimTK::Vec3& centre, double sheaveRadius)
-        : kind(RopeNodeKind::DeviationSheave), body(sheaveBody), point(centre), radius(sheaveRadius) {}
 };
 
 /// A station (point fixed on a body) where a rope end is fastened: a MobilizedBody (Ground allowed)
@@ -152,7 +86,6 @@ struct RopeNode {
 struct RopeAnchor {
     SimTK::MobilizedBody body;  ///< the body the end is fastened to (Ground allowed)
     SimTK::Vec3 station{0};     ///< the point in the body's frame [m]
-    operator RopeNode() const { return RopeNode(body, station); }  ///< the RopeNode of kind Anchor
 };
 
 /// A frictionless deviation sheave: its centre on a body (Ground allowed) [m] and its radius [m].
@@ -176,13 +109,6 @@ struct DeviationSheave {
     /// velocity (RopeModel's NodeWrap::turningAxis) and the rope's reaction on the sheave is a
     /// force at its centre and a couple. Not read for planar ropes.
     SimTK::Vec3 axis{0};
-    /// The RopeNode of kind DeviationSheave.
-    operator RopeNode() const {
-        RopeNode n(body, centre, radius);
-        n.sense = wrapSense;
-        n.axis = axis;
-        return n;
-    }
 };
 
 /// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
@@ -218,15 +144,6 @@ struct WinchDrum {
     /// flanges and a second layer are not modelled. The stored rope stays a ring at `centre`.
     /// 0 (the default): the rope leaves the drum in `centre`'s plane. Finite, |p| < 2 pi R.
     double pitch = 0;
-    /// The RopeNode of kind WinchDrum.
-    operator RopeNode() const {
-        RopeNode n(body, centre, radius);
-        n.kind = RopeNodeKind::WinchDrum;
-        n.sense = payoutSense;
-        n.ropeOnDrum = ropeOnDrum;
-        n.pitch = pitch;
-        return n;
-    }
 };
 
 /// A sheave the rope turns without slip (drive sheave, idler with inertia): a MobilizedBody::Pin,
@@ -258,22 +175,14 @@ struct TurningSheave {
     double materialCoordinateAtZeroAngle = 0;  ///< s_ref, the material coordinate at the sheave at pin angle 0 [m]
     int sense = 1;                             ///< +1 or -1: s = s_ref + sense R theta
     SimTK::Vec3 centre{0};                     ///< the rope node's point on the pin axis, body frame [m]
-    /// The RopeNode of kind TurningSheave.
-    operator RopeNode() const {
-        RopeNode n(body, centre, radius);
-        n.kind = RopeNodeKind::TurningSheave;
-        n.sense = sense;
-        n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
-        return n;
-    }
 };
 
-/// A traction sheave (see RopeNodeKind::TractionSheave): a MobilizedBody::Pin, radius R [m] > 0,
+/// A traction sheave (see RopeNode): a MobilizedBody::Pin, radius R [m] > 0,
 /// the groove's friction coefficient mu [-] >= 0 (an effective one: a V or undercut groove's
 /// wedge factor included), the wrap angle alpha [rad] (0, the default: from the geometry), the
 /// material coordinate at the sheave at pin angle 0 with no slip yet [m] (as for a TurningSheave;
-/// getSlipDistance counts from it), the sense (as for a TurningSheave) and the point on the pin
-/// axis (body frame). It starts in stick.
+/// TractionSheaveHandle::getSlipDistance counts from it), the sense (as for a TurningSheave) and
+/// the point on the pin axis (body frame). It starts in stick.
 ///
 /// The wrap angle from the geometry (wrapAngle 0), at every evaluation: with SheaveModel::Point the
 /// turning angle between the two chords at the sheave's centre, alpha = pi - angle(p_a - r_k,
@@ -298,8 +207,8 @@ struct TurningSheave {
 /// rope on the groove a state of its own in slip, with the rope's inertia there, the
 /// centrifugal load rhoA v^2 in the law, (P_tight - rhoA v^2) = e^(mu alpha) (P_slack - rhoA v^2)
 /// in steady slip, and a stick limit on the friction that holds the rope (inertia included). Its
-/// cost: the rope's axial mode at the sheave joins the slip phases (an explicit integrator's steps
-/// follow it: the swing of tests/simbody/test_traction_sheave.cpp runs about 30 times longer).
+/// cost: the rope's axial mode at the sheave joins the slip phases, and an explicit integrator's
+/// steps follow it (docs/elevator.md).
 ///
 /// What it does not model: the tension varies along the wrap arc (P e^(mu phi) in slip, and the
 /// creep of an elastic rope in stick: the whole arc sticks here); groove wear and pressure limits. A slack span at the sheave (tension-only rope) leaves P_a / P_b
@@ -316,17 +225,16 @@ struct TurningSheave {
 /// the node keep that ratio too and the total forces follow it (exactly for uniform strain along
 /// the spans; otherwise up to c EA times the strain gradient times the slip rate). What differs is
 /// the onset of slip, which waits until the elastic ratio reaches e^(mu alpha): about c later than
-/// the total force ratio does (docs/elevator.md). RopeMomentum has the total forces' law.
+/// the total force ratio does. RopeMomentum has the total forces' law.
 ///
 /// Chatter: where neither mode is consistent, the sheave switches at the scale of the events'
-/// hysteresis (1e-9 of the rope force, 1e-9 m/s). Seen with a slack side and a huge mu alpha
-/// (the elevator's stall at mu = 10, e^(mu alpha) = 4.4e13): slip decelerates to zero rate while
-/// the slack side is at zero force, and stick lets the slack side go slack at once. The motion is
-/// the Filippov average of both (rope at the groove's speed, slack side at zero force) and the
-/// energy still closes, but every switch is an event, so the run slows down; larger hystereses
-/// would break the mu = 0 = DeviationSheave equivalence. Whether a run enters it depends on
-/// round-off (the slack side's force is round-off there). The transition counts and costs
-/// measured on the elevator are in docs/elevator.md.
+/// hysteresis (1e-9 of the rope force, 1e-9 m/s). With a slack side and a huge mu alpha, slip
+/// decelerates to zero rate while the slack side is at zero force, and stick lets the slack side
+/// go slack at once. The motion is the Filippov average of both (rope at the groove's speed, slack
+/// side at zero force) and the energy still closes, but every switch is an event; larger
+/// hystereses would break the mu = 0 = DeviationSheave equivalence. Whether a run enters it depends
+/// on round-off (the slack side's force is round-off there); docs/elevator.md has the elevator's
+/// transition counts and costs.
 struct TractionSheave {
     SimTK::MobilizedBody body;                 ///< the sheave: a MobilizedBody::Pin
     double radius = 0;                         ///< R [m], > 0
@@ -337,25 +245,59 @@ struct TractionSheave {
     SimTK::Vec3 centre{0};                     ///< the rope node's point on the pin axis, body frame [m]
     /// How the rope slips (TractionSlip; the default keeps the paper-style massless contact point).
     TractionSlip slipModel = TractionSlip::CapstanConstraint;
-    /// The RopeNode of kind TractionSheave.
-    operator RopeNode() const {
-        RopeNode n(body, centre, radius);
-        n.kind = RopeNodeKind::TractionSheave;
-        n.sense = sense;
-        n.materialCoordinateAtZeroAngle = materialCoordinateAtZeroAngle;
-        n.frictionCoefficient = frictionCoefficient;
-        n.wrapAngle = wrapAngle;
-        n.slipModel = slipModel;
-        return n;
-    }
 };
+
+/// A node of a rope's path: one of the five kinds, each its own struct, so a node carries only its
+/// kind's fields. Each kind fixes how the node's position and its material coordinate s are
+/// determined (RopeModel's MaterialNode in brackets):
+///   - RopeAnchor: a rope end fastened to a station of a body [Fixed: s_0 = 0, s_N = L].
+///   - DeviationSheave: a frictionless, massless sheave in the path [Sliding: the axial forces of
+///     both spans are equal there, paper eq 32].
+///   - WinchDrum: a rope end wound on a drum that turns with a MobilizedBody::Pin [Driven]:
+///     at the rope's end node s_N = L + sense R theta, at its start node s_0 = -sense R theta, with
+///     theta the pin angle (its q) and sense = +1 when a positive theta pays rope out.
+///   - TurningSheave: a sheave in the path on a MobilizedBody::Pin that the rope turns without slip,
+///     a drive sheave (motor on the pin) or an idler with inertia [Driven]:
+///     s_k = s_ref + sense R theta. With sense = +1 a positive theta raises s_k: material that was
+///     on the end side of the sheave passes to the start side (the rope moves from the end side
+///     towards the start); sense = -1 reverses that.
+///   - TractionSheave: a sheave in the path on a MobilizedBody::Pin whose groove drives the rope by
+///     friction (an elevator's machine sheave), coefficient mu, wrap angle alpha; with P_a, P_b the
+///     axial forces of the spans before and after it:
+///       stick [Driven]: s_k = s_stick + sense R theta while e^(-mu alpha) <= P_a / P_b <= e^(mu alpha);
+///       slip [Slipping]: s_k is free, P_tight = e^(mu alpha) P_slack (Euler-Eytelwein), the tight
+///       side the one the rope slides towards relative to the groove; the friction force P_a - P_b
+///       turns the pin (torque sense R (P_a - P_b)) and dissipates (P_a - P_b) v_slip >= 0.
+///     Transitions are events (TractionMode): stick -> slip when the ratio reaches a limit, slip ->
+///     stick when the slip rate returns to zero; s_k is continuous through both.
+/// Driven nodes: the material coordinate tracks R theta exactly (a holonomic tie), i.e. the rope
+/// on the drum or sheave is taken as inextensible. Rope leaves a span at the strain it has there;
+/// its strain energy leaves the model with it, through the rope's generalized force on s, so the
+/// energy balance stays exact: the work of whatever drives the pin equals the change of the
+/// system's mechanical energy (MotionWorkMeter, PinnedNodeHandle::getPower). Tracking
+/// R theta / stretch instead (rope wound at its strain) would make s depend on the strain: not
+/// holonomic, and different by the strain in the hoisting speed. The rope stored on a WinchDrum
+/// keeps its mass: a ring of rhoA (ropeOnDrum - sense R theta) at radius R on the node, whose
+/// weight and inertia load the drum's body and whose kinetic and gravity energy are part of the
+/// rope's (RopeModel::setStoredRope; without it the drum torque would depend on the height datum).
+/// Do not add that rope to the drum body's mass as well. The node's position is the point on the
+/// pin axis; with SheaveModel::Point the wrap arc is not modelled (point sheaves, as the paper).
+///
+/// A rope's ends are RopeEnd and the nodes of its path RopeSheave (RopeSpec), so a sheave at a
+/// rope's end or a drum in its path does not compile. Every kind's struct converts implicitly to
+/// the variants that hold it (rope.start = RopeAnchor{...}; rope.sheaves = {DeviationSheave{...}}).
+using RopeNode = std::variant<RopeAnchor, DeviationSheave, WinchDrum, TurningSheave, TractionSheave>;
+/// A rope end: fastened to a body or wound on a drum.
+using RopeEnd = std::variant<RopeAnchor, WinchDrum>;
+/// A node inside a rope's path: a sheave with a span on both sides.
+using RopeSheave = std::variant<DeviationSheave, TurningSheave, TractionSheave>;
 
 /// Everything that describes one rope. SI units.
 struct RopeSpec {
     std::string name = "rope";       ///< names the rope in messages (limits, failed evaluations)
-    RopeNode start;                  ///< Anchor or WinchDrum
-    std::vector<RopeNode> sheaves;   ///< DeviationSheave or TurningSheave, in path order
-    RopeNode end;                    ///< Anchor or WinchDrum
+    RopeEnd start;                   ///< a RopeAnchor or a WinchDrum
+    std::vector<RopeSheave> sheaves; ///< DeviationSheave, TurningSheave or TractionSheave, in path order
+    RopeEnd end;                     ///< a RopeAnchor or a WinchDrum
     RopeProperties properties;       ///< rhoA, EA, EI (see RopeProperties)
     /// Unstretched length L of the rope between its start and end nodes at pin angles 0 [m], > 0
     /// (material coordinates: s = 0 at an anchored start, s = L at an anchored end).
@@ -377,7 +319,15 @@ struct RopeSpec {
     SimTK::Vec3 planeNormal{0};
     /// The sheaves' and drums' model: SheaveModel::Point (the paper's) or SheaveModel::Wrapped.
     SheaveModel sheaveModel = SheaveModel::Point;
+
+    /// Number of nodes: the sheaves and both ends.
+    int numNodes() const { return static_cast<int>(sheaves.size()) + 2; }
+    /// Node k (0: start, numNodes() - 1: end, else sheaves[k - 1]) as a RopeNode.
+    /// @throws std::out_of_range if k is outside 0..numNodes() - 1.
+    RopeNode node(int k) const;
 };
+
+class RopeHandle;
 
 /// A SimTK::ForceSubsystem holding every rope of a MultibodySystem.
 ///
@@ -431,10 +381,10 @@ public:
     /// one-argument constructor) the system's, taken at realizeTopology (zero before).
     SimTK::Vec3 getGravity() const;
 
-    /// Adds a rope; returns its index. Must be called before realizeTopology.
+    /// Adds a rope; returns its handle, which converts to the rope's index (0, 1, ... in the order
+    /// the ropes are added) for the queries that take one. Must be called before realizeTopology.
     /// @throws std::invalid_argument naming the problem: empty node body, a body of another
-    ///         system, non-finite station, a sheave kind at an end or an end kind in the path, a
-    ///         WinchDrum or TurningSheave whose body is not a MobilizedBody::Pin or whose point is
+    ///         system, non-finite station, a WinchDrum or TurningSheave whose body is not a MobilizedBody::Pin or whose point is
     ///         off the pin axis, sense not +-1, negative ropeOnDrum, non-positive or non-finite
     ///         radius, rope length or minimumSpanLength, bad rope properties or mode counts, a span
     ///         override index out of range, non-finite plane normal, gravity out of the rope plane
@@ -445,10 +395,14 @@ public:
     ///         axis than the pin's, a planar rope's TurningSheave, TractionSheave or WinchDrum whose
     ///         pin axis is not the plane normal, or a spatial rope's DeviationSheave without a unit
     ///         axis.
-    int addRope(const RopeSpec& spec);
+    RopeHandle addRope(const RopeSpec& spec);
 
     /// Number of ropes added.
     int getNumRopes() const;
+    /// The handle of rope `rope` (its index from addRope): the way to its nodes' kind-specific
+    /// queries (RopeHandle::getWinchDrum, getTurningSheave, getTractionSheave).
+    /// @throws std::invalid_argument if rope is out of range.
+    RopeHandle getRope(int rope) const;
     /// The spec a rope was added with (rope index from addRope).
     const RopeSpec& getRopeSpec(int rope) const;
     /// Number of spans of a rope: its nodes less one.
@@ -499,33 +453,6 @@ public:
     /// @throws std::invalid_argument if rope or node is out of range.
     /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
     SimTK::Vec3 getNodeForce(const SimTK::State& state, int rope, int node) const;
-    /// Torque about the pin axis that the rope applies to the body of a WinchDrum or TurningSheave
-    /// node [N m] (Stage::Dynamics): sense R times the rope's pull on its material at the node (at a
-    /// drum, about the axial force of the span there; at a turning sheave, the difference of both
-    /// spans' forces), from the coupled solve (inertia included).
-    /// @throws std::invalid_argument if rope or node is out of range or the node is not driven.
-    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
-    double getDrivenNodeTorque(const SimTK::State& state, int rope, int node) const;
-    /// Power the rope delivers to the body of a WinchDrum or TurningSheave node [W]
-    /// (Stage::Dynamics): getDrivenNodeTorque times the pin rate. Summed over the nodes and with the
-    /// bodies' own work it closes the energy balance of a driven machine.
-    /// @throws as getDrivenNodeTorque.
-    double getDrivenNodePower(const SimTK::State& state, int rope, int node) const;
-    // ---- traction sheaves (RopeNodeKind::TractionSheave); each throws std::invalid_argument if
-    // rope or node is out of range or the node is not a TractionSheave --------------------------
-    /// Stick or slip (a discrete state variable, changed by the subsystem's traction events).
-    TractionMode getTractionMode(const SimTK::State& state, int rope, int node) const;
-    /// Slip rate v = sdot_k - sense R thetadot [m/s] (Stage::Velocity): the rope's speed over the
-    /// groove, positive towards the rope's start; 0 in stick.
-    double getSlipRate(const SimTK::State& state, int rope, int node) const;
-    /// Net slip distance s_k - sense R theta - s_ref [m]: how far the rope has slid over the groove
-    /// since the start (positive towards the rope's start).
-    double getSlipDistance(const SimTK::State& state, int rope, int node) const;
-    /// Force ratio P_a / P_b of the spans before and after the sheave [-] (Stage::Position; NaN if
-    /// P_b <= 0).
-    double getTractionRatio(const SimTK::State& state, int rope, int node) const;
-    /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position; alpha as getWrapAngle).
-    double getTractionLimit(const SimTK::State& state, int rope, int node) const;
     /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
     /// uses (the given one, else the current geometry's as below); at any other sheave the current
     /// geometry's: l / R with l = getArcLength with SheaveModel::Wrapped (planar or spatial), the
@@ -536,7 +463,7 @@ public:
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
     /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node and at a wrapped
-    /// WinchDrum (the rope beyond its tangent point is stored rope, getRopeOnDrum). The rope's
+    /// WinchDrum (the rope beyond its tangent point is stored rope, WinchDrumHandle::getRopeOnDrum). The rope's
     /// length is the sum over its spans of s2 - s1 (getSpanMaterialRange), over its nodes of l and
     /// of the rope on its drums.
     /// @throws std::invalid_argument if rope or node is out of range.
@@ -547,21 +474,8 @@ public:
     /// nodes and anchors and on planar ropes (the span lies in every groove's plane).
     /// @throws std::invalid_argument if rope or span is out of range.
     std::pair<double, double> getFleetAngles(const SimTK::State& state, int rope, int span) const;
-    /// Friction power dissipated in the groove [W] (Stage::Velocity; 0 in stick): (P_a - P_b) v >= 0
-    /// with TractionSlip::CapstanConstraint; with TractionSlip::RopeMomentum sigma F v - c Ydot
-    /// (its friction's power plus that of the end-force correction c, see TractionSlip).
-    double getFrictionPower(const SimTK::State& state, int rope, int node) const;
-    /// Work dissipated by friction in the groove since the start [J]: the integral of
-    /// getFrictionPower (a Z entry of the subsystem), plus at each stick -> slip transition the
-    /// rope's kinetic energy lost there (positive or negative: the point contact changes the
-    /// material rate at the node at once, from the groove's speed to the one that keeps the capstan
-    /// ratio), so
-    /// that E(t) - E(0) + W_friction = W_drives closes exactly.
-    double getFrictionWork(const SimTK::State& state, int rope, int node) const;
     /// Work dissipated by friction in every TractionSheave of every rope [J].
     double getTotalFrictionWork(const SimTK::State& state) const;
-    /// Number of stick/slip transitions of this sheave in the state's history.
-    int getNumTractionTransitions(const SimTK::State& state, int rope, int node) const;
     /// Puts every sticking TractionSheave whose force ratio is outside [e^(-mu alpha), e^(mu alpha)]
     /// into slip towards its tight side (realizes the state to Stage::Position first). The events
     /// only see a ratio that crosses the limit during a step; call this on an initial state that may
@@ -570,9 +484,6 @@ public:
     /// coordinate at such a sheave moves to where the capstan ratio holds (a new initial condition).
     int updateTractionModes(SimTK::State& state) const;
 
-    /// Rope stored on a WinchDrum node [m]: ropeOnDrum - sense R theta.
-    /// @throws std::invalid_argument if rope or node is out of range or the node is not a WinchDrum.
-    double getRopeOnDrum(const SimTK::State& state, int rope, int node) const;
     /// The rope limit that ended the last run ("" if none): a span reaching
     /// RopeSpec::minimumSpanLength, a drum running out of rope, a wrapped sheave's wrap angle
     /// reaching 0 or a span's fleet angle reaching 85 degrees, with rope, span or node, and time.
@@ -692,7 +603,7 @@ public:
     /// DeviationSheave (sampleArc, as many points as a span) in the colour of the axial force at
     /// the end of the span arriving there; every DeviationSheave and TurningSheave as a disc of
     /// its radius in the plane of its spans (a TurningSheave with a spoke that turns with its pin);
-    /// every WinchDrum as a drum of its radius with the stored rope (getRopeOnDrum) wound on it as a
+    /// every WinchDrum as a drum of its radius with the stored rope (WinchDrumHandle::getRopeOnDrum) wound on it as a
     /// helix in layers (rope diameter for drawing only: that of a steel wire rope of the rope's rhoA,
     /// d = sqrt(4 rhoA / (pi 0.6 7850 kg/m^3))); every Anchor as a small sphere.
     /// @param referenceForce P_ref [N], >= 0 and finite; 0 (the default): the largest span axial force
@@ -713,6 +624,138 @@ public:
     Guts& updGuts();
     const Guts& getGuts() const;
     /// @endcond
+};
+
+/// A node of one rope of a ReevingSubsystem (its rope and node indices): the base of the handles
+/// to the nodes whose kind has queries of its own. The queries every node answers take the
+/// indices on the ReevingSubsystem (getNodeForce, getMaterialCoordinate, getWrapAngle, ...).
+/// A handle refers to the subsystem's implementation, which the System owns: it stays valid as long
+/// as the System does (the ReevingSubsystem object it came from may go out of scope).
+class RopeNodeHandle {
+public:
+    /// The rope's index (ReevingSubsystem::addRope's order).
+    int getRopeIndex() const { return rope_; }
+    /// The node's index on its rope: 0 the start, 1..N-1 the sheaves in path order, N the end.
+    int getNodeIndex() const { return node_; }
+    /// The subsystem the rope belongs to (the System's handle to it: the same subsystem as the
+    /// ReevingSubsystem the rope was added to, not necessarily the same object).
+    const ReevingSubsystem& getReevingSubsystem() const;
+
+protected:
+    /// @cond INTERNAL
+    RopeNodeHandle(const ReevingSubsystem::Guts& guts, int rope, int node) : guts_(&guts), rope_(rope), node_(node) {}
+    const ReevingSubsystem::Guts& guts() const { return *guts_; }
+    /// @endcond
+
+private:
+    const ReevingSubsystem::Guts* guts_;
+    int rope_, node_;
+};
+
+/// A node on a MobilizedBody::Pin whose material coordinate turns with it: a WinchDrum, a
+/// TurningSheave or a TractionSheave.
+class PinnedNodeHandle : public RopeNodeHandle {
+public:
+    /// Torque about the pin axis that the rope applies to the node's body [N m] (Stage::Dynamics):
+    /// sense R times the rope's pull on its material at the node (at a drum, about the axial force
+    /// of the span there; at a sheave, the difference of both spans' forces), from the coupled solve
+    /// (inertia included).
+    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
+    double getTorque(const SimTK::State& state) const;
+    /// Power the rope delivers to the node's body [W] (Stage::Dynamics): getTorque times the pin
+    /// rate. Summed over the nodes and with the bodies' own work it closes the energy balance of a
+    /// driven machine.
+    /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
+    double getPower(const SimTK::State& state) const;
+
+protected:
+    /// @cond INTERNAL
+    PinnedNodeHandle(const ReevingSubsystem::Guts& guts, int rope, int node) : RopeNodeHandle(guts, rope, node) {}
+    /// @endcond
+};
+
+/// A WinchDrum at a rope end (RopeHandle::getWinchDrum).
+class WinchDrumHandle : public PinnedNodeHandle {
+public:
+    /// Rope stored on the drum [m] (Stage::Position): ropeOnDrum - sense R theta.
+    double getRopeOnDrum(const SimTK::State& state) const;
+
+private:
+    friend class RopeHandle;
+    WinchDrumHandle(const ReevingSubsystem::Guts& guts, int rope, int node) : PinnedNodeHandle(guts, rope, node) {}
+};
+
+/// A TurningSheave in a rope's path (RopeHandle::getTurningSheave).
+class TurningSheaveHandle : public PinnedNodeHandle {
+private:
+    friend class RopeHandle;
+    TurningSheaveHandle(const ReevingSubsystem::Guts& guts, int rope, int node) : PinnedNodeHandle(guts, rope, node) {}
+};
+
+/// A TractionSheave in a rope's path (RopeHandle::getTractionSheave): its phase, slip and friction.
+class TractionSheaveHandle : public PinnedNodeHandle {
+public:
+    /// Stick or slip (a discrete state variable, changed by the subsystem's traction events).
+    TractionMode getTractionMode(const SimTK::State& state) const;
+    /// Slip rate v = sdot_k - sense R thetadot [m/s] (Stage::Velocity): the rope's speed over the
+    /// groove, positive towards the rope's start; 0 in stick.
+    /// @throws std::logic_error if the state is not realized to Stage::Velocity.
+    double getSlipRate(const SimTK::State& state) const;
+    /// Net slip distance s_k - sense R theta - s_ref [m] (Stage::Position): how far the rope has
+    /// slid over the groove since the start (positive towards the rope's start).
+    double getSlipDistance(const SimTK::State& state) const;
+    /// Force ratio P_a / P_b of the spans before and after the sheave [-] (Stage::Position; NaN if
+    /// P_b <= 0).
+    double getTractionRatio(const SimTK::State& state) const;
+    /// e^(mu alpha) [-]: the ratio at which the rope slips (Stage::Position; alpha as
+    /// ReevingSubsystem::getWrapAngle).
+    double getTractionLimit(const SimTK::State& state) const;
+    /// Friction power dissipated in the groove [W] (Stage::Velocity; 0 in stick): (P_a - P_b) v >= 0
+    /// with TractionSlip::CapstanConstraint; with TractionSlip::RopeMomentum sigma F v - c Ydot
+    /// (its friction's power plus that of the end-force correction c, see TractionSlip).
+    /// @throws std::logic_error if the state is not realized to Stage::Velocity.
+    double getFrictionPower(const SimTK::State& state) const;
+    /// Work dissipated by friction in the groove since the start [J]: the integral of
+    /// getFrictionPower (a Z entry of the subsystem), plus at each stick -> slip transition the
+    /// rope's kinetic energy lost there (positive or negative: the point contact changes the
+    /// material rate at the node at once, from the groove's speed to the one that keeps the capstan
+    /// ratio), so that E(t) - E(0) + W_friction = W_drives closes exactly.
+    double getFrictionWork(const SimTK::State& state) const;
+    /// Number of stick/slip transitions of this sheave in the state's history.
+    int getNumTractionTransitions(const SimTK::State& state) const;
+
+private:
+    friend class RopeHandle;
+    TractionSheaveHandle(const ReevingSubsystem::Guts& guts, int rope, int node) : PinnedNodeHandle(guts, rope, node) {}
+};
+
+/// One rope of a ReevingSubsystem (ReevingSubsystem::addRope, getRope): its index and its nodes'
+/// typed handles. It converts to the rope's index, so the queries that take an `int rope` take a
+/// RopeHandle too, and `int rope = reeving.addRope(spec);` keeps the index alone. Valid as long as
+/// the System (see RopeNodeHandle).
+class RopeHandle {
+public:
+    /// The rope's index (addRope's order).
+    int getIndex() const { return index_; }
+    /// The rope's index, for the queries that take one.
+    operator int() const { return index_; }
+    /// The rope's number of nodes: its sheaves and both ends.
+    int getNumNodes() const;
+    /// Node `node`, a WinchDrum (0 or getNumNodes() - 1).
+    /// @throws std::invalid_argument if node is out of range or not a WinchDrum.
+    WinchDrumHandle getWinchDrum(int node) const;
+    /// Node `node`, a TurningSheave.
+    /// @throws std::invalid_argument if node is out of range or not a TurningSheave.
+    TurningSheaveHandle getTurningSheave(int node) const;
+    /// Node `node`, a TractionSheave.
+    /// @throws std::invalid_argument if node is out of range or not a TractionSheave.
+    TractionSheaveHandle getTractionSheave(int node) const;
+
+private:
+    friend class ReevingSubsystem;
+    RopeHandle(const ReevingSubsystem::Guts& guts, int index) : guts_(&guts), index_(index) {}
+    const ReevingSubsystem::Guts* guts_;
+    int index_;
 };
 
 }  // namespace SimbodyReeving

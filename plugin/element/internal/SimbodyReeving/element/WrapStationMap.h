@@ -6,6 +6,7 @@
 /// force carried over to the stations. Planar ropes (RopeModel<2>) and spatial ones (RopeModel<3>,
 /// the grooves' axes NodeWrap::axis).
 
+#include "SimbodyReeving/element/GrooveArc.h"
 #include "SimbodyReeving/element/RopeModel.h"
 #include "SimbodyReeving/element/WrapGeometry.h"
 
