@@ -58,7 +58,7 @@ def demo_dir():
     """The folder of the demo programs a study runs (reeving-pendulum, -crane, -elevator).
 
     $SIMBODY_REEVING_DEMO_DIR if set; else build/examples when this package is the build tree's
-    (build/python/simbody_reeving); else the installed bin/ folder.
+    (build/python/simbody_reeving); else the bin/ folder of the prefix it is installed under.
     """
     env = _os.environ.get("SIMBODY_REEVING_DEMO_DIR")
     if env:
@@ -67,7 +67,7 @@ def demo_dir():
     build = _os.path.normpath(_os.path.join(here, _os.pardir, _os.pardir, "examples"))
     if _os.path.isfile(_os.path.join(build, "reeving-pendulum")):
         return build
-    return _core._installed_demo_dir
+    return _os.path.normpath(_os.path.join(here, _core._installed_demo_dir))
 
 
 def run_study(study, out=None, demo_dir=None, quiet=True, resume=False, as_array=False):
