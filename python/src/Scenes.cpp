@@ -683,7 +683,7 @@ void bindScenes(py::module_& m) {
              }),
              py::arg("parameters") = PendulumParameters(), py::arg("spans") = SpanOptions(),
              py::arg("planar_rope") = true, py::arg("horizontal_span") = std::nullopt)
-        .def_property_readonly("parameters", &PendulumScene::parameters)
+        .def_property_readonly("parameters", [](const PendulumScene& sc) { return sc.parameters(); }, "A copy of the parameters.")
         .def_property_readonly("reeving", &PendulumScene::reeving, py::return_value_policy::reference_internal)
         .def(
             "make_initial_state",
@@ -751,7 +751,7 @@ void bindScenes(py::module_& m) {
                  return std::make_unique<ElevatorScene>(p, spans);
              }),
              py::arg("parameters") = ElevatorParameters(), py::arg("spans") = SpanOptions())
-        .def_property_readonly("parameters", &ElevatorScene::parameters)
+        .def_property_readonly("parameters", [](const ElevatorScene& sc) { return sc.parameters(); }, "A copy of the parameters.")
         .def_property_readonly("reeving", &ElevatorScene::reeving, py::return_value_policy::reference_internal)
         .def_property_readonly("duration", &ElevatorScene::duration, "The scenario's run [s].")
         .def_property_readonly("car_total_mass", &ElevatorScene::carTotalMass, "[kg]")
@@ -787,7 +787,7 @@ void bindScenes(py::module_& m) {
              py::arg("parameters") = CraneParameters(), py::arg("cycle") = std::nullopt,
              py::arg("spans") = SpanOptions(),
              "cycle None: the demo's (lift_traverse_lower(), or lift_off(parameters) in CraneScenario.LiftOff).")
-        .def_property_readonly("parameters", &CraneScene::parameters)
+        .def_property_readonly("parameters", [](const CraneScene& sc) { return sc.parameters(); }, "A copy of the parameters.")
         .def_property_readonly("reeving", &CraneScene::reeving, py::return_value_policy::reference_internal)
         .def_property_readonly("duration", [](const CraneScene& sc) { return sc.cycle().duration; }, "[s]")
         .def_property_readonly("falls", &CraneScene::falls)
