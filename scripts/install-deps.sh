@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages SimbodyReeving needs, if any is missing. Idempotent.
 set -euo pipefail
-packages=(cmake g++ make ninja-build libsimbody-dev libeigen3-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox libcli11-dev nlohmann-json3-dev xvfb libx11-dev libyaml-cpp-dev libopenmpi-dev openmpi-bin doxygen)
+packages=(cmake g++ make ninja-build libsimbody-dev libeigen3-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox libcli11-dev nlohmann-json3-dev xvfb libx11-dev libyaml-cpp-dev libopenmpi-dev openmpi-bin doxygen python3-dev python3-pybind11 python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -32,6 +32,8 @@ void installStopHandlers() {
 
 bool stopRequested() { return stopFlag != 0; }
 
+void clearStopRequest() { stopFlag = 0; }
+
 void sleepFor(double seconds) {
     timespec ts{};
     ts.tv_sec = static_cast<time_t>(seconds);

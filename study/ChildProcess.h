@@ -48,6 +48,8 @@ std::string fileTail(const std::filesystem::path& file, int maxLines = 6, std::s
 void installStopHandlers();
 /// true once SIGINT or SIGTERM was received.
 bool stopRequested();
+/// Forgets a SIGINT or SIGTERM received (the Python module runs several studies in one process).
+void clearStopRequest();
 
 /// Sleeps for `seconds`.
 void sleepFor(double seconds);
