@@ -20,9 +20,11 @@ const char* kDescription =
 
 const char* kFooter =
     "Outputs in DIR: timeseries.csv, snapshots.dat (the machine in 3D: columns x y z, the distance\n"
-    "along the boom's plane, ink), summary.json and, with gnuplot, fig_slew_luff.png, fig_swing.png,\n"
-    "fig_span_axial_forces.png, fig_fleet_wrap_angles.png, fig_energy.png, fig_snapshots_side.png\n"
-    "(in the boom's plane), fig_snapshots_plan.png (from above).\n"
+    "along the boom's plane, ink), rope_bending_luffing.csv and rope_bending_hoist.csv (bending cycles\n"
+    "per rope section), summary.json (rope_life: each rope's most bent section) and, with gnuplot,\n"
+    "fig_slew_luff.png, fig_swing.png, fig_span_axial_forces.png, fig_fleet_wrap_angles.png,\n"
+    "fig_energy.png, fig_snapshots_side.png (in the boom's plane), fig_snapshots_plan.png (from above),\n"
+    "fig_rope_bending_luffing.png and fig_rope_bending_hoist.png (cycles along each rope).\n"
     "Exit status: 0 run completed (with --check: the options are valid); 2 bad command line or\n"
     "unusable --out (nothing written); 3 a rope limit ended the run early (a span at\n"
     "minimumSpanLength: two-blocking; or a drum ran out of rope): the outputs up to that instant\n"
