@@ -60,9 +60,8 @@ public:
     /// @throws std::invalid_argument if n < 0.
     void setStepLimit(int n);
 
-    /// The stage an interpolated report is realized to (default Stage::Velocity, the behaviour
-    /// before this option existed): the stage the reporters read, so that reading costs no
-    /// realization beyond it.
+    /// The stage an interpolated report is realized to (default Stage::Velocity): the stage the
+    /// reporters read, so that reading costs no realization beyond it.
     /// - Stage::Position: q is prescribed and projected onto the position constraints (quaternion
     ///   norms included) and realized to Position; u is interpolated and prescribed but *not*
     ///   projected onto the velocity constraints (that needs Stage::Velocity). For reporters that
