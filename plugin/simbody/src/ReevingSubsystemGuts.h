@@ -79,7 +79,6 @@ NodeSpec toNodeSpec(const NodeSpec& node);
 struct DrivenNode {
     int node = 0;
     double sRef = 0;  // [m]
-    double payout = 0;  // sense R [m/rad]
     DrivenLaw law;
     DrivenAngle angle;
     DrivenRole role;
