@@ -4,7 +4,8 @@
 // ropeOnDrum - sense R theta); a TractionSheave's phase key entries (0 in stick and for
 // TractionSlip::RopeMomentum, e^(+-mu alpha) with a given wrap angle, +-1 with the geometry's),
 // the phase model's material kinds and its Z entries (friction work, Y and Ydot); a TurningSheave's
-// role adds nothing.
+// role adds nothing. And the power a pinned node's query reports: torque times the node's angle
+// rate, which on a wrapped groove carried by a turning parent is the sheave body's own rate.
 #include "../../plugin/simbody/src/ReevingSubsystemGuts.h"
 
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
@@ -14,6 +15,7 @@
 #include <Simbody.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -27,12 +29,14 @@ using SimTK::MassProperties;
 using SimTK::MobilizedBody;
 using SimTK::MultibodySystem;
 using SimTK::Pi;
+using SimTK::Rotation;
 using SimTK::SimbodyMatterSubsystem;
 using SimTK::Stage;
 using SimTK::State;
 using SimTK::Transform;
 using SimTK::Vec3;
 using SimTK::Vector;
+using SimTK::ZAxis;
 namespace sr = SimbodyReeving;
 using sr::detail::DrivenRole;
 using sr::detail::GripRole;
@@ -216,4 +220,74 @@ TEST(DrivenRole, WinchDrumRopeOnDrumIsTheStoredRopeLessThePayout) {
         EXPECT_NEAR(onDrum, 30.0 - sense * 0.4 * theta, 1e-14 * 30.0) << "sense " << sense;
         EXPECT_EQ(onDrum, 30.0 + d.reeving->getMaterialCoordinate(d.state, 0, 0));
     }
+}
+
+namespace {
+
+constexpr double kR = 0.3;     // sheave radius [m]
+constexpr double kBoom = 6.0;  // [m]
+
+// A wrapped TurningSheave at the tip of a boom on a Pin (free, turning about the plane normal z):
+// the sheave's angle theta is its pin's plus the boom's turn (ParentTurnAngle), thetadot its
+// body's angular velocity about z, u_boom + u_sheave. The rope runs from an anchor at the boom's
+// foot over the groove down to an anchor 5 m under the far side; the anchor's span holds 2 mm less
+// material than its chord, so the spans pull unequally and the rope turns the sheave.
+struct BoomTipSheave {
+    MultibodySystem system;
+    SimbodyMatterSubsystem matter{system};
+    GeneralForceSubsystem forces{system};
+    std::unique_ptr<sr::ReevingSubsystem> reeving;
+    MobilizedBody::Pin boom, sheave;
+    State state;
+    BoomTipSheave() {
+        boom = MobilizedBody::Pin(matter.Ground(), Transform(Rotation(0.6, ZAxis)),
+                                  Body::Rigid(MassProperties(800, Vec3(0.5 * kBoom, 0, 0), Inertia(Vec3(1, 7201, 7201)))),
+                                  Transform());
+        sheave = MobilizedBody::Pin(boom, Transform(Vec3(kBoom, 0, 0)),
+                                    Body::Rigid(MassProperties(30, Vec3(0), Inertia(0.5))), Transform());
+        reeving = std::make_unique<sr::ReevingSubsystem>(system, Vec3(0, -9.81, 0));
+        sr::RopeSpec rope;
+        rope.sheaveModel = sr::SheaveModel::Wrapped;
+        rope.planeNormal = Vec3(0, 0, 1);
+        const Vec3 anchor(0, 0.8, 0);
+        const Vec3 tipPoint(kBoom * std::cos(0.6), kBoom * std::sin(0.6), 0);
+        rope.properties = {0.6205, 16.5e6, 0.0};
+        rope.spanDefaults.axialModes = 0;
+        rope.spanDefaults.transverseModes = 0;
+        rope.start = sr::RopeAnchor{matter.Ground(), anchor};
+        rope.end = sr::RopeAnchor{matter.Ground(), tipPoint + Vec3(kR, -5.0, 0)};
+        sr::TurningSheave tip;
+        tip.body = sheave;
+        tip.radius = kR;
+        tip.sense = 1;
+        const double chord = (tipPoint + Vec3(0, kR, 0) - anchor).norm();
+        rope.unstretchedLength = chord + 0.5 * Pi * kR + 5.0;
+        tip.materialCoordinateAtZeroAngle = chord - tip.sense * kR * 0.6 - 2e-3;
+        rope.sheaves = {tip};
+        reeving->addRope(rope);
+        system.realizeTopology();
+        state = system.getDefaultState();
+    }
+};
+
+}  // namespace
+
+// The torque is the generalized force on theta, a torque about z on the sheave body
+// (DrivenAngleRow::bodyTorque): its power is torque (u_boom + u_sheave), not torque u_sheave
+// (what the query returned before: 0.3 / -0.4 of it here, the wrong sign).
+TEST(DrivenRole, PinnedNodePowerIsTheTorqueTimesTheSheavesOwnRate) {
+    BoomTipSheave b;
+    const double uBoom = 0.7, uSheave = -0.4;  // [rad/s]
+    b.boom.setOneU(b.state, 0, uBoom);
+    b.sheave.setOneU(b.state, 0, uSheave);
+    b.system.realize(b.state, Stage::Dynamics);
+    const sr::TurningSheaveHandle tip = b.reeving->getRope(0).getTurningSheave(1);
+    const double torque = tip.getTorque(b.state), power = tip.getPower(b.state);
+    const double omega = b.sheave.getBodyAngularVelocity(b.state)[2];  // the sheave body's rate about z
+    std::printf("boom tip sheave: torque %.6g N m, power %.6g W, body rate %.6g rad/s (pin rate %.3g)\n", torque, power,
+                omega, uSheave);
+    EXPECT_GT(std::abs(torque), 100.0);  // the spans pull unequally
+    EXPECT_NEAR(omega, uBoom + uSheave, 1e-15);
+    // One product: round-off of the torque's order.
+    EXPECT_NEAR(power, torque * omega, 1e-14 * std::abs(torque));
 }

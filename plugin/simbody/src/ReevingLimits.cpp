@@ -162,7 +162,10 @@ double PinnedNodeHandle::getTorque(const State& s) const {
 
 double PinnedNodeHandle::getPower(const State& s) const {
     const double torque = getTorque(s);
-    return torque * ropeAt(guts(), getRopeIndex()).nodeSpec(getNodeIndex()).body.getOneU(s, 0);
+    // The torque is the generalized force on the node's angle theta (its pin's, or the sheave
+    // body's own when theta includes its parent's turn, DrivenAngle.h): its power is torque thetadot.
+    const RopeRecord& r = ropeAt(guts(), getRopeIndex());
+    return torque * guts().positionCache(s).ropes[r.index].drivenAngleRates[r.drivenIndex(getNodeIndex())];
 }
 
 const std::string& ReevingSubsystem::getLimitReached() const { return getGuts().limitReached(); }
