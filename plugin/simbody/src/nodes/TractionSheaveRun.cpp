@@ -310,12 +310,14 @@ public:
         getTriggerInfo().setRequiredLocalizationTimeWindow(1e-8);
     }
     Real getValue(const State& s) const override {
-        const DrivenRun run = guts().ropes[rope_].drivenRun(guts(), driven_);
+        const Guts& g = guts();
+        const DrivenRun run = g.ropes[rope_].drivenRun(g, driven_);
         return std::get<TractionRole>(run.node.role.unit).witness(run, s);
     }
     void handleEvent(State& s, Real, bool& shouldTerminate) const override {
         shouldTerminate = false;
-        const DrivenRun run = guts().ropes[rope_].drivenRun(guts(), driven_);
+        const Guts& g = guts();
+        const DrivenRun run = g.ropes[rope_].drivenRun(g, driven_);
         std::get<TractionRole>(run.node.role.unit).changeMode(run, s);
     }
 
