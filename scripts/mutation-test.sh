@@ -37,10 +37,10 @@
 #                      rate sdot instead of the drum's surface speed sdot - sigma R phidot (StoredRope)
 #  11 capstan-exponent the capstan exponent mu alpha halved wherever the law is evaluated: the stick
 #                      limit e^(mu alpha), the slip ratio and slip law, the friction 1 - e^(-mu alpha)
-#                      of TractionSlip::RopeMomentum (ReevingTraction)
+#                      of TractionSlip::RopeMomentum (TractionSheaveRun)
 #  12 rhoa-v2          the rope's centripetal load rhoA v^2 dropped from the groove's normal load
-#                      P - rhoA v^2, in the RopeMomentum slip law and its stick limit (ReevingTraction)
-#  13 tight-side       RopeMomentum slip takes the slack side's tension as the tight one (ReevingTraction)
+#                      P - rhoA v^2, in the RopeMomentum slip law and its stick limit (TractionSheaveRun)
+#  13 tight-side       RopeMomentum slip takes the slack side's tension as the tight one (TractionSheaveRun)
 #  14 arc-length       the rope on a groove measured as R alpha / 2: a wrapped sheave's arc length
 #                      and a gripping groove's (drum, turning sheave) R phi halved in the station map,
 #                      consistently in its value, Jacobian and bias (WrapStationMap)
@@ -205,16 +205,16 @@ mutant_10() {
 }
 
 mutant_11() {
-    site plugin/simbody/src/ReevingTraction.cpp capstan-exponent 's/d\.frictionCoefficient/(0.5 * d.frictionCoefficient)/g' ||
+    site plugin/simbody/src/nodes/TractionSheaveRun.cpp capstan-exponent 's/\bfrictionCoefficient\b/(0.5 * frictionCoefficient)/g' ||
         return 1
 }
 
 mutant_12() {
-    site plugin/simbody/src/ReevingTraction.cpp rhoa-v2 's/std::max\(tight - ([^,]*), 0\.0\)/std::max(tight - 0.0 * $1, 0.0)/' || return 1
+    site plugin/simbody/src/nodes/TractionSheaveRun.cpp rhoa-v2 's/std::max\(tight - ([^,]*), 0\.0\)/std::max(tight - 0.0 * $1, 0.0)/' || return 1
 }
 
 mutant_13() {
-    site plugin/simbody/src/ReevingTraction.cpp tight-side 's/sigma > 0 \? pa : pb/sigma > 0 ? pb : pa/' || return 1
+    site plugin/simbody/src/nodes/TractionSheaveRun.cpp tight-side 's/sigma > 0 \? pa : pb/sigma > 0 ? pb : pa/' || return 1
 }
 
 mutant_14() {

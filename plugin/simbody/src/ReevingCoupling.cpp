@@ -234,29 +234,9 @@ int ReevingSubsystem::Guts::realizeSubsystemDynamicsImpl(const State& s) const {
             zdot[r.zOffset + r.numModal + j] = c.modalAccelerations[j];
         }
         if (r.dampingZOffset >= 0) zdot[r.dampingZOffset] = r.planar ? c.planar.dampingPower : c.spatial.dampingPower;
-        // Friction work of the traction sheaves: (P_a - P_b) v_slip, zero in stick; the slip states
-        // of TractionSlip::RopeMomentum sheaves (zero rates in stick).
-        for (const RopeRecord::DrivenNode& d : r.driven) {
-            if (!d.traction) continue;
-            const int zy = r.slipZOffset + 2 * d.tractionIndex;
-            zdot[zy] = zdot[zy + 1] = 0;
-            if (inMomentumSlip(s, r, d)) {
-                const int external = r.drivenExternal(static_cast<int>(&d - r.driven.data()));
-                zdot[zy] = z[zy + 1];
-                zdot[zy + 1] = c.externalAccelerations[external];
-                for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
-                    if (f.rope == static_cast<int>(i) && f.external == external)
-                        zdot[r.tractionZOffset + d.tractionIndex] = f.workRate;
-                continue;
-            }
-            const double v = slipRate(s, r, d);
-            double power = 0;
-            if (v != 0) {
-                const auto [pa, pb] = nodeAxialForces(s, r, d.node);
-                power = (pa - pb) * v;
-            }
-            zdot[r.tractionZOffset + d.tractionIndex] = power;
-        }
+        // The driven nodes' own Z entries (a TractionSheave's friction work and slip states).
+        for (int d = 0; d < static_cast<int>(r.driven.size()); ++d)
+            r.driven[d].role.zDerivatives(r.drivenRun(*this, d), s, c, ws, z, zdot);
     }
     return 0;
 }
@@ -394,6 +374,84 @@ void ReevingSubsystem::Guts::couplingAccelerations(const PositionCache& pc, cons
         a[ns + static_cast<Eigen::Index>(d)] = ropes[ma.rope].driven[ma.driven].law.acceleration(
             c.drivenAngles[ma.driven], c.drivenAngleRates[ma.driven], ws.angleRows[d].acceleration(A_GB, udot));
     }
+}
+
+
+// Coordinates of a rope alone (no body; a TractionSlip::RopeMomentum sheave's slip state Y in
+// slip) that move by their own balance: with F their indices in a rope and g_F their balances'
+// right sides, S' = S - S_xF S_FF^-1 S_Fx and h' = h - S_xF S_FF^-1 g_F on the other coordinates
+// (rows and columns F zero), so the coupled solve sees the rope with them moving as their
+// balances say. The driven nodes register them (DrivenRole::condense).
+void ReevingSubsystem::Guts::condenseMomentumSlips(const State& s, PositionCache& pc, Vector& mobilityForces,
+                                                   Vector_<SpatialVec>& bodyForces) const {
+    CouplingWorkspace& ws = pc.coupling;
+    ws.freeSlips.clear();
+    for (const RopeRecord& r : ropes) {
+        pc.ropes[r.index].condensed = false;
+        for (int d = 0; d < static_cast<int>(r.driven.size()); ++d)
+            r.driven[d].role.condense(r.drivenRun(*this, d), s, ws, mobilityForces, bodyForces);
+    }
+    for (const RopeRecord& r : ropes) {
+        ws.freeIndex.clear();
+        for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+            if (f.rope == r.index) ws.freeIndex.push_back(f.external);
+        if (ws.freeIndex.empty()) continue;
+        RopeCache& c = pc.ropes[r.index];
+        const int nx = r.numExternal(), nf = static_cast<int>(ws.freeIndex.size());
+        const Eigen::MatrixXd& S = withRope(r, c, [&](const auto& model, auto& data) -> const Eigen::MatrixXd& {
+            if (data.nodeMass.size() == 0)
+                model.multiplyByNodeMass(data, Eigen::MatrixXd::Identity(nx, nx), data.nodeMass);
+            return data.nodeMass;
+        });
+        ws.freeSxF.resize(nx, nf);
+        ws.freeSFF.resize(nf, nf);
+        ws.freeDrive.resize(nf);
+        int a = 0;
+        for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+            if (f.rope == r.index) ws.freeDrive[a++] = f.drive;
+        for (a = 0; a < nf; ++a) {
+            ws.freeSxF.col(a) = S.col(ws.freeIndex[a]);
+            for (int b = 0; b < nf; ++b) ws.freeSFF(a, b) = S(ws.freeIndex[a], ws.freeIndex[b]);
+        }
+        for (a = 0; a < nf; ++a) ws.freeSxF.row(ws.freeIndex[a]).setZero();  // the others' rows only
+        ws.freeLdlt.compute(ws.freeSFF);
+        ws.freeSolve = ws.freeLdlt.solve(ws.freeSxF.transpose());
+        c.condensedMass = S;
+        c.condensedMass.noalias() -= ws.freeSxF * ws.freeSolve;
+        ws.freeAcceleration = ws.freeLdlt.solve(ws.freeDrive);
+        c.condensedForce = withRope(r, c, [](const auto&, const auto& data) -> const Eigen::VectorXd& { return data.nodeForce; });
+        c.condensedForce.noalias() -= ws.freeSxF * ws.freeAcceleration;
+        for (a = 0; a < nf; ++a) {
+            c.condensedMass.row(ws.freeIndex[a]).setZero();
+            c.condensedMass.col(ws.freeIndex[a]).setZero();
+            c.condensedForce[ws.freeIndex[a]] = 0;
+        }
+        c.condensed = true;
+    }
+}
+
+void ReevingSubsystem::Guts::recoverMomentumSlips(PositionCache& pc, int rope) const {
+    CouplingWorkspace& ws = pc.coupling;
+    RopeCache& c = pc.ropes[rope];
+    ws.freeIndex.clear();
+    for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+        if (f.rope == rope) ws.freeIndex.push_back(f.external);
+    const int nf = static_cast<int>(ws.freeIndex.size());
+    const Eigen::MatrixXd& S =
+        withRope(ropes[rope], c, [](const auto&, const auto& data) -> const Eigen::MatrixXd& { return data.nodeMass; });
+    ws.freeDrive.resize(nf);
+    ws.freeSFF.resize(nf, nf);
+    int a = 0;
+    for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
+        if (f.rope == rope) ws.freeDrive[a++] = f.drive;
+    for (a = 0; a < nf; ++a) c.externalAccelerations[ws.freeIndex[a]] = 0;
+    for (a = 0; a < nf; ++a) {
+        ws.freeDrive[a] -= S.row(ws.freeIndex[a]).dot(c.externalAccelerations);
+        for (int b = 0; b < nf; ++b) ws.freeSFF(a, b) = S(ws.freeIndex[a], ws.freeIndex[b]);
+    }
+    ws.freeLdlt.compute(ws.freeSFF);
+    ws.freeAcceleration = ws.freeLdlt.solve(ws.freeDrive);
+    for (a = 0; a < nf; ++a) c.externalAccelerations[ws.freeIndex[a]] = ws.freeAcceleration[a];
 }
 
 }  // namespace SimbodyReeving

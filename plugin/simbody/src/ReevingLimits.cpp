@@ -1,7 +1,7 @@
 // ReevingSubsystem: rope limits that end a run cleanly (a span at RopeSpec::minimumSpanLength:
-// two-blocking or a drum hauling the last span in; a drum out of rope; a wrapped sheave's wrap
-// angle at zero: the rope leaving the groove), and the driven-node
-// queries (torque, power, rope on drum).
+// two-blocking or a drum hauling the last span in; a wrapped sheave's wrap angle at zero: the rope
+// leaving the groove; a driven node's own, DrivenRole::limitMargin: a drum out of rope), and the
+// driven-node queries (torque, power).
 
 #include "ReevingSubsystemGuts.h"
 
@@ -17,16 +17,6 @@ using SimTK::State;
 namespace SimbodyReeving {
 
 using namespace detail;
-
-namespace {
-// The rope stored on winch drum d [m], from the material coordinate where the rope leaves it
-// (the drum's centre, or its tangent point when wrapped): ropeOnDrum + s_0 at a start drum,
-// ropeOnDrum + L - s_N at an end drum (RopeRecord::addStoredRope).
-double ropeOnDrum(const RopeCache& c, const RopeRecord& r, const RopeRecord::DrivenNode& d) {
-    const double s = r.planar ? c.planar.materialCoordinates[d.node] : c.spatial.materialCoordinates[d.node];
-    return d.node == 0 ? d.ropeOnDrum + s : d.ropeOnDrum + r.spec.unstretchedLength - s;
-}
-}  // namespace
 
 double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) const {
     const PositionCache& pc = positionCache(s);
@@ -63,16 +53,9 @@ double ReevingSubsystem::Guts::limitMargin(const State& s, std::string* which) c
                              ": its wrap angle fell to 0 (the rope leaves the groove)";
             }
         }
-        for (const RopeRecord::DrivenNode& d : r.driven) {
-            if (!d.drum) continue;
-            const double onDrum = ropeOnDrum(pc.ropes[i], r, d);
-            if (onDrum < margin) {
-                margin = onDrum;
-                if (which)
-                    *which = "rope '" + r.spec.name + "' winch drum at node " + std::to_string(d.node) +
-                             " ran out of rope";
-            }
-        }
+        // The driven nodes' own limits (a winch drum out of rope).
+        for (int d = 0; d < static_cast<int>(r.driven.size()); ++d)
+            r.driven[d].role.limitMargin(r.drivenRun(*this, d), pc.ropes[i], margin, which);
         // A span of a spatial rope whose fleet angle at a wrapped node reaches kMaxFleetAngle: near
         // 90 degrees the span runs along the groove's axis, where it has no tangent point (as an
         // arc of the groove [m]: R (cos gamma - cos gamma_max)).
@@ -153,12 +136,13 @@ void detail::installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex re
 // ---- driven-node queries ---------------------------------------------------------------------
 
 namespace {
-const RopeRecord::DrivenNode& drivenNodeAt(const RopeRecord& r, int node, const char* what) {
+const RopeRecord::DrivenNode& drivenNodeAt(const RopeRecord& r, int node) {
     if (node < 0 || node >= r.numNodes())
         invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
     const int d = r.drivenIndex(node);
-    if (d < 0 || (std::string(what) == "WinchDrum" && !r.driven[d].drum))
-        invalid(std::string("rope '") + r.spec.name + "' node " + std::to_string(node) + " is not a " + what);
+    if (d < 0)
+        invalid(std::string("rope '") + r.spec.name + "' node " + std::to_string(node) +
+                " is not a WinchDrum, TurningSheave or TractionSheave");
     return r.driven[d];
 }
 }  // namespace
@@ -167,7 +151,7 @@ double PinnedNodeHandle::getTorque(const State& s) const {
     const int rope = getRopeIndex(), node = getNodeIndex();
     const ReevingSubsystem::Guts& g = guts();
     const RopeRecord& r = ropeAt(g, rope);
-    const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum or TurningSheave");
+    const RopeRecord::DrivenNode& d = drivenNodeAt(r, node);
     if (s.getSystemStage() < Stage::Dynamics)
         throw std::logic_error("PinnedNodeHandle::getTorque: realize the state to Stage::Dynamics first");
     const RopeCache& c = g.positionCache(s).ropes[rope];
@@ -178,14 +162,10 @@ double PinnedNodeHandle::getTorque(const State& s) const {
 
 double PinnedNodeHandle::getPower(const State& s) const {
     const double torque = getTorque(s);
-    return torque * ropeAt(guts(), getRopeIndex()).nodeSpec(getNodeIndex()).body.getOneU(s, 0);
-}
-
-double WinchDrumHandle::getRopeOnDrum(const State& s) const {
-    const int rope = getRopeIndex(), node = getNodeIndex();
-    const RopeRecord& r = ropeAt(guts(), rope);
-    const RopeRecord::DrivenNode& d = drivenNodeAt(r, node, "WinchDrum");
-    return ropeOnDrum(guts().positionCache(s).ropes[rope], r, d);
+    // The torque is the generalized force on the node's angle theta (its pin's, or the sheave
+    // body's own when theta includes its parent's turn, DrivenAngle.h): its power is torque thetadot.
+    const RopeRecord& r = ropeAt(guts(), getRopeIndex());
+    return torque * guts().positionCache(s).ropes[r.index].drivenAngleRates[r.drivenIndex(getNodeIndex())];
 }
 
 const std::string& ReevingSubsystem::getLimitReached() const { return getGuts().limitReached(); }

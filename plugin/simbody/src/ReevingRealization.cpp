@@ -100,8 +100,7 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
         r.tractionModels.clear();
         r.spatialTractionModels.clear();
         traction.ropes.emplace_back(r.numTraction);
-        for (const RopeRecord::DrivenNode& d : r.driven)
-            if (d.traction) traction.ropes.back()[d.tractionIndex].sStick = d.sRef;
+        for (const RopeRecord::DrivenNode& d : r.driven) d.role.initialPhase(traction.ropes.back(), d.sRef);
     }
     // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
     // coordinate (1 row each); each rope records which of its external coordinates each row is.
@@ -671,23 +670,16 @@ void ReevingSubsystem::Guts::drivenCoordinates(const State& s, const RopeRecord&
         c.drivenSdot.resize(n);
         c.drivenAngleRates.resize(n);
     }
-    const std::vector<TractionNodeState>* traction = r.numTraction > 0 ? &tractionStates(s).ropes[r.index] : nullptr;
     for (int d = 0; d < n; ++d) {
         const RopeRecord::DrivenNode& dn = r.driven[d];
         const DrivenAngleSite site = angleSite(s, r, dn);
         c.drivenAngles[d] = dn.angle.angle(site);
         if (rates) c.drivenAngleRates[d] = dn.angle.rate(site);
-        // A traction sheave's stick offset is state (in slip the entry is the groove's coordinate,
-        // which no span reads); with TractionSlip::RopeMomentum in slip it is the state Y.
-        if (dn.momentumSlip && (*traction)[dn.tractionIndex].mode != TractionMode::Stick) {
-            const int zi = r.slipZOffset + 2 * dn.tractionIndex;
-            c.drivenS[d] = getZ(s)[zi];
-            if (rates) c.drivenSdot[d] = getZ(s)[zi + 1];
-            continue;
-        }
-        const double sRef = dn.traction ? (*traction)[dn.tractionIndex].sStick : dn.sRef;
-        c.drivenS[d] = dn.law.materialCoordinate(sRef, c.drivenAngles[d]);
-        if (rates) c.drivenSdot[d] = dn.law.materialRate(c.drivenAngles[d], c.drivenAngleRates[d]);
+        // s = sRef + g(theta), or what the node's role makes of it (a TractionSheave's stick
+        // offset is state; in slip with TractionSlip::RopeMomentum s is the state Y).
+        double unusedRate = 0;
+        dn.role.materialCoordinate(r.drivenRun(*this, d), s, c.drivenAngles[d], rates ? c.drivenAngleRates[d] : 0.0,
+                                   rates, c.drivenS[d], rates ? c.drivenSdot[d] : unusedRate);
     }
 }
 

@@ -282,10 +282,9 @@ RopeHandle ReevingSubsystem::addRope(const RopeSpec& specIn) {
     }
     if (g.ropes.empty()) installLimitHandler(updSystem(), getMySubsystemIndex());
     if (!r.planar) installFrameChangeHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()));
-    for (size_t d = 0; d < r.driven.size(); ++d)
-        if (r.driven[d].traction)
-            installTractionHandler(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()), static_cast<int>(d),
-                                   r.driven[d].momentumSlip);
+    for (size_t d = 0; d < r.driven.size(); ++d)  // a TractionSheave's stick/slip events
+        r.driven[d].role.installEvents(updSystem(), getMySubsystemIndex(), static_cast<int>(g.ropes.size()),
+                                       static_cast<int>(d));
     g.ropes.push_back(std::move(r));
     invalidateSubsystemTopologyCache();
     return RopeHandle(g, static_cast<int>(g.ropes.size()) - 1);

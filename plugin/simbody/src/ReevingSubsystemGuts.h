@@ -3,11 +3,13 @@
 /// Internal to the plugin (not installed): the implementation of ReevingSubsystem, shared by
 /// ReevingSubsystem.cpp (construction, validation, state accessors), ReevingRealization.cpp
 /// (realization, rope caches, energy, decorations), ReevingCoupling.cpp (the coupled rope/body
-/// solve), ReevingQueries.cpp (public queries) and ReevingStaticEquilibrium.cpp.
+/// solve), ReevingPhases.cpp (the traction phases' models), ReevingQueries.cpp (public queries),
+/// ReevingStaticEquilibrium.cpp, and the node kinds' units in nodes/.
 
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
 #include "nodes/DrivenAngle.h"
 #include "nodes/DrivenLaw.h"
+#include "nodes/DrivenRole.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -70,6 +72,18 @@ struct NodeSpec {
 /// The flat record of a node (see NodeSpec).
 NodeSpec toNodeSpec(const NodeSpec& node);
 
+/// A node whose material coordinate turns with a pin (WinchDrum, TurningSheave, TractionSheave):
+/// s_k = sRef + g(theta) (RopeModel's Driven nodes), g the node's DrivenLaw and theta its
+/// DrivenAngle (nodes/DrivenLaw.h, nodes/DrivenAngle.h); what its kind adds at run time (stored
+/// rope, friction) is its DrivenRole (nodes/DrivenRole.h).
+struct DrivenNode {
+    int node = 0;
+    double sRef = 0;  // [m]
+    DrivenLaw law;
+    DrivenAngle angle;
+    DrivenRole role;
+};
+
 /// Model (fixed for a simulation; the planar model is built at realizeTopology, the spatial one is
 /// state, see SpatialFrames):
 /// One rope: its spec, its model (planar or spatial) and where its state lives.
@@ -87,30 +101,9 @@ struct RopeRecord {
     int numModal = 0;
     int zOffset = 0;  // first Z entry (modal coordinates), rates follow
 
-    /// The nodes whose material coordinate turns with a pin (WinchDrum, TurningSheave,
-    /// TractionSheave), in node order: s_k = sRef + g(theta) (RopeModel's Driven nodes), g the
-    /// node's DrivenLaw and theta its DrivenAngle (nodes/DrivenLaw.h, nodes/DrivenAngle.h).
-    struct DrivenNode {
-        int node = 0;
-        double sRef = 0;  // [m]
-        DrivenLaw law;
-        DrivenAngle angle;
-        bool drum = false;
-        double ropeOnDrum = 0, payout = 0;  // drums: rope stored = ropeOnDrum - payout theta
-        // TractionSheave: stick is this Driven node with sRef the state's TractionNodeState::sStick;
-        // slip makes the node MaterialNode::Slipping (see tractionModel).
-        bool traction = false;
-        int tractionIndex = -1;  // among the rope's traction sheaves
-        double frictionCoefficient = 0, wrapAngle = 0;  // wrapAngle 0: from the geometry
-        // A TractionSheave without a given wrap angle: its capstan law takes the current geometry's
-        // alpha (RopeModel::wrapAngle: l / R wrapped, the chords' turning angle at a point sheave;
-        // RopeModel::setSlipLaw), at every evaluation.
-        bool geometricWrap = false;
-        // TractionSlip::RopeMomentum: in slip the driven entry is the state Y (Z at
-        // slipZOffset + 2 tractionIndex, its rate after it), not sStick + g(theta).
-        bool momentumSlip = false;
-    };
-    int numTraction = 0;
+    /// The nodes whose material coordinate turns with a pin, in node order (DrivenNode).
+    using DrivenNode = detail::DrivenNode;
+    int numTraction = 0;      // TractionSheaves (TractionRole::index 0..numTraction-1)
     int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
     int slipZOffset = 0;      // first Z entry of the traction sheaves' slip states (Y, Ydot) each
     int dampingZOffset = -1;  // Z entry of the rope's damping work (ropes with axialRetardationTime > 0)
@@ -171,13 +164,16 @@ struct RopeRecord {
             if (driven[d].node == k) return static_cast<int>(d);
         return -1;
     }
+    /// Driven node d of this rope at run time in subsystem g (DrivenRole's hooks).
+    DrivenRun drivenRun(const ReevingSubsystem::Guts& g, int d) const {
+        return {g, *this, driven[static_cast<std::size_t>(d)], d};
+    }
     int dim() const { return planar ? 2 : 3; }
-    /// Declares the rope stored on each WinchDrum to the model (RopeModel::setStoredRope): at a
-    /// start drum l = ropeOnDrum + s_0, at an end drum l = ropeOnDrum + L - s_N.
+    /// Declares the rope stored on its driven nodes to the model (DrivenRole::declareStoredRope:
+    /// a WinchDrum's, RopeModel::setStoredRope).
     template <int Dim>
     void addStoredRope(RopeModel<Dim>& model) const {
-        for (const DrivenNode& d : driven)
-            if (d.drum) model.setStoredRope(d.node, d.node == 0 ? d.ropeOnDrum : d.ropeOnDrum + spec.unstretchedLength);
+        for (const DrivenNode& d : driven) d.role.declareStoredRope(model, d.node, spec.unstretchedLength);
     }
     /// The nodes on Ground (RopeModel::setStationaryNodes: their columns of the node mass are skipped).
     std::vector<bool> stationaryNodes() const {
@@ -199,11 +195,7 @@ struct RopeRecord {
 /// and the material coordinate offset of its current stick phase (s_k = sStick + g(theta))
 /// and the count of transitions. (A wrap angle taken from the geometry is not state: it is a
 /// function of the positions, RopeModel::wrapAngle of the position cache's evaluation.)
-struct TractionNodeState {
-    TractionMode mode = TractionMode::Stick;
-    double sStick = 0;
-    int transitions = 0;
-};
+/// (TractionNodeState: nodes/DrivenRole.h.)
 struct TractionStates {
     std::vector<std::vector<TractionNodeState>> ropes;
 };
@@ -434,65 +426,19 @@ public:
     detail::TractionStates& updTractionStates(SimTK::State& s) const;
     /// Axial forces P_a, P_b of the spans before and after node k at the node [N] (Stage::Position).
     std::pair<double, double> nodeAxialForces(const SimTK::State& s, const detail::RopeRecord& r, int node) const;
-    /// The wrap angle alpha [rad] traction sheave d's capstan law uses in state s (Stage::Position):
-    /// the current geometry's (RopeModel::wrapAngle) for a geometricWrap sheave, else the given one.
-    double tractionWrapAngle(const SimTK::State& s, const detail::RopeRecord& r,
-                             const detail::RopeRecord::DrivenNode& d) const;
-    /// e^(mu alpha) of traction sheave d of rope r in state s.
-    double tractionLimit(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
-    /// Slip rate sdot_k - g'(theta) thetadot of traction sheave d [m/s] (Stage::Velocity; 0 in stick).
-    /// The slip of a TractionSlip::RopeMomentum traction sheave in slip (Stage::Velocity): the
-    /// rope's speed over the groove v = Ydot [m/s], the friction on the groove sigma F [N] (along
-    /// s; the rope receives -sigma F), the momentum balance's right side P_a - P_b - sigma F [N],
-    /// the correction P_a - P_b - h_Y [N] (h_Y the rope's own generalized force on Y), the slip
-    /// rate v - g'(theta) thetadot [m/s] and the rate of the friction work sigma F v_slip - c v [W].
-    struct MomentumSlip {
-        double speed = 0, friction = 0, drive = 0, correction = 0, slipRate = 0, workRate = 0;
-        int external = -1;  // Y's index among the rope's external coordinates (stations)
-    };
-    MomentumSlip momentumSlip(const SimTK::State& s, const detail::RopeRecord& r,
-                              const detail::RopeRecord::DrivenNode& d) const;
     /// The total axial forces EA (eps + c epsdot) at node k's two span ends [N] (Stage::Velocity):
     /// what TractionSlip::RopeMomentum's balance and friction act on.
     std::pair<double, double> nodeTotalForces(const SimTK::State& s, const detail::RopeRecord& r, int node) const;
-    /// F_max = max(tight - rhoA v^2, 0)(1 - e^(-mu alpha)) of a TractionSlip::RopeMomentum sheave
-    /// in stick (v the groove's speed) with tight the force on the side it would slide to [N].
-    double maxFriction(const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d, double tight,
-                       const SimTK::State& s) const;
-    /// The friction that holds a TractionSlip::RopeMomentum sheave's rope in stick (Stage::Dynamics),
-    /// Phi = P_a - P_b - (S xddot)_Y [N] (positive: it would slide towards the rope's start).
-    double stickFriction(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
-    /// Before the coupled solve (realizeSubsystemDynamicsImpl): every TractionSlip::RopeMomentum
-    /// sheave in slip applies its friction's reaction to its pin (on its angle's row: mobilityForces
-    /// or bodyForces) and has its Y condensed out of its rope's S and h (RopeCache::condensed*;
-    /// CouplingWorkspace::freeSlips).
+    /// Before the coupled solve (realizeSubsystemDynamicsImpl, ReevingCoupling.cpp): every driven
+    /// node registers its coordinates that move by their own balance (DrivenRole::condense: a
+    /// TractionSlip::RopeMomentum sheave in slip its Y, applying its friction's reaction to its
+    /// pin on its angle's row, mobilityForces or bodyForces), which are condensed out of their
+    /// rope's S and h (RopeCache::condensed*; CouplingWorkspace::freeSlips).
     void condenseMomentumSlips(const SimTK::State& s, detail::PositionCache& pc, SimTK::Vector& mobilityForces,
                                SimTK::Vector_<SimTK::SpatialVec>& bodyForces) const;
     /// After it: rope i's Y accelerations from their rows, S_FF Yddot = g_F - S_Fx xddot, into its
     /// externalAccelerations.
     void recoverMomentumSlips(detail::PositionCache& pc, int rope) const;
-    /// Sets traction sheave d's slip states Y, Ydot from its stick phase (stick's sStick) in s.
-    void startMomentumSlip(SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d,
-                           const detail::TractionNodeState& stick) const;
-    /// True if traction sheave d is TractionSlip::RopeMomentum and slipping in state s.
-    bool inMomentumSlip(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const {
-        return d.momentumSlip && tractionStates(s).ropes[r.index][d.tractionIndex].mode != TractionMode::Stick;
-    }
-    double slipRate(const SimTK::State& s, const detail::RopeRecord& r, const detail::RopeRecord::DrivenNode& d) const;
-    /// Witness of traction sheave d's next transition (Stage::Velocity), positive until it is due:
-    /// stick: the smaller of P_b - P_a e^(-mu alpha) and P_a - P_b e^(-mu alpha) (the capstan
-    /// margins divided by e^(mu alpha), so a large limit does not amplify round-off), plus a
-    /// hysteresis of kTractionHysteresis (|P_a| + |P_b|) [N]; slip: the slip rate in the slip's direction plus
-    /// kSlipRateHysteresis [m/s].
-    double tractionWitness(const SimTK::State& s, int rope, int driven) const;
-    /// The transition of traction sheave d (its witness fell through zero): stick -> slip towards the
-    /// tight side, slip -> stick with sStick = s_k - g(theta) (s_k continuous).
-    void changeTractionMode(SimTK::State& s, int rope, int driven) const;
-    /// Relative force margin past the capstan limit at which a sticking sheave starts to slip, and
-    /// the slip rate past zero at which a slipping one sticks: a zero witness right after a
-    /// transition would otherwise leave the event's direction to round-off.
-    static constexpr double kTractionHysteresis = 1e-9;
-    static constexpr double kSlipRateHysteresis = 1e-9;  // [m/s]
     /// The largest fleet angle [rad] a span of a spatial rope may reach at a wrapped node: 85
     /// degrees; past it the run ends (limitMargin), short of the tangency's singularity at 90.
     static constexpr double kMaxFleetAngle = 85.0 * 3.14159265358979323846 / 180.0;
@@ -654,10 +600,6 @@ void installLimitHandler(SimTK::System& system, SimTK::SubsystemIndex reeving);
 /// Adds to `system` the event handler that changes the span reference frames of spatial rope
 /// `rope` when a chord nears reversal against its reference (ReevingRealization.cpp).
 void installFrameChangeHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope);
-
-/// Adds to `system` the event handler of the stick/slip transitions of rope `rope`'s driven node
-/// `driven`, a TractionSheave (ReevingTraction.cpp). (momentum: TractionSlip::RopeMomentum, whose stick witness is at Stage::Dynamics)
-void installTractionHandler(SimTK::System& system, SimTK::SubsystemIndex reeving, int rope, int driven, bool momentum);
 
 /// Helper: rope `rope` of g; throws std::invalid_argument if the index is out of range.
 inline const RopeRecord& ropeAt(const ReevingSubsystem::Guts& g, int rope) {

@@ -18,7 +18,9 @@
 /// What every node shares at run time (a station on a body: positions, velocities, the coupled
 /// solve's rows) is generic in ReevingRealization.cpp and ReevingCoupling.cpp; a Driven node's
 /// run time is its units' (DrivenAngle.h: how theta and its rate are measured and its row of the
-/// coupled solve; DrivenLaw.h: s(theta) with its derivatives), which the generic code calls.
+/// coupled solve; DrivenLaw.h: s(theta) with its derivatives; DrivenRole.h: what its kind adds,
+/// a drum's stored rope, a traction sheave's phases, Z entries, events, condensation and
+/// queries), which the generic code calls without asking for the kind.
 
 #include "../ReevingSubsystemGuts.h"
 
@@ -95,7 +97,8 @@ struct TurningSheaveNode {
 };
 
 /// A sheave on a Pin that grips the rope by friction (stick: a TurningSheave with a state offset;
-/// slip: the capstan law, ReevingTraction.cpp). Inside a path of a planar or spatial rope.
+/// slip: the capstan law or the rope's momentum, TractionRole in DrivenRole.h and TractionSheaveRun.cpp).
+/// Inside a path of a planar or spatial rope.
 struct TractionSheaveNode {
     static constexpr const char* kName = "TractionSheave";
     static constexpr bool kTensionEquality = false;

@@ -63,7 +63,6 @@ RopeRecord::DrivenNode drivenNodeOf(NodeSite& site) {
     site.rope.materialKinds[site.node] = MaterialNode::Driven;
     RopeRecord::DrivenNode d;
     d.node = site.node;
-    d.payout = site.spec.sense * site.spec.radius;
     return d;
 }
 

@@ -14,9 +14,9 @@ namespace detail {
 /// @throws std::invalid_argument (ReevingSubsystem's message) otherwise.
 void validatePinnedNode(const NodeSite& site);
 
-/// Makes the node Driven and returns its DrivenNode record with node and payout filled (the kind
-/// sets s_ref and its DrivenLaw and its own fields, then pushes it; the angle is a PinAngle
-/// unless grippingSheaveWrap makes it the sheave's own).
+/// Makes the node Driven and returns its DrivenNode record with its node filled (the kind sets
+/// s_ref, its DrivenLaw and its DrivenRole, then pushes it; the angle is a PinAngle unless
+/// grippingSheaveWrap makes it the sheave's own).
 RopeRecord::DrivenNode drivenNodeOf(NodeSite& site);
 
 /// A TurningSheave, TractionSheave or WinchDrum with SheaveModel::Wrapped grips the rope on its

@@ -1,5 +1,6 @@
 // NodeKind::TractionSheave: a sheave on a pin that grips the rope by friction. Built as a
-// TurningSheave in stick; its slip phases and events are in ReevingTraction.cpp.
+// TurningSheave in stick with a TractionRole (DrivenRole.h); its run time (slip phases, Z
+// entries, events, queries) is in TractionSheaveRun.cpp.
 
 #include "PinnedNode.h"
 
@@ -22,13 +23,13 @@ void TractionSheaveNode::validate(const NodeSite& site) {
 
 void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
     TurningSheaveNode::addMaterialRelation(site);  // it starts in stick
-    RopeRecord::DrivenNode& d = site.rope.driven.back();
-    d.traction = true;
-    d.tractionIndex = site.rope.numTraction++;
-    d.frictionCoefficient = site.spec.frictionCoefficient;
-    d.wrapAngle = site.spec.wrapAngle;
-    d.geometricWrap = site.spec.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
-    d.momentumSlip = site.spec.slipModel == TractionSlip::RopeMomentum;
+    TractionRole traction;
+    traction.index = site.rope.numTraction++;
+    traction.frictionCoefficient = site.spec.frictionCoefficient;
+    traction.givenWrapAngle = site.spec.wrapAngle;
+    traction.geometricWrap = site.spec.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
+    traction.slipModel = site.spec.slipModel;
+    site.rope.driven.back().role.unit = traction;
 }
 
 NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {

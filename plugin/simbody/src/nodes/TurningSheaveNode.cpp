@@ -18,6 +18,7 @@ void TurningSheaveNode::addMaterialRelation(NodeSite& site) {
     d.sRef = site.spec.materialCoordinateAtZeroAngle;
     const double dsdTheta = site.spec.sense * site.spec.radius;  // mutation-site: sheave-sense
     d.law.unit = LinearDrivenLaw{dsdTheta};
+    d.role.unit = GripRole{};  // the rope moves with the groove at all times
     site.rope.driven.push_back(d);
 }
 

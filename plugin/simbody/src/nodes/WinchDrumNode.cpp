@@ -1,8 +1,10 @@
-// NodeKind::WinchDrum: a drum at a rope end; s turns with its pin, the rest is stored rope.
+// NodeKind::WinchDrum: a drum at a rope end; s turns with its pin, the rest is stored rope
+// (StoredRopeRole, DrivenRole.h: its declaration to the rope model, its limit and its query).
 
 #include "PinnedNode.h"
 
 #include <cmath>
+#include <string>
 
 namespace SimbodyReeving {
 namespace detail {
@@ -22,8 +24,9 @@ void WinchDrumNode::validate(const NodeSite& site) {
 
 void WinchDrumNode::addMaterialRelation(NodeSite& site) {
     RopeRecord::DrivenNode d = drivenNodeOf(site);
-    d.drum = true;
-    d.ropeOnDrum = site.spec.ropeOnDrum;
+    StoredRopeRole stored;
+    stored.ropeOnDrum = site.spec.ropeOnDrum;
+    d.role.unit = stored;
     // Paying out (sense R theta > 0) moves material out of the drum: s_0 = -sense R theta at the
     // start, s_N = L + sense R theta at the end.
     const double R = site.spec.sense * site.spec.radius;
@@ -56,5 +59,33 @@ NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNorma
     return w;
 }
 
+// The rope on the drum from the material coordinate where the rope leaves it (the drum's centre,
+// or its tangent point when wrapped).
+void StoredRopeRole::limitMargin(const DrivenRun& run, const RopeCache& c, double& margin, std::string* which) const {
+    const RopeRecord& r = run.rope;
+    const int node = run.node.node;
+    const double s = r.planar ? c.planar.materialCoordinates[node] : c.spatial.materialCoordinates[node];
+    const double stored = onDrum(node, s, r.spec.unstretchedLength);
+    if (stored < margin) {
+        margin = stored;
+        if (which) *which = "rope '" + r.spec.name + "' winch drum at node " + std::to_string(node) + " ran out of rope";
+    }
+}
+
 }  // namespace detail
+
+double WinchDrumHandle::getRopeOnDrum(const SimTK::State& s) const {
+    using namespace detail;
+    const int rope = getRopeIndex(), node = getNodeIndex();
+    const RopeRecord& r = ropeAt(guts(), rope);
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+    const int d = r.drivenIndex(node);
+    const StoredRopeRole* stored = d < 0 ? nullptr : std::get_if<StoredRopeRole>(&r.driven[d].role.unit);
+    if (!stored) invalid("rope '" + r.spec.name + "' node " + std::to_string(node) + " is not a WinchDrum");
+    const RopeCache& c = guts().positionCache(s).ropes[rope];
+    const double sk = r.planar ? c.planar.materialCoordinates[node] : c.spatial.materialCoordinates[node];
+    return stored->onDrum(node, sk, r.spec.unstretchedLength);
+}
+
 }  // namespace SimbodyReeving

@@ -662,9 +662,11 @@ public:
     /// (inertia included).
     /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
     double getTorque(const SimTK::State& state) const;
-    /// Power the rope delivers to the node's body [W] (Stage::Dynamics): getTorque times the pin
-    /// rate. Summed over the nodes and with the bodies' own work it closes the energy balance of a
-    /// driven machine.
+    /// Power the rope delivers to the node's body [W] (Stage::Dynamics): getTorque times the rate
+    /// of the node's angle, the pin rate (on a wrapped groove whose pin's parent turns about the
+    /// groove's axis, the sheave body's own rate about it: the pin's plus the parent's). Summed
+    /// over the nodes and with the bodies' own work it closes the energy balance of a driven
+    /// machine.
     /// @throws std::logic_error if the state is not realized to Stage::Dynamics.
     double getPower(const SimTK::State& state) const;
 
