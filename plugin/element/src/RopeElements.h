@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// Internal to the element layer (not installed): the elements of a RopeModel, fixed at its
-/// construction and shared (not copied) by its copies.
+/// construction and shared (not copied) by its copies and by the models that differ from it in
+/// node laws only (RopeModel::withNodeLaw).
 
 #include "SimbodyReeving/element/AxialCondensation.h"
 #include "SimbodyReeving/element/GrooveArc.h"

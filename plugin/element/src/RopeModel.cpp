@@ -330,6 +330,37 @@ void checkAngleExponent(const char* who, double angleExponent) {
 }  // namespace
 
 template <int Dim>
+RopeModel<Dim> RopeModel<Dim>::withNodeLaw(int node, MaterialNode kind, double kappa0, double angleExponent) const {
+    if (node < 1 || node >= numSpans())
+        throw std::invalid_argument("RopeModel::withNodeLaw: node " + std::to_string(node) + " is not an interior node");
+    detail::NodeLaw law = detail::makeNodeLaw(kind, node, numSpans(), length_);
+    // The external coordinates stay: both laws have one at the node (Driven, Slipping).
+    if (!detail::hasExternalCoordinate(laws_[node]) || !detail::hasExternalCoordinate(law))
+        throw std::invalid_argument(std::string("RopeModel::withNodeLaw: node ") + std::to_string(node) + " is " +
+                                    detail::nameOf(laws_[node]) + ", asked to be " + detail::nameOf(law) +
+                                    ": a law changes only between Driven and Slipping (both keep the node's "
+                                    "external coordinate)");
+    if (detail::SlippingLaw* slip = std::get_if<detail::SlippingLaw>(&law.law)) {
+        checkAngleExponent("withNodeLaw", angleExponent);
+        checkSlipRatio("withNodeLaw", kappa0);
+        slip->capstan = detail::CapstanLaw(kappa0, angleExponent);
+    } else if (kappa0 != 1.0 || angleExponent != 0.0) {
+        std::ostringstream msg;
+        msg << "RopeModel::withNodeLaw: a " << detail::nameOf(law) << " node has no capstan law (kappa0 = " << kappa0
+            << ", angleExponent = " << angleExponent << " 1/rad given; 1 and 0 expected)";
+        throw std::invalid_argument(msg.str());
+    }
+    if (axisStation_[node] >= 0 && !detail::allowsTurningGroove(law))
+        throw std::invalid_argument("RopeModel::withNodeLaw: node " + std::to_string(node) +
+                                    ": a turning groove axis (NodeWrap::turningAxis) is built for Sliding and Driven "
+                                    "nodes (sheaves and drums), not for a slipping traction sheave");
+    RopeModel<Dim> out(*this);  // shares the elements; the node tables are copied, then laid out anew
+    out.laws_[node] = law;
+    out.layOutNodes();
+    return out;
+}
+
+template <int Dim>
 void RopeModel<Dim>::buildChainOrder() {
     const int N = numSpans(), nx = numExternalCoordinates(), nw = nx + numModal_, nd = numDependent();
     const int nqc = numCondensed_, nc = numSliding_;

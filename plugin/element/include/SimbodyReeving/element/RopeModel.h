@@ -18,7 +18,7 @@
 namespace SimbodyReeving {
 
 /// How the material coordinate s_k of a rope node is determined: the tag of a node law. RopeModel
-/// turns each into its law type once, at construction, and its evaluations call
+/// turns each into its law type once, at construction (and withNodeLaw), and its evaluations call
 /// the laws (one type per kind, behind one interface, in the element layer's sources): new node
 /// physics is a new law type registered with a new tag, not a new branch in the rope.
 enum class MaterialNode {
@@ -385,6 +385,30 @@ public:
     std::pair<double, double> fleetAngles(const RopeData<Dim>& data, int span) const;
     double slipRatio(int node) const;          ///< kappa_0 of a Slipping node (else 1)
     double slipAngleExponent(int node) const;  ///< c [1/rad] of a Slipping node (else 0)
+    /// A phase change of a traction sheave without rebuilding the rope: a copy of this model with
+    /// interior node k's law changed between Driven (stick: s_k given by drivenS) and Slipping
+    /// (slip with the capstan law kappa(alpha) = kappa0 e^(angleExponent alpha), as setSlipLaw), or
+    /// a Slipping node given another law. Both kinds have the node's external coordinate, so the
+    /// external coordinates x, drivenS and the stations are the same for both models; the
+    /// dependent coordinates gain (Slipping) or lose (Driven) s_k, and nu_k with condensed spans.
+    /// The result is the model built from scratch with that kind at node k (then setSlipLaw,
+    /// the same setStoredRope and setStationaryNodes): every evaluation agrees with it bit for bit.
+    /// This model is not changed (a simulation keeps one model per phase). Give the new model a
+    /// RopeData of its own, warm-started from the material coordinates and condensed amplitudes of
+    /// the last phase's (as the Simbody layer's traction phases do): a RopeData that another model
+    /// solved at the same positions is taken as solved (the positions are compared, not the models).
+    /// Cost: the spans, their condensation kernels and the groove arcs are shared with this model
+    /// (not copied: span(j) is the same object); the node laws and the coordinate layout that
+    /// depends on them (index maps, chain order and band offsets: O(N) integers) are built anew,
+    /// with their allocations: a phase change, not an evaluation.
+    /// @param node          k, an interior node whose law is Driven or Slipping.
+    /// @param kind          MaterialNode::Driven or MaterialNode::Slipping.
+    /// @param kappa0        kappa_0 [-] of a Slipping law, finite and > 0; 1 for Driven.
+    /// @param angleExponent c [1/rad] of a Slipping law, finite; 0 for Driven.
+    /// @throws std::invalid_argument if node is not interior, its law or kind is neither Driven
+    ///         nor Slipping, a Slipping node would sit on a turning groove (NodeWrap::turningAxis),
+    ///         kappa0 or angleExponent are not valid for the kind.
+    RopeModel withNodeLaw(int node, MaterialNode kind, double kappa0 = 1.0, double angleExponent = 0.0) const;
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
     /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
     /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
@@ -581,7 +605,7 @@ private:
     void setKnownMaterialCoordinates(const Eigen::VectorXd& x, RopeData<Dim>& data) const;
 
     // The spans, their condensation kernels (one per span when some span is condensed) and the
-    // groove arcs: immutable, shared by copies.
+    // groove arcs: immutable, shared by copies and by withNodeLaw's models.
     std::shared_ptr<const detail::RopeElements<Dim>> elements_;
     int numSpans_ = 0;
     std::vector<std::vector<int>> spanToRope_;  // span-local coordinate -> index in z
@@ -600,14 +624,14 @@ private:
     int numNodeCoordinates_ = 0;
     std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
-    // Node k's law (NodeLaw.h: its registration from the MaterialNode tag, at construction), and
-    // the layout it gives (layOutNodes).
+    // Node k's law (NodeLaw.h: its registration from the MaterialNode tag, at construction and
+    // withNodeLaw), and the layout it gives (layOutNodes).
     std::vector<detail::NodeLaw> laws_;
     std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
     std::vector<int> slidingNode_;                 // sliding index -> node (Sliding and Slipping nodes)
     /// The coordinate layout of the node laws: the nodes' indices among the solved and the
     /// external material coordinates, the laws' columns, the elements' maps into z, the chain
-    /// order and a new structureId_ (constructor).
+    /// order and a new structureId_ (constructor, withNodeLaw).
     void layOutNodes();
     /// Node k's wrap angle alpha in x as a function of the external coordinates (detail::SlipAngle;
     /// with rates xdot also its rate and bias).
