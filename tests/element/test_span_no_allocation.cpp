@@ -9,57 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
-// Eigen's dynamic storage comes from std::malloc, not operator new, so the count is taken at malloc
-// itself: glibc lets the executable interpose malloc and friends and forwards to its __libc_*
-// entry points.
-namespace {
-std::atomic<long> gAllocations{0};
-}
-
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-
-void* malloc(std::size_t size) {
-    ++gAllocations;
-    return __libc_malloc(size);
-}
-void* calloc(std::size_t n, std::size_t size) {
-    ++gAllocations;
-    return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t size) {
-    ++gAllocations;
-    return __libc_realloc(p, size);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t size) {
-    ++gAllocations;
-    return __libc_memalign(alignment, size);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
-    ++gAllocations;
-    *out = __libc_memalign(alignment, size);
-    return *out ? 0 : 12;  // ENOMEM
-}
-void free(void* p) { __libc_free(p); }
-}
-
-void* operator new(std::size_t size) {
-    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "support/CountingMalloc.h"  // (defines malloc and operator new: this executable only)
 
 using namespace SimbodyReeving;
 

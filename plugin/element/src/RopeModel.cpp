@@ -1,6 +1,9 @@
 #include "SimbodyReeving/element/RopeModel.h"
 
+#include "NodeLaw.h"
+#include "RopeElements.h"
 #include "RopeWorkspace.h"
+#include "TensionRow.h"
 #include "SimbodyReeving/element/AxialCondensation.h"
 #include "SimbodyReeving/element/BandedLU.h"
 #include "SimbodyReeving/element/GrooveArc.h"
@@ -15,6 +18,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 namespace SimbodyReeving {
 namespace {
@@ -91,20 +95,25 @@ RopeModel<Dim>::RopeModel(RopeModel&&) noexcept = default;
 template <int Dim>
 RopeModel<Dim>& RopeModel<Dim>::operator=(RopeModel&&) noexcept = default;
 template <int Dim>
-int RopeModel<Dim>::numWrappedNodes() const { return static_cast<int>(arcs_.size()); }
+int RopeModel<Dim>::numWrappedNodes() const { return static_cast<int>(elements_->arcs.size()); }
 
 template <int Dim>
 RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength,
                           std::vector<MaterialNode> nodeKinds, std::vector<NodeWrap> wraps)
-    : spans_(std::move(spans)), nodeKind_(std::move(nodeKinds)), length_(unstretchedLength) {
-    if (spans_.empty()) throw std::invalid_argument("RopeModel: a rope needs at least one span (got 0)");
+    : length_(unstretchedLength) {
+    auto elements = std::make_shared<detail::RopeElements<Dim>>();
+    elements->spans = std::move(spans);
+    elements_ = elements;
+    const std::vector<SpanModel<Dim>>& spanModels = elements->spans;
+    if (spanModels.empty()) throw std::invalid_argument("RopeModel: a rope needs at least one span (got 0)");
+    numSpans_ = static_cast<int>(spanModels.size());
     if (!std::isfinite(length_) || !(length_ > 0)) {
         std::ostringstream msg;
         msg << "RopeModel: unstretchedLength [m] = " << length_ << " must be finite and > 0";
         throw std::invalid_argument(msg.str());
     }
-    const RopeProperties& p0 = spans_.front().properties();
-    for (const auto& sp : spans_) {
+    const RopeProperties& p0 = spanModels.front().properties();
+    for (const auto& sp : spanModels) {
         const RopeProperties& p = sp.properties();
         if (p.massPerLength != p0.massPerLength || p.axialStiffness != p0.axialStiffness ||
             p.bendingStiffness != p0.bendingStiffness || p.tensionOnly != p0.tensionOnly ||
@@ -112,34 +121,18 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             throw std::invalid_argument("RopeModel: all spans of a rope must have the same RopeProperties");
     }
     const int N = numSpans();
-    if (nodeKind_.empty()) {
-        nodeKind_.assign(N + 1, MaterialNode::Sliding);
-        nodeKind_.front() = nodeKind_.back() = MaterialNode::Fixed;
+    // The node laws' registration: each MaterialNode tag becomes its law type, here only.
+    if (nodeKinds.empty()) {
+        nodeKinds.assign(N + 1, MaterialNode::Sliding);
+        nodeKinds.front() = nodeKinds.back() = MaterialNode::Fixed;
     }
-    if (static_cast<int>(nodeKind_.size()) != N + 1) {
+    if (static_cast<int>(nodeKinds.size()) != N + 1) {
         std::ostringstream msg;
-        msg << "RopeModel: " << nodeKind_.size() << " node kinds given for " << N + 1 << " nodes";
+        msg << "RopeModel: " << nodeKinds.size() << " node kinds given for " << N + 1 << " nodes";
         throw std::invalid_argument(msg.str());
     }
-    slidingIndex_.assign(N + 1, -1);
-    drivenIndex_.assign(N + 1, -1);
-    for (int k = 0; k <= N; ++k) {
-        const bool end = k == 0 || k == N;
-        if (end && (nodeKind_[k] == MaterialNode::Sliding || nodeKind_[k] == MaterialNode::Slipping))
-            throw std::invalid_argument("RopeModel: end node " + std::to_string(k) + " cannot be " +
-                                        (nodeKind_[k] == MaterialNode::Sliding ? "Sliding" : "Slipping") +
-                                        " (a sheave needs a span on both sides)");
-        if (!end && nodeKind_[k] == MaterialNode::Fixed)
-            throw std::invalid_argument("RopeModel: interior node " + std::to_string(k) +
-                                        " cannot be Fixed (a rope fastened mid-path is two ropes)");
-        if (nodeKind_[k] == MaterialNode::Sliding || nodeKind_[k] == MaterialNode::Slipping) {
-            slidingIndex_[k] = numSliding_++;
-            slidingNode_.push_back(k);
-        }
-        if (nodeKind_[k] == MaterialNode::Driven || nodeKind_[k] == MaterialNode::Slipping)
-            drivenIndex_[k] = numDriven_++;
-        if (nodeKind_[k] == MaterialNode::Fixed) ++numFixed_;
-    }
+    laws_.reserve(N + 1);
+    for (int k = 0; k <= N; ++k) laws_.push_back(detail::makeNodeLaw(nodeKinds[k], k, N, length_));
     // Node blocks of the external coordinates: a point's position, or a wrapped node's
     // [c, T_in, T_out, (n), l] with its groove arc.
     if (wraps.empty()) wraps.assign(N + 1, NodeWrap{});
@@ -163,7 +156,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             throw std::invalid_argument(msg.str());
         }
         if (wrap.layRate != 0 || wrap.layOffset != 0) {
-            if (Dim != 3 || !(wrap.radius > 0) || (k != 0 && k != N) || nodeKind_[k] != MaterialNode::Driven)
+            if (Dim != 3 || !(wrap.radius > 0) || (k != 0 && k != N) || !detail::isDrum(laws_[k]))
                 throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
                                             ": a groove lay (NodeWrap::layRate, layOffset: a drum spooling across its "
                                             "width) needs a wrapped Driven end node of a spatial rope (RopeModel<3>)");
@@ -183,7 +176,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
                                         ": NodeWrap::turningAxis needs a wrapped node (radius > 0)");
         if (wrap.radius > 0) {
-            if ((k == 0 || k == N) && nodeKind_[k] != MaterialNode::Driven)
+            if ((k == 0 || k == N) && !detail::isDrum(laws_[k]))
                 throw std::invalid_argument("RopeModel: end node " + std::to_string(k) +
                                             " can be wrapped only as a Driven node (a winch drum): a fastened "
                                             "end's tangent point is its position");
@@ -197,7 +190,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
                 }
                 grooveAxes_[k] = wrap.axis;
                 if (wrap.turningAxis) {
-                    if (nodeKind_[k] == MaterialNode::Slipping)
+                    if (!detail::allowsTurningGroove(laws_[k]))
                         throw std::invalid_argument(
                             "RopeModel: node " + std::to_string(k) +
                             ": a turning groove axis (NodeWrap::turningAxis) is built for Sliding and Driven nodes "
@@ -208,8 +201,9 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
                 throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
                                             ": NodeWrap::turningAxis needs a spatial rope (RopeModel<3>)");
             }
-            arcIndex_[k] = static_cast<int>(arcs_.size());
-            arcs_.emplace_back(spans_.front().properties(), wrap.radius, wrap.wrapSense, spans_.front().gravity());
+            arcIndex_[k] = static_cast<int>(elements->arcs.size());
+            elements->arcs.emplace_back(spanModels.front().properties(), wrap.radius, wrap.wrapSense,
+                                        spanModels.front().gravity());
             arcNode_.push_back(k);
             numNodeCoordinates_ += wrappedBlockSize();
         } else {
@@ -217,13 +211,9 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         }
     }
     nodeOffset_[N + 1] = numNodeCoordinates_;
-    slipRatio_.assign(N + 1, 1.0);
-    slipExponent_.assign(N + 1, 0.0);
-    weightBefore_.assign(N + 1, 1.0);
-    weightAfter_.assign(N + 1, 1.0);
     condensedOffset_.assign(N, -1);
     for (int j = 0; j < N; ++j) {
-        const SpanModel<Dim>& sp = spans_[j];
+        const SpanModel<Dim>& sp = spanModels[j];
         modalOffset_.push_back(numModal_);
         if (sp.numCondensedModes() > 0) {
             condensedOffset_[j] = numCondensed_;
@@ -233,26 +223,42 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             numModal_ += sp.numModalCoordinates();
         }
     }
-    if (numCondensed_ > 0) {
-        numMultipliers_ = numSliding_;
-        for (int j = 0; j < N; ++j) kernels_.emplace_back(spans_[j]);  // throws for PaperLiteral spans
+    if (numCondensed_ > 0)
+        for (int j = 0; j < N; ++j) elements->kernels.emplace_back(spanModels[j]);  // throws for PaperLiteral spans
+    layOutNodes();
+    stationaryColumn_.assign(numExternalCoordinates(), 0);
+}
+
+template <int Dim>
+void RopeModel<Dim>::layOutNodes() {
+    const int N = numSpans();
+    slidingIndex_.assign(N + 1, -1);
+    drivenIndex_.assign(N + 1, -1);
+    slidingNode_.clear();
+    numSliding_ = numDriven_ = numFixed_ = 0;
+    for (int k = 0; k <= N; ++k) {
+        if (detail::hasDependentCoordinate(laws_[k])) {
+            slidingIndex_[k] = numSliding_++;
+            slidingNode_.push_back(k);
+        }
+        if (detail::hasExternalCoordinate(laws_[k])) drivenIndex_[k] = numDriven_++;
+        if (!detail::hasDependentCoordinate(laws_[k]) && !detail::hasExternalCoordinate(laws_[k])) ++numFixed_;
     }
+    numMultipliers_ = numCondensed_ > 0 ? numSliding_ : 0;
     // z = [node blocks 0..N, s_driven | q_free | q_condensed, s_sliding, nu | s_fixed]
     const int nn = numNodeCoordinates_, nx = nn + numDriven_, nw = nx + numModal_, nd = numDependent();
-    std::vector<int> fixedIndex(N + 1, -1);
-    for (int k = 0, f = 0; k <= N; ++k)
-        if (nodeKind_[k] == MaterialNode::Fixed) fixedIndex[k] = f++;
-    auto materialIndex = [&](int node) {
-        switch (nodeKind_[node]) {
-            case MaterialNode::Driven: return nn + drivenIndex_[node];
-            case MaterialNode::Sliding:
-            case MaterialNode::Slipping: return nw + numCondensed_ + slidingIndex_[node];
-            case MaterialNode::Fixed: break;
-        }
-        return nw + nd + fixedIndex[node];
-    };
+    std::vector<int> materialColumn(N + 1, -1);
+    for (int k = 0, f = 0; k <= N; ++k) {
+        detail::NodeColumns c;
+        if (drivenIndex_[k] >= 0) c.external = nn + drivenIndex_[k];
+        if (slidingIndex_[k] >= 0) c.dependent = nw + numCondensed_ + slidingIndex_[k];
+        if (drivenIndex_[k] < 0 && slidingIndex_[k] < 0) c.constant = nw + nd + f++;
+        materialColumn[k] = detail::placeLaw(laws_[k], c);
+    }
+    const std::vector<SpanModel<Dim>>& spanModels = elements_->spans;
+    spanToRope_.clear();
     for (int j = 0; j < N; ++j) {
-        const auto& sp = spans_[j];
+        const auto& sp = spanModels[j];
         std::vector<int> map(sp.numCoordinates());
         for (int d = 0; d < Dim; ++d) {
             map[d] = departureOffset(j) + d;
@@ -265,8 +271,8 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
             else
                 map[2 * Dim + i] = nx + modalOffset_[j] + i;
         }
-        map[sp.s1Index()] = materialIndex(j);
-        map[sp.s2Index()] = materialIndex(j + 1);
+        map[sp.s1Index()] = materialColumn[j];
+        map[sp.s2Index()] = materialColumn[j + 1];
         spanToRope_.push_back(std::move(map));
     }
     elementToRope_ = spanToRope_;
@@ -275,7 +281,7 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     for (int j = 0; j < N; ++j)
         if (isWrapped(j)) {
             elementExtra_[j] = nodeOffset_[j] + wrappedArcLengthOffset();
-            elementExtraLocal_[j] = spans_[j].s1Index();
+            elementExtraLocal_[j] = spanModels[j].s1Index();
         }
     for (int k : arcNode_) {
         using Arc = GrooveArc<Dim>;
@@ -286,16 +292,72 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
         }
         if constexpr (Dim == 3)
             for (int d = 0; d < 3; ++d) map[Arc::axisIndex() + d] = nodeOffset_[k] + wrappedAxisOffset() + d;
-        map[Arc::materialIndex()] = materialIndex(k);
+        map[Arc::materialIndex()] = materialColumn[k];
         map[Arc::lengthIndex()] = nodeOffset_[k] + wrappedArcLengthOffset();
         elementToRope_.push_back(std::move(map));
         elementExtra_.push_back(-1);
         elementExtraLocal_.push_back(-1);
     }
     buildChainOrder();
-    stationaryColumn_.assign(numExternalCoordinates(), 0);
     static std::atomic<std::uint64_t> nextStructureId{1};
     structureId_ = nextStructureId.fetch_add(1, std::memory_order_relaxed);
+}
+
+template <int Dim>
+MaterialNode RopeModel<Dim>::nodeKind(int node) const { return detail::kindOf(laws_[node]); }
+template <int Dim>
+const SpanModel<Dim>& RopeModel<Dim>::span(int j) const { return elements_->spans[j]; }
+template <int Dim>
+const RopeProperties& RopeModel<Dim>::properties() const { return elements_->spans.front().properties(); }
+
+namespace {
+// The capstan law kappa(alpha) = kappa0 e^(c alpha) of a Slipping node, its parameters checked for
+// RopeModel::<who>.
+void checkSlipRatio(const char* who, double kappa) {
+    if (!std::isfinite(kappa) || !(kappa > 0)) {
+        std::ostringstream msg;
+        msg << "RopeModel::" << who << ": kappa = " << kappa << " must be finite and > 0";
+        throw std::invalid_argument(msg.str());
+    }
+}
+void checkAngleExponent(const char* who, double angleExponent) {
+    if (!std::isfinite(angleExponent)) {
+        std::ostringstream msg;
+        msg << "RopeModel::" << who << ": angleExponent = " << angleExponent << " 1/rad must be finite";
+        throw std::invalid_argument(msg.str());
+    }
+}
+}  // namespace
+
+template <int Dim>
+RopeModel<Dim> RopeModel<Dim>::withNodeLaw(int node, MaterialNode kind, double kappa0, double angleExponent) const {
+    if (node < 1 || node >= numSpans())
+        throw std::invalid_argument("RopeModel::withNodeLaw: node " + std::to_string(node) + " is not an interior node");
+    detail::NodeLaw law = detail::makeNodeLaw(kind, node, numSpans(), length_);
+    // The external coordinates stay: both laws have one at the node (Driven, Slipping).
+    if (!detail::hasExternalCoordinate(laws_[node]) || !detail::hasExternalCoordinate(law))
+        throw std::invalid_argument(std::string("RopeModel::withNodeLaw: node ") + std::to_string(node) + " is " +
+                                    detail::nameOf(laws_[node]) + ", asked to be " + detail::nameOf(law) +
+                                    ": a law changes only between Driven and Slipping (both keep the node's "
+                                    "external coordinate)");
+    if (detail::SlippingLaw* slip = std::get_if<detail::SlippingLaw>(&law.law)) {
+        checkAngleExponent("withNodeLaw", angleExponent);
+        checkSlipRatio("withNodeLaw", kappa0);
+        slip->capstan = detail::CapstanLaw(kappa0, angleExponent);
+    } else if (kappa0 != 1.0 || angleExponent != 0.0) {
+        std::ostringstream msg;
+        msg << "RopeModel::withNodeLaw: a " << detail::nameOf(law) << " node has no capstan law (kappa0 = " << kappa0
+            << ", angleExponent = " << angleExponent << " 1/rad given; 1 and 0 expected)";
+        throw std::invalid_argument(msg.str());
+    }
+    if (axisStation_[node] >= 0 && !detail::allowsTurningGroove(law))
+        throw std::invalid_argument("RopeModel::withNodeLaw: node " + std::to_string(node) +
+                                    ": a turning groove axis (NodeWrap::turningAxis) is built for Sliding and Driven "
+                                    "nodes (sheaves and drums), not for a slipping traction sheave");
+    RopeModel<Dim> out(*this);  // shares the elements; the node tables are copied, then laid out anew
+    out.laws_[node] = law;
+    out.layOutNodes();
+    return out;
 }
 
 template <int Dim>
@@ -307,8 +369,8 @@ void RopeModel<Dim>::buildChainOrder() {
     // stationarity rows), node k -> 2 k (its material coordinate, multiplier and rows).
     std::vector<int> zKey(nz, -1), rowKey(nd, -1), rowSpan(nd, -1), rowNode(nd, -1);
     for (int j = 0; j < N; ++j) {
-        const int na = spans_[j].numCondensedModes();
-        for (int i = 0; i < spans_[j].numModalCoordinates() - na; ++i) zKey[nx + modalOffset_[j] + i] = 2 * j + 1;
+        const int na = elements_->spans[j].numCondensedModes();
+        for (int i = 0; i < elements_->spans[j].numModalCoordinates() - na; ++i) zKey[nx + modalOffset_[j] + i] = 2 * j + 1;
         for (int i = 0; i < na; ++i) {
             zKey[nw + condensedOffset_[j] + i] = 2 * j + 1;
             rowKey[condensedOffset_[j] + i] = 2 * j + 1;
@@ -475,14 +537,14 @@ template <int Dim>
 const GrooveArc<Dim>& RopeModel<Dim>::arc(int node) const {
     if (node < 0 || node > numSpans() || arcIndex_[node] < 0)
         throw std::invalid_argument("RopeModel::arc: node " + std::to_string(node) + " is not a wrapped node");
-    return arcs_[arcIndex_[node]];
+    return elements_->arcs[arcIndex_[node]];
 }
 
 template <int Dim>
 const double* RopeModel<Dim>::elementMass(const RopeData<Dim>& data, int e, int& n) const {
     const int N = numSpans();
     if (e < N) {
-        n = spans_[e].numCoordinates();
+        n = elements_->spans[e].numCoordinates();
         return data.ws().spans[e].massMatrix.data();
     }
     n = GrooveArc<Dim>::kNumCoordinates;
@@ -531,7 +593,7 @@ const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& node
                                                           RopeData<Dim>& data) const {
     detail::RopeWorkspace<Dim>& ws = data.ws();
     const Eigen::VectorXd& Y = packExternal(nodes, drivenS, data, false);
-    if (arcs_.empty()) {
+    if (elements_->arcs.empty()) {
         if (nodeVelocities) packExternal(*nodeVelocities, *drivenSdot, data, true);
         return Y;
     }
@@ -606,7 +668,7 @@ void RopeModel<Dim>::solveDependent(RopeData<Dim>& data, const BandedLU& lu, con
 template <int Dim>
 void RopeModel<Dim>::setStoredRope(int node, double lengthAtZero) {
     const int N = numSpans();
-    if ((node != 0 && node != N) || nodeKind_[node] != MaterialNode::Driven)
+    if ((node != 0 && node != N) || !detail::isDrum(laws_[node]))
         throw std::invalid_argument("RopeModel::setStoredRope: node " + std::to_string(node) +
                                     " is not a Driven end node (rope is stored on drums at the rope's ends)");
     if (!std::isfinite(lengthAtZero))
@@ -621,34 +683,35 @@ void RopeModel<Dim>::setStoredRope(int node, double lengthAtZero) {
 
 template <int Dim>
 void RopeModel<Dim>::setSlipRatio(int node, double kappa) {
-    if (node < 0 || node > numSpans() || nodeKind_[node] != MaterialNode::Slipping)
+    detail::SlippingLaw* law = node < 0 || node > numSpans() ? nullptr : std::get_if<detail::SlippingLaw>(&laws_[node].law);
+    if (!law)
         throw std::invalid_argument("RopeModel::setSlipRatio: node " + std::to_string(node) + " is not a Slipping node");
-    if (!std::isfinite(kappa) || !(kappa > 0)) {
-        std::ostringstream msg;
-        msg << "RopeModel::setSlipRatio: kappa = " << kappa << " must be finite and > 0";
-        throw std::invalid_argument(msg.str());
-    }
-    slipRatio_[node] = kappa;
-    weightBefore_[node] = 1.0 / std::max(1.0, kappa);
-    weightAfter_[node] = kappa / std::max(1.0, kappa);
-    slipExponent_[node] = 0.0;
+    checkSlipRatio("setSlipRatio", kappa);
+    law->capstan = detail::CapstanLaw(kappa, 0.0);
 }
 
 template <int Dim>
 void RopeModel<Dim>::setSlipLaw(int node, double kappa0, double angleExponent) {
-    if (!std::isfinite(angleExponent)) {
-        std::ostringstream msg;
-        msg << "RopeModel::setSlipLaw: angleExponent = " << angleExponent << " 1/rad must be finite";
-        throw std::invalid_argument(msg.str());
-    }
+    checkAngleExponent("setSlipLaw", angleExponent);
     setSlipRatio(node, kappa0);
-    slipExponent_[node] = angleExponent;
+    std::get<detail::SlippingLaw>(laws_[node].law).capstan = detail::CapstanLaw(kappa0, angleExponent);
 }
 
 template <int Dim>
-typename RopeModel<Dim>::SlipAngle RopeModel<Dim>::slipAngle(int k, const Eigen::VectorXd& x,
-                                                            const Eigen::VectorXd* xdot) const {
-    SlipAngle a;
+double RopeModel<Dim>::slipRatio(int node) const {
+    const detail::SlippingLaw* law = std::get_if<detail::SlippingLaw>(&laws_[node].law);
+    return law ? law->capstan.ratio() : 1.0;
+}
+
+template <int Dim>
+double RopeModel<Dim>::slipAngleExponent(int node) const {
+    const detail::SlippingLaw* law = std::get_if<detail::SlippingLaw>(&laws_[node].law);
+    return law ? law->capstan.angleExponent() : 0.0;
+}
+
+template <int Dim>
+detail::SlipAngle<Dim> RopeModel<Dim>::slipAngle(int k, const Eigen::VectorXd& x, const Eigen::VectorXd* xdot) const {
+    detail::SlipAngle<Dim> a;
     if (isWrapped(k)) {  // alpha = l / R
         const int lc = nodeOffset_[k] + wrappedArcLengthOffset();
         const double invR = 1.0 / arc(k).radius();
@@ -744,7 +807,7 @@ template <int Dim>
 double RopeModel<Dim>::wrapAngle(const RopeData<Dim>& data, int node) const {
     if (node < 1 || node >= numSpans())
         throw std::invalid_argument("RopeModel::wrapAngle: node " + std::to_string(node) + " is not an interior node");
-    const Eigen::VectorXd& x = arcs_.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
+    const Eigen::VectorXd& x = elements_->arcs.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
     if (x.size() != numExternalCoordinates())
         throw std::invalid_argument("RopeModel::wrapAngle: data holds no evaluation from node positions");
     return slipAngle(node, x, nullptr).alpha;
@@ -755,7 +818,7 @@ std::pair<double, double> RopeModel<Dim>::fleetAngles(const RopeData<Dim>& data,
     if (span < 0 || span >= numSpans())
         throw std::invalid_argument("RopeModel::fleetAngles: span " + std::to_string(span) + " is outside 0.." +
                                     std::to_string(numSpans() - 1));
-    if (arcs_.empty()) {
+    if (elements_->arcs.empty()) {
         if (data.ws().packedX.size() != numExternalCoordinates())
             throw std::invalid_argument("RopeModel::fleetAngles: data holds no evaluation from node positions");
         return {0.0, 0.0};
@@ -771,7 +834,7 @@ double RopeModel<Dim>::surfaceCoordinate(const RopeData<Dim>& data, int node) co
     if (node < 0 || node > numSpans() || drivenIndex_[node] < 0)
         throw std::invalid_argument("RopeModel::surfaceCoordinate: node " + std::to_string(node) +
                                     " is neither Driven nor Slipping");
-    const Eigen::VectorXd& x = arcs_.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
+    const Eigen::VectorXd& x = elements_->arcs.empty() ? data.ws().packedX : data.ws().stationPositionMap.x;
     if (x.size() != numExternalCoordinates())
         throw std::invalid_argument("RopeModel::surfaceCoordinate: data holds no evaluation from node positions");
     return x[numNodeCoordinates_ + drivenIndex_[node]];
@@ -786,29 +849,6 @@ double RopeModel<Dim>::surfaceRate(const RopeData<Dim>& data, int node) const {
     if (w.size() != numExternalCoordinates() + numModal_)
         throw std::invalid_argument("RopeModel::surfaceRate: data holds no computeDynamics");
     return w[numNodeCoordinates_ + drivenIndex_[node]];
-}
-
-template <int Dim>
-typename RopeModel<Dim>::SlipWeights RopeModel<Dim>::slipWeights(int k, double alpha) const {
-    SlipWeights w;
-    w.before = weightBefore_[k];
-    w.after = weightAfter_[k];
-    const double c = slipExponent_[k];
-    if (c == 0) return w;
-    // kappa = kappa_0 e^(c alpha), scaled as weightBefore_: (1 / kappa, 1) for kappa >= 1, (1, kappa) below.
-    const double kappa = slipRatio_[k] * std::exp(c * alpha);
-    if (kappa >= 1) {
-        w.before = 1.0 / kappa;
-        w.after = 1.0;
-        w.dBefore = -c * w.before;
-        w.ddBefore = c * c * w.before;
-    } else {
-        w.before = 1.0;
-        w.after = kappa;
-        w.dAfter = c * kappa;
-        w.ddAfter = c * c * kappa;
-    }
-    return w;
 }
 
 template <int Dim>
@@ -867,7 +907,7 @@ double RopeModel<Dim>::storedRopeGravityEnergy(const NodeMatrix& nodes, const Ro
         const detail::StoredRope<Dim> law = storedRopeLaw(*this, st.node, st.lengthAtZero, st.slope);
         const double s = data.materialCoordinates[st.node];
         if (!law.isWrapped()) {
-            u -= properties().massPerLength * law.length(s) * spans_.front().gravity().dot(nodes.col(st.node));
+            u -= properties().massPerLength * law.length(s) * elements_->spans.front().gravity().dot(nodes.col(st.node));
             continue;
         }
         u += law.gravityEnergy(mappedPositions(nodes, data), s);
@@ -887,7 +927,7 @@ void assembleSpanCoordinates(const RopeModel<Dim>& model, int j, const R1& r1, c
 template <int Dim>
 void RopeModel<Dim>::spanCoordinates(int j, const NodeMatrix& nodes, const Eigen::VectorXd& qm,
                                      const RopeData<Dim>& data, Eigen::VectorXd& q) const {
-    if (!arcs_.empty()) {
+    if (!elements_->arcs.empty()) {
         spanCoordinatesFromExternal(j, mappedPositions(nodes, data), qm, data, q);
         return;
     }
@@ -924,13 +964,13 @@ WrapStationMapData RopeModel<Dim>::stationMapAt(const NodeMatrix& nodes, const R
 
 template <int Dim>
 double RopeModel<Dim>::arcGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
-    if (arcs_.empty()) return 0.0;
+    if (elements_->arcs.empty()) return 0.0;
     const Eigen::VectorXd& x = mappedPositions(nodes, data);
     double u = 0;
     typename GrooveArc<Dim>::Coordinates a;
-    for (std::size_t i = 0; i < arcs_.size(); ++i) {
+    for (std::size_t i = 0; i < elements_->arcs.size(); ++i) {
         arcCoordinates(arcNode_[i], x, data.materialCoordinates[arcNode_[i]], a);
-        u += arcs_[i].gravityEnergy(a);
+        u += elements_->arcs[i].gravityEnergy(a);
     }
     return u;
 }
@@ -991,7 +1031,7 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
     // depends on the model only. The first evaluation records it (putTarget: the entry of jac each
     // term lands in, rows merged by column); later ones replay it, adding the terms into the same
     // entries in the same order (bit for bit the recorded sums), checking row and column as they go.
-    const bool build = !withRates || kernels_.empty();
+    const bool build = !withRates || elements_->kernels.empty();
     const bool replay = build && w.patternId == structureId_ && w.patternValid;
     if (build) {
         C.setZero(nd);
@@ -1091,37 +1131,47 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
         if (elementExtra_[j] >= 0) put(row, elementExtra_[j], coef * gradient[elementExtraLocal_[j]]);
     };
 
-    if (kernels_.empty()) {
+    // Node k's tension row (k Sliding or Slipping): its law's weights, and the wrap angle when they
+    // follow it (taken once per row and pass; ws.w holds xdot at the rates' pass).
+    auto tensionRow = [&](int k) {
+        detail::TensionRow<Dim> r;
+        detail::visitDependent(laws_[k], [&](const auto& law) {
+            law.tensionRow([&] { return slipAngle(k, x, withRates ? &data.ws().w : nullptr); }, r);
+        });
+        return r;
+    };
+    // kappa(alpha) (setSlipLaw): dC/dalpha dalpha/dx into the row's Jacobian (jacobian), and the
+    // bias's terms in alphadot and alpha's own bias (rates), at the strains a, b of spans k - 1 and
+    // k at the node and their rates aRate, bRate.
+    auto addAngleTerms = [&](int row, const detail::TensionRow<Dim>& r, double a, double b, double aRate, double bRate,
+                             bool jacobian, bool rates) {
+        if (!r.angleLaw) return;
+        if (jacobian) {
+            const double dC = r.angleSlope(a, b);
+            for (int i = 0; i < r.angle.count; ++i) put(row, r.angle.cols[i], dC * r.angle.grad[i]);
+        }
+        if (rates) data.ws().bias[row] += r.angleBias(a, b, aRate, bRate);
+    };
+
+    if (elements_->kernels.empty()) {
         // The paper's rows: eps_{k-1}(s_k) - eps_k(s_k) from the spans' analytic end strains.
         data.ws().firstEnd.resize(N);
         data.ws().secondEnd.resize(N);
         for (int j = 0; j < N; ++j) {
-            spans_[j].endStrain(data.ws().spanQ[j], data.ws().spanQdot[j], SpanEnd::First, data.ws().firstEnd[j]);
-            spans_[j].endStrain(data.ws().spanQ[j], data.ws().spanQdot[j], SpanEnd::Second, data.ws().secondEnd[j]);
+            elements_->spans[j].endStrain(data.ws().spanQ[j], data.ws().spanQdot[j], SpanEnd::First, data.ws().firstEnd[j]);
+            elements_->spans[j].endStrain(data.ws().spanQ[j], data.ws().spanQdot[j], SpanEnd::Second, data.ws().secondEnd[j]);
         }
         for (int row = 0; row < nc; ++row) {
             const int k = slidingNode_[row];
-            // 1, 1 but at Slipping nodes: eps_{k-1} = kappa eps_k, scaled (see weightBefore_)
-            const bool law = slipExponent_[k] != 0;
-            const SlipAngle ang = law ? slipAngle(k, x, withRates ? &data.ws().w : nullptr) : SlipAngle{};
-            const SlipWeights sw = slipWeights(k, ang.alpha);
-            const double wb = sw.before, wa = sw.after;
+            // 1, 1 but at Slipping nodes: eps_{k-1} = kappa eps_k, scaled (CapstanLaw)
+            const detail::TensionRow<Dim> tr = tensionRow(k);
+            const double wb = tr.weights.before, wa = tr.weights.after;
             const EndStrain<Dim>& a = data.ws().secondEnd[k - 1];
             const EndStrain<Dim>& b = data.ws().firstEnd[k];
             C[row] = wb * a.strain - wa * b.strain;
             scatter(row, k - 1, a.gradient, wb);
             scatter(row, k, b.gradient, -wa);
-            if (law) {
-                // kappa(alpha): dC/dalpha dalpha/dx, and the bias's terms in alphadot and alpha's
-                // own bias (ws.w holds xdot at the rates' pass).
-                const double dC = sw.dBefore * a.strain - sw.dAfter * b.strain;
-                for (int i = 0; i < ang.count; ++i) put(row, ang.cols[i], dC * ang.grad[i]);
-                if (withRates) {
-                    const double ad = ang.rate;
-                    data.ws().bias[row] += 2.0 * ad * (sw.dBefore * a.rate - sw.dAfter * b.rate) +
-                                           ad * ad * (sw.ddBefore * a.strain - sw.ddAfter * b.strain) + dC * ang.bias;
-                }
-            }
+            addAngleTerms(row, tr, a.strain, b.strain, a.rate, b.rate, true, withRates);
             if (withRates)
                 data.ws().bias[row] += wb * a.accelerationBias - wa * b.accelerationBias;
         }
@@ -1137,9 +1187,9 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
     static const Eigen::VectorXd noRates;
     for (int j = 0; j < N; ++j) {
         if (withRates)
-            kernels_[j].evaluateRates(data.ws().spanQ[j], data.ws().spanQdot[j], data.ws().condensation[j]);
+            elements_->kernels[j].evaluateRates(data.ws().spanQ[j], data.ws().spanQdot[j], data.ws().condensation[j]);
         else
-            kernels_[j].evaluate(data.ws().spanQ[j], noRates, data.ws().condensation[j]);
+            elements_->kernels[j].evaluate(data.ws().spanQ[j], noRates, data.ws().condensation[j]);
     }
     const double invEA = 1.0 / properties().axialStiffness;
     auto addTerm = [&](int row, int j, int quantity, double coef) {
@@ -1151,84 +1201,79 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
         C[row] += coef * K.value[quantity];
         scatter(row, j, K.gradient.row(quantity), coef);
     };
-    // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too. Only Sliding nodes
-    // m have a constraint C_m and a multiplier; the terms of other nodes vanish.
-    // A Slipping node's multiplier is held at zero (its row below): the capstan row alone fixes s_m,
-    // so its terms vanish here too.
-    auto addProduct = [&](int row, int m, int j, int quantity, double coef) {
-        if (m < 1 || m > N - 1 || slidingIndex_[m] < 0 || nodeKind_[m] == MaterialNode::Slipping) return;
-        const int mi = slidingIndex_[m];
-        const auto& K = data.ws().condensation[j];
-        const double nu = data.multipliers[mi];
-        if (withRates) {
-            data.ws().bias[row] += coef * (nu * K.accelerationBias[quantity] +
-                                      2.0 * data.multiplierRates[mi] * K.rate[quantity]);
-            return;
-        }
-        C[row] += coef * nu * K.value[quantity];
-        scatter(row, j, K.gradient.row(quantity), coef * nu);
-        put(row, nw + nqc + nc + mi, coef * K.value[quantity]);
+    // coef * nu_m * f with f a span quantity: nu is a dependent coordinate too, coef = sign * node
+    // m's row weight (after: w_after, else w_before). Only nodes whose law has a constraint C_m and
+    // a multiplier in the stationarity (Sliding) add terms; the others' vanish (a Slipping node's
+    // multiplier is held at zero, its row below: the capstan row alone fixes s_m).
+    auto addProduct = [&](int row, int m, int j, int quantity, double sign, bool after) {
+        if (m < 1 || m > N - 1) return;
+        detail::visitDependent(laws_[m], [&](const auto& law) {
+            law.multiplierProducts([&](const detail::SlipWeights& weights) {
+                const double coef = sign * (after ? weights.after : weights.before);
+                const int mi = slidingIndex_[m];
+                const auto& K = data.ws().condensation[j];
+                const double nu = data.multipliers[mi];
+                if (withRates) {
+                    data.ws().bias[row] += coef * (nu * K.accelerationBias[quantity] +
+                                                   2.0 * data.multiplierRates[mi] * K.rate[quantity]);
+                    return;
+                }
+                C[row] += coef * nu * K.value[quantity];
+                scatter(row, j, K.gradient.row(quantity), coef * nu);
+                put(row, nw + nqc + nc + mi, coef * K.value[quantity]);
+            });
+        });
     };
     for (int j = 0; j < N; ++j) {
         if (!isCondensed(j)) continue;
-        const AxialCondensation<Dim>& kj = kernels_[j];
+        const AxialCondensation<Dim>& kj = elements_->kernels[j];
         for (int i = 0; i < kj.numCondensedModes(); ++i) {
             const int row = condensedOffset_[j] + i;
             addTerm(row, j, kj.phi(i), invEA);
-            addProduct(row, j, j, kj.endStrainModeSlope(SpanEnd::First, i), -weightAfter_[j]);
-            addProduct(row, j + 1, j, kj.endStrainModeSlope(SpanEnd::Second, i), weightBefore_[j + 1]);
+            addProduct(row, j, j, kj.endStrainModeSlope(SpanEnd::First, i), -1.0, true);
+            addProduct(row, j + 1, j, kj.endStrainModeSlope(SpanEnd::Second, i), 1.0, false);
         }
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + ki;
-        const bool law = slipExponent_[k] != 0;
-        const SlipAngle ang = law ? slipAngle(k, x, withRates ? &data.ws().w : nullptr) : SlipAngle{};
-        const SlipWeights sw = slipWeights(k, ang.alpha);
-        const int qa = kernels_[k - 1].endStrain(SpanEnd::Second), qb = kernels_[k].endStrain(SpanEnd::First);
-        addTerm(row, k - 1, qa, sw.before);
-        addTerm(row, k, qb, -sw.after);
-        if (law) {
-            // kappa(alpha) (setSlipLaw): dC/dalpha dalpha/dx, and the bias's terms in alphadot and
-            // alpha's own bias (the values are the position pass's, still in the kernels' data at
-            // the rates' pass).
-            const auto& Ka = data.ws().condensation[k - 1];
-            const auto& Kb = data.ws().condensation[k];
-            const double dC = sw.dBefore * Ka.value[qa] - sw.dAfter * Kb.value[qb];
-            if (withRates) {
-                const double ad = ang.rate;
-                data.ws().bias[row] += 2.0 * ad * (sw.dBefore * Ka.rate[qa] - sw.dAfter * Kb.rate[qb]) +
-                                       ad * ad * (sw.ddBefore * Ka.value[qa] - sw.ddAfter * Kb.value[qb]) +
-                                       dC * ang.bias;
-            } else {
-                for (int i = 0; i < ang.count; ++i) put(row, ang.cols[i], dC * ang.grad[i]);
-            }
-        }
+        const detail::TensionRow<Dim> tr = tensionRow(k);
+        const int qa = elements_->kernels[k - 1].endStrain(SpanEnd::Second), qb = elements_->kernels[k].endStrain(SpanEnd::First);
+        addTerm(row, k - 1, qa, tr.weights.before);
+        addTerm(row, k, qb, -tr.weights.after);
+        // (The values are the position pass's, still in the kernels' data at the rates' pass; the
+        // rates exist at the rates' pass only.)
+        const auto& Ka = data.ws().condensation[k - 1];
+        const auto& Kb = data.ws().condensation[k];
+        addAngleTerms(row, tr, Ka.value[qa], Kb.value[qb], withRates ? Ka.rate[qa] : 0.0, withRates ? Kb.rate[qb] : 0.0,
+                      !withRates, withRates);
     }
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki], row = nqc + nc + ki;
-        // A Slipping node: the capstan row eps_{k-1} = kappa eps_k fixes s_k; the friction force
-        // (computeDynamics) is applied to it, and the row of its multiplier reads nu_k = 0. So no
-        // multiplier of the ratio enters the amplitudes' stationarity: the condensed amplitudes
-        // solve the same equations in stick and in slip, and at a stick -> slip transition (where
-        // the ratio row holds already) the dependent coordinates are continuous. (With the
-        // stationarity in s_k here and nu_k in the amplitudes' rows, they jumped: 16 J of the
-        // rope's potential energy in the elevator's stall at mu = 10.)
-        if (nodeKind_[k] == MaterialNode::Slipping) {
-            if (!withRates) {
-                C[row] = data.multipliers[ki];
-                put(row, nw + nqc + nc + ki, 1.0);
-            }
-            continue;
-        }
-        // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
-        addTerm(row, k - 1, kernels_[k - 1].lengthDerivative(), invEA);
-        addTerm(row, k, kernels_[k].lengthDerivative(), -invEA);
-        // sum_m nu_m dC_m/ds_k with C_m = wb_m eps2_{m-1}(l_{m-1}) - wa_m eps1_m(l_m), l_j = s_{j+1} - s_j
-        // (wb, wa: weightBefore_, weightAfter_).
-        addProduct(row, k, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::Second), weightBefore_[k]);
-        addProduct(row, k, k, kernels_[k].endStrainLengthSlope(SpanEnd::First), weightAfter_[k]);
-        addProduct(row, k + 1, k, kernels_[k].endStrainLengthSlope(SpanEnd::Second), -weightBefore_[k + 1]);
-        addProduct(row, k - 1, k - 1, kernels_[k - 1].endStrainLengthSlope(SpanEnd::First), -weightAfter_[k - 1]);
+        // The row of node k's multiplier, as its law says: the stationarity in s_k (Sliding), or
+        // nu_k = 0 (Slipping: the capstan row eps_{k-1} = kappa eps_k fixes s_k and the friction
+        // force, computeDynamics, is applied to it. So no multiplier of the ratio enters the
+        // amplitudes' stationarity: the condensed amplitudes solve the same equations in stick and
+        // in slip, and at a stick -> slip transition (where the ratio row holds already) the
+        // dependent coordinates are continuous. With the stationarity in s_k here and nu_k in the
+        // amplitudes' rows, they jumped: 16 J of the rope's potential energy in the elevator's
+        // stall at mu = 10.)
+        auto stationarity = [&] {
+            // dU/ds_k = dU_{k-1}/dl_{k-1} - dU_k/dl_k (s_k ends span k-1 and starts span k).
+            addTerm(row, k - 1, elements_->kernels[k - 1].lengthDerivative(), invEA);
+            addTerm(row, k, elements_->kernels[k].lengthDerivative(), -invEA);
+            // sum_m nu_m dC_m/ds_k with C_m = wb_m eps2_{m-1}(l_{m-1}) - wa_m eps1_m(l_m), l_j = s_{j+1} - s_j
+            // (wb, wa: node m's row weights).
+            addProduct(row, k, k - 1, elements_->kernels[k - 1].endStrainLengthSlope(SpanEnd::Second), 1.0, false);
+            addProduct(row, k, k, elements_->kernels[k].endStrainLengthSlope(SpanEnd::First), 1.0, true);
+            addProduct(row, k + 1, k, elements_->kernels[k].endStrainLengthSlope(SpanEnd::Second), -1.0, false);
+            addProduct(row, k - 1, k - 1, elements_->kernels[k - 1].endStrainLengthSlope(SpanEnd::First), -1.0, true);
+        };
+        auto holdAtZero = [&] {
+            if (withRates) return;
+            C[row] = data.multipliers[ki];
+            put(row, nw + nqc + nc + ki, 1.0);
+        };
+        detail::visitDependent(laws_[k], [&](const auto& law) { law.multiplierRow(stationarity, holdAtZero); });
     }
     if (finish()) evaluateConstraints(x, qm, data, withRates);
 }
@@ -1236,7 +1281,6 @@ void RopeModel<Dim>::evaluateConstraints(const Eigen::VectorXd& x, const Eigen::
 template <int Dim>
 void RopeModel<Dim>::setKnownMaterialCoordinates(const Eigen::VectorXd& x, RopeData<Dim>& data) const {
     const int N = numSpans();
-    const auto drivenS = x.tail(numDriven_);
     // The material a stretch of spans between nodes a and b holds besides the arcs on its wrapped
     // nodes a..b-1 (the departing span of node k starts at s_k + l_k).
     auto arcsFrom = [&](int a, int b) {
@@ -1248,8 +1292,10 @@ void RopeModel<Dim>::setKnownMaterialCoordinates(const Eigen::VectorXd& x, RopeD
     bool warm = s.size() == N + 1 && s.allFinite();
     if (!warm) s.setZero(N + 1);
     auto known = [&](int k) { return slidingIndex_[k] < 0; };
-    auto knownValue = [&](int k) {
-        return nodeKind_[k] == MaterialNode::Fixed ? (k == 0 ? 0.0 : length_) : drivenS[drivenIndex_[k]];
+    auto knownValue = [&](int k) {  // (Fixed: its constant; Driven: its entry of x)
+        double value = 0;
+        detail::visitKnown(laws_[k], [&](const auto& law) { value = law.coordinate(x); });
+        return value;
     };
     // Warm start: where the known coordinates on either side of a stretch of Sliding nodes moved
     // (drums turned), the old Sliding values are mapped proportionally into the new stretch.
@@ -1431,7 +1477,7 @@ void RopeModel<Dim>::solveDependentCoordinatesFromExternal(const Eigen::VectorXd
     if (row < nqc) {
         int span = 0;
         for (int j = 0; j < N; ++j)
-            if (condensedOffset_[j] >= 0 && row >= condensedOffset_[j] && row < condensedOffset_[j] + spans_[j].numCondensedModes())
+            if (condensedOffset_[j] >= 0 && row >= condensedOffset_[j] && row < condensedOffset_[j] + elements_->spans[j].numCondensedModes())
                 span = j;
         where << "span " << span << " (quasi-static modal amplitudes)";
     } else if (row < nqc + numSliding_) {
@@ -1457,18 +1503,19 @@ bool RopeModel<Dim>::positionsMatch(const Eigen::VectorXd& x, const Eigen::Vecto
         data.condensedAmplitudes.size() != numCondensed_ || data.multipliers.size() != numMultipliers_ ||
         x.size() != numExternalCoordinates())
         return false;
-    for (int k = 0; k <= N; ++k)
-        if (nodeKind_[k] == MaterialNode::Driven &&
-            data.materialCoordinates[k] != x[numNodeCoordinates_ + drivenIndex_[k]])
-            return false;
+    for (int k = 0; k <= N; ++k) {
+        bool agrees = true;  // (a Driven s_k is the x it was solved at)
+        detail::visitKnown(laws_[k], [&](const auto& law) { agrees = law.agrees(data.materialCoordinates[k], x); });
+        if (!agrees) return false;
+    }
     for (int j = 0; j < N; ++j) {
         const auto& q = data.ws().spanQ[j];
-        const int nmSpan = spans_[j].numModalCoordinates();
-        const int na = spans_[j].numCondensedModes();
-        if (q.size() != spans_[j].numCoordinates() || q.template segment<Dim>(0) != x.template segment<Dim>(departureOffset(j)) ||
+        const int nmSpan = elements_->spans[j].numModalCoordinates();
+        const int na = elements_->spans[j].numCondensedModes();
+        if (q.size() != elements_->spans[j].numCoordinates() || q.template segment<Dim>(0) != x.template segment<Dim>(departureOffset(j)) ||
             q.template segment<Dim>(Dim) != x.template segment<Dim>(arrivalOffset(j + 1)) ||
             q.segment(2 * Dim + na, nmSpan - na) != qm.segment(modalOffset_[j], nmSpan - na) ||
-            (isWrapped(j) && q[spans_[j].s1Index()] != data.materialCoordinates[j] + arcLengthAt(x, j)))
+            (isWrapped(j) && q[elements_->spans[j].s1Index()] != data.materialCoordinates[j] + arcLengthAt(x, j)))
             return false;
     }
     return true;
@@ -1494,11 +1541,11 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
         throw std::invalid_argument(msg.str());
     }
     const Eigen::VectorXd& x = stationsToExternal(nodes, &nodeVelocities, drivenS, &drivenSdot, data);
-    const Eigen::VectorXd& xdot = arcs_.empty() ? data.ws().packedXdot : data.ws().stationMap.xdot;
+    const Eigen::VectorXd& xdot = elements_->arcs.empty() ? data.ws().packedXdot : data.ws().stationMap.xdot;
     computeDynamicsFromExternal(x, xdot, qm, qmdot, data);
     // A rope with wrapped nodes is coupled at its stations: S, h and the modal reduction carried
     // over (once per evaluation: a repeated one returns above with them already carried).
-    if (!arcs_.empty() && !data.ws().stationMode) dynamicsToStations(data);
+    if (!elements_->arcs.empty() && !data.ws().stationMode) dynamicsToStations(data);
 }
 
 template <int Dim>
@@ -1535,7 +1582,7 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
                     ws.dynamicsDependents.tail(numMultipliers_) == data.multipliers && ws.w.size() == nw;
         same = same && ws.w.head(nx) == xdot && ws.w.tail(nm) == qmdot;
         // (The arcs' centres and axes are not span coordinates: compared here.)
-        same = same && (arcs_.empty() || ws.dynamicsX == x);
+        same = same && (elements_->arcs.empty() || ws.dynamicsX == x);
         if (same) return;
     }
     ws.dynamicsCurrent = false;
@@ -1545,17 +1592,17 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
     data.ws().w.resize(nw);
     data.ws().w.head(nx) = xdot;
     data.ws().w.tail(nm) = qmdot;
-    if (!arcs_.empty()) ws.dynamicsX = x;
+    if (!elements_->arcs.empty()) ws.dynamicsX = x;
 
     data.ws().spans.resize(N);
     data.materialRates.setZero(N + 1);
-    for (int k = 0; k <= N; ++k)
-        if (nodeKind_[k] == MaterialNode::Driven) data.materialRates[k] = xdot[nn + drivenIndex_[k]];
+    for (int k = 0; k <= N; ++k)  // the known rates (Fixed: 0; Driven: as given); the solved ones below
+        detail::visitKnown(laws_[k], [&](const auto& law) { data.materialRates[k] = law.rate(xdot); });
     data.condensedRates.setZero(nqc);
     data.multiplierRates.setZero(numMultipliers_);
     auto fillSpanVelocities = [&] {
         for (int j = 0; j < N; ++j) {
-            const auto& sp = spans_[j];
+            const auto& sp = elements_->spans[j];
             Eigen::VectorXd& qd = data.ws().spanQdot[j];
             qd.resize(sp.numCoordinates());
             qd.template segment<Dim>(0) = xdot.template segment<Dim>(departureOffset(j));
@@ -1606,9 +1653,9 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
     data.kineticEnergy = data.strainEnergy = data.gravityEnergy = data.dampingPower = 0;
     for (int j = 0; j < N; ++j) {
         SpanData<Dim>& d = ws.spans[j];
-        spans_[j].evaluate(ws.spanQ[j], ws.spanQdot[j], d);
+        elements_->spans[j].evaluate(ws.spanQ[j], ws.spanQdot[j], d);
         const auto& map = spanToRope_[j];
-        const int n = spans_[j].numCoordinates();
+        const int n = elements_->spans[j].numCoordinates();
         for (int a = 0; a < n; ++a) {
             ws.Qz[map[a]] += d.velocityForces[a] + d.elasticForces[a] + d.gravityForces[a] + d.dampingForces[a];
             if (nqc > 0) ws.velocityForcesZ[map[a]] += d.velocityForces[a];
@@ -1624,14 +1671,14 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
         data.dampingPower += d.dampingPower;
     }
     // The rope on the groove arcs of wrapped nodes (GrooveArc).
-    ws.arcs.resize(arcs_.size());
-    for (std::size_t i = 0; i < arcs_.size(); ++i) {
+    ws.arcs.resize(elements_->arcs.size());
+    for (std::size_t i = 0; i < elements_->arcs.size(); ++i) {
         const int k = arcNode_[i];
         typename GrooveArc<Dim>::Coordinates a, adot;
         arcCoordinates(k, x, data.materialCoordinates[k], a);
         arcCoordinates(k, xdot, data.materialRates[k], adot);
         GrooveArcData<Dim>& d = ws.arcs[i];
-        arcs_[i].evaluate(a, adot, d);
+        elements_->arcs[i].evaluate(a, adot, d);
         const auto& map = elementToRope_[N + i];
         for (int l = 0; l < GrooveArc<Dim>::kNumCoordinates; ++l) {
             ws.Qz[map[l]] += d.velocityForces[l] + d.gravityForces[l];
@@ -1640,14 +1687,13 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
         data.kineticEnergy += d.kineticEnergy;
         data.gravityEnergy += d.gravityEnergy;
     }
-    // Slipping nodes: the friction force F_f = P_k - P_{k-1} on the material s_k, its reaction on
-    // the sheave's surface coordinate (MaterialNode::Slipping).
+    // The friction at the solved nodes, as their laws say (Slipping: F_f = P_k - P_{k-1} on the
+    // material s_k, its reaction on the sheave's surface coordinate; Sliding: none).
     for (int ki = 0; ki < nc; ++ki) {
         const int k = slidingNode_[ki];
-        if (nodeKind_[k] != MaterialNode::Slipping) continue;
-        const double friction = -constraintError(data, k);
-        ws.Qz[nw + nqc + ki] += friction;
-        ws.Qz[nn + drivenIndex_[k]] -= friction;
+        detail::visitDependent(laws_[k], [&](const auto& law) {
+            law.addFriction([&] { return constraintError(data, k); }, ws.Qz, nw + nqc + ki);
+        });
     }
 
     // The rope's equations at given external accelerations xddot, with y = [q_free, d] and
@@ -1991,7 +2037,7 @@ void RopeModel<Dim>::recoveredSpanCoordinatesFromExternal(int j, const Eigen::Ve
 template <int Dim>
 void RopeModel<Dim>::addInertialCorrection(int j, const RopeData<Dim>& data, Eigen::VectorXd& q) const {
     if (numCondensed_ == 0 || !data.inertialCorrectionValid) return;
-    const auto& sp = spans_[j];
+    const auto& sp = elements_->spans[j];
     if (isCondensed(j))
         q.segment(2 * Dim, sp.numCondensedModes()) +=
             data.inertialCorrection.segment(condensedOffset_[j], sp.numCondensedModes());
@@ -2001,9 +2047,9 @@ void RopeModel<Dim>::addInertialCorrection(int j, const RopeData<Dim>& data, Eig
 
 template <int Dim>
 double RopeModel<Dim>::constraintError(const RopeData<Dim>& data, int k) const {
-    if (!kernels_.empty())
-        return properties().axialStiffness * (data.ws().condensation[k - 1].value[kernels_[k - 1].endStrain(SpanEnd::Second)] -
-                                              data.ws().condensation[k].value[kernels_[k].endStrain(SpanEnd::First)]);
+    if (!elements_->kernels.empty())
+        return properties().axialStiffness * (data.ws().condensation[k - 1].value[elements_->kernels[k - 1].endStrain(SpanEnd::Second)] -
+                                              data.ws().condensation[k].value[elements_->kernels[k].endStrain(SpanEnd::First)]);
     return properties().axialStiffness * (data.ws().secondEnd[k - 1].strain - data.ws().firstEnd[k].strain);
 }
 

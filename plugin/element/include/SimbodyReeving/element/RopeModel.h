@@ -17,8 +17,10 @@
 
 namespace SimbodyReeving {
 
-/// How the material coordinate s_k of a rope node is determined: a closed set the RopeModel
-/// dispatches on (new node physics, e.g. wrap geometry or friction, become new kinds).
+/// How the material coordinate s_k of a rope node is determined: the tag of a node law. RopeModel
+/// turns each into its law type once, at construction (and withNodeLaw), and its evaluations call
+/// the laws (one type per kind, behind one interface, in the element layer's sources): new node
+/// physics is a new law type registered with a new tag, not a new branch in the rope.
 enum class MaterialNode {
     /// A constant: the rope's end is fastened there (start: s_0 = 0; end: s_N = L, the unstretched
     /// length). End nodes only.
@@ -115,6 +117,11 @@ class GrooveArc;
 namespace detail {
 template <int Dim>
 struct RopeWorkspace;  // the scratch of an evaluation
+template <int Dim>
+struct RopeElements;  // the spans, their condensation kernels and the groove arcs (shared)
+struct NodeLaw;       // a node's law (FixedLaw, SlidingLaw, DrivenLaw, SlippingLaw)
+template <int Dim>
+struct SlipAngle;  // a node's wrap angle and its derivatives in the external coordinates
 }  // namespace detail
 
 /// The results of a RopeModel's evaluation ("Data" of a RopeModel, as Pinocchio's Model/Data): what
@@ -250,14 +257,14 @@ public:
     RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedLength, std::vector<MaterialNode> nodeKinds = {},
               std::vector<NodeWrap> wraps = {});
     ~RopeModel();                                      ///< (its parts' types are complete in the .cpp)
-    RopeModel(const RopeModel& other);                 ///< copy
-    RopeModel& operator=(const RopeModel& other);      ///< copy
+    RopeModel(const RopeModel& other);                 ///< copy (sharing the spans, kernels and arcs: immutable)
+    RopeModel& operator=(const RopeModel& other);      ///< copy (as the copy constructor)
     RopeModel(RopeModel&& other) noexcept;             ///< move
     RopeModel& operator=(RopeModel&& other) noexcept;  ///< move
 
-    int numSpans() const { return static_cast<int>(spans_.size()); }  ///< N
-    int numNodes() const { return numSpans() + 1; }                   ///< N + 1
-    MaterialNode nodeKind(int node) const { return nodeKind_[node]; }  ///< how node k's s_k is determined
+    int numSpans() const { return numSpans_; }       ///< N
+    int numNodes() const { return numSpans() + 1; }  ///< N + 1
+    MaterialNode nodeKind(int node) const;           ///< how node k's s_k is determined (its law's tag)
     /// Number of Driven and Slipping nodes (each has an external coordinate: the driven material
     /// coordinate, or the slipping sheave's surface coordinate): the length of the drivenS vectors
     /// below (the entries of Slipping nodes are read only for their rates, the sheave's speed).
@@ -376,8 +383,34 @@ public:
     /// planar rope.
     /// @throws std::invalid_argument if span is out of range or data holds no such evaluation.
     std::pair<double, double> fleetAngles(const RopeData<Dim>& data, int span) const;
-    double slipRatio(int node) const { return slipRatio_[node]; }  ///< kappa_0 of a Slipping node (else 1)
-    double slipAngleExponent(int node) const { return slipExponent_[node]; }  ///< c [1/rad] of a Slipping node (else 0)
+    double slipRatio(int node) const;          ///< kappa_0 of a Slipping node (else 1)
+    double slipAngleExponent(int node) const;  ///< c [1/rad] of a Slipping node (else 0)
+    /// A phase change of a traction sheave without rebuilding the rope: a copy of this model with
+    /// interior node k's law changed between Driven (stick: s_k given by drivenS) and Slipping
+    /// (slip with the capstan law kappa(alpha) = kappa0 e^(angleExponent alpha), as setSlipLaw), or
+    /// a Slipping node given another law. Both kinds have the node's external coordinate, so the
+    /// external coordinates x, drivenS and the stations are the same for both models; the
+    /// dependent coordinates gain (Slipping) or lose (Driven) s_k, and nu_k with condensed spans.
+    /// The result is the model built from scratch with that kind at node k (then setSlipLaw,
+    /// the same setStoredRope and setStationaryNodes): every evaluation agrees with it bit for bit.
+    /// This model is not changed (a simulation keeps one model per phase). Give the new model a
+    /// RopeData of its own, warm-started from the material coordinates and condensed amplitudes of
+    /// the last phase's (as the Simbody layer's traction phases do): a RopeData that another model
+    /// solved at the same positions is taken as solved (the positions are compared, not the models).
+    /// Cost: the spans, their condensation kernels and the groove arcs are shared with this model
+    /// (not copied: span(j) is the same object); the node laws and the coordinate layout that
+    /// depends on them (index maps, chain order, the band offsets of the mass entries: integers,
+    /// linear in the spans) are built anew, with their allocations: a phase change, not an
+    /// evaluation (measured on a 3-span traction rope: 74 allocations, 16 kB planar, 28 kB
+    /// spatial, against 203 and 207, 36 and 52 kB, building it from scratch).
+    /// @param node          k, an interior node whose law is Driven or Slipping.
+    /// @param kind          MaterialNode::Driven or MaterialNode::Slipping.
+    /// @param kappa0        kappa_0 [-] of a Slipping law, finite and > 0; 1 for Driven.
+    /// @param angleExponent c [1/rad] of a Slipping law, finite; 0 for Driven.
+    /// @throws std::invalid_argument if node is not interior, its law or kind is neither Driven
+    ///         nor Slipping, a Slipping node would sit on a turning groove (NodeWrap::turningAxis),
+    ///         kappa0 or angleExponent are not valid for the kind.
+    RopeModel withNodeLaw(int node, MaterialNode kind, double kappa0 = 1.0, double angleExponent = 0.0) const;
     /// Declares which nodes never move (a node on Ground): their velocities and accelerations are zero
     /// in every evaluation. computeDynamics then skips their columns of nodeMass (left zero, as is
     /// their share in the modal accelerations): one solve less per coordinate. Their rows stay exact
@@ -402,8 +435,8 @@ public:
     /// True if span j's axial amplitudes are condensed (AxialDynamics::QuasiStatic and n_a > 0).
     bool isCondensed(int span) const { return condensedOffset_[span] >= 0; }
     double unstretchedLength() const { return length_; }                              ///< L [m]
-    const SpanModel<Dim>& span(int j) const { return spans_[j]; }                      ///< span j's element
-    const RopeProperties& properties() const { return spans_.front().properties(); }  ///< of every span
+    const SpanModel<Dim>& span(int j) const;      ///< span j's element
+    const RopeProperties& properties() const;    ///< of every span
 
     /// Solves the constraints for the dependent coordinates, s_1..s_{N-1} and the condensed axial
     /// amplitudes, by Newton's method (starting from data if it holds an admissible guess, else
@@ -573,8 +606,10 @@ private:
     /// Sliding ones as a warm start when they stay ordered, else a chord-proportional guess).
     void setKnownMaterialCoordinates(const Eigen::VectorXd& x, RopeData<Dim>& data) const;
 
-    std::vector<SpanModel<Dim>> spans_;
-    std::vector<AxialCondensation<Dim>> kernels_;  // one per span when some span is condensed
+    // The spans, their condensation kernels (one per span when some span is condensed) and the
+    // groove arcs: immutable, shared by copies and by withNodeLaw's models.
+    std::shared_ptr<const detail::RopeElements<Dim>> elements_;
+    int numSpans_ = 0;
     std::vector<std::vector<int>> spanToRope_;  // span-local coordinate -> index in z
     // The rope's elements: the spans, then the groove arcs (element N + i: arc i). elementToRope_[e]
     // maps element e's local coordinates into z (spanToRope_ for the spans); a span that starts at
@@ -582,7 +617,6 @@ private:
     // the z index of l_k (the second target of its local s1), or -1.
     std::vector<std::vector<int>> elementToRope_;
     std::vector<int> elementExtra_, elementExtraLocal_;
-    std::vector<GrooveArc<Dim>> arcs_;
     std::vector<int> arcIndex_, arcNode_;  // node -> arc index or -1; arc -> node
     std::vector<int> nodeOffset_;          // node -> first external coordinate of its block
     std::vector<Eigen::Vector3d> grooveAxes_;  // node -> its groove's axis (+z at point nodes and in 2D)
@@ -592,33 +626,18 @@ private:
     int numNodeCoordinates_ = 0;
     std::vector<int> modalOffset_;      // span -> first modal state coordinate in qm
     std::vector<int> condensedOffset_;  // span -> first condensed amplitude, or -1
-    std::vector<MaterialNode> nodeKind_;
+    // Node k's law (NodeLaw.h: its registration from the MaterialNode tag, at construction and
+    // withNodeLaw), and the layout it gives (layOutNodes).
+    std::vector<detail::NodeLaw> laws_;
     std::vector<int> slidingIndex_, drivenIndex_;  // node -> index among its kind, or -1
     std::vector<int> slidingNode_;                 // sliding index -> node (Sliding and Slipping nodes)
-    std::vector<double> slipRatio_;                // per node: kappa of a Slipping node, else 1
-    // The tension-equality row of node k is written w_before eps_{k-1} - w_after eps_k = 0 with
-    // (w_before, w_after) = (1, kappa) / max(1, kappa): the same equation as eps_{k-1} = kappa eps_k,
-    // with coefficients of at most 1, so its round-off stays at the strains' own (about 1e-16) for
-    // any kappa. Unscaled, a large kappa (e^(mu alpha) = 4e13 at mu = 10) multiplies the slack
-    // side's round-off past the Newton's tolerance.
-    std::vector<double> weightBefore_, weightAfter_;
-    std::vector<double> slipExponent_;  // per node: c [1/rad] of kappa(alpha) = kappa_0 e^(c alpha), else 0
-    /// The row weights (w_before, w_after) of Slipping node k at wrap angle alpha and their first
-    /// and second derivatives in alpha (zero unless the law has an angle exponent).
-    struct SlipWeights {
-        double before = 1, after = 1, dBefore = 0, dAfter = 0, ddBefore = 0, ddAfter = 0;
-    };
-    SlipWeights slipWeights(int node, double alpha) const;
-    /// Node k's wrap angle alpha in x as a function of the external coordinates: its value, its
-    /// gradient (count entries at columns cols), and with rates xdot its rate and the
-    /// quadratic-velocity part of its second derivative (alphaddot = grad . xddot + bias).
-    struct SlipAngle {
-        double alpha = 0, rate = 0, bias = 0;
-        int count = 0;
-        std::array<int, 3 * Dim> cols{};
-        std::array<double, 3 * Dim> grad{};
-    };
-    SlipAngle slipAngle(int node, const Eigen::VectorXd& x, const Eigen::VectorXd* xdot) const;
+    /// The coordinate layout of the node laws: the nodes' indices among the solved and the
+    /// external material coordinates, the laws' columns, the elements' maps into z, the chain
+    /// order and a new structureId_ (constructor, withNodeLaw).
+    void layOutNodes();
+    /// Node k's wrap angle alpha in x as a function of the external coordinates (detail::SlipAngle;
+    /// with rates xdot also its rate and bias).
+    detail::SlipAngle<Dim> slipAngle(int node, const Eigen::VectorXd& x, const Eigen::VectorXd* xdot) const;
     int numFixed_ = 0;
     struct Storage {
         int node = -1;
