@@ -224,6 +224,47 @@ void bindReeving(py::module_& m) {
                  return r.getMaterialCoordinate(s, rope, node);
              },
              py::arg("state"), py::arg("rope"), py::arg("node"), "The rope's material coordinate s at the node [m].")
+        .def("node_force",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 realize(r, s, Stage::Dynamics);
+                 return vec3(r.getNodeForce(s, rope, node));
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"),
+             "The force the rope exerts on the node's body, in Ground [N] (at a sheave: the bearing load).")
+        .def("wrap_angle",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 realize(r, s, Stage::Position);
+                 return r.getWrapAngle(s, rope, node);
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"),
+             "alpha at a sheave [rad] (ValueError at an end node or a point sheave of a spatial rope).")
+        .def("arc_length",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 realize(r, s, Stage::Position);
+                 return r.getArcLength(s, rope, node);
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"), "The rope on the node's groove R alpha [m].")
+        .def("constraint_error",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 require(node > 0 && node < r.getNumSpans(rope), "constraint_error: node " + std::to_string(node) +
+                                                                    " is an end node (sheaves: 1.." +
+                                                                    std::to_string(r.getNumSpans(rope) - 1) + ")");
+                 realize(r, s, Stage::Dynamics);
+                 return r.getConstraintError(s, rope, node);
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"),
+             "F_a - F_b at a sheave [N]: the tension-equality residual at a DeviationSheave.")
+        .def("find_static_equilibrium",
+             [](const ReevingSubsystem& r, State& s, double tolerance, int iterations) {
+                 py::gil_scoped_release release;
+                 return r.findStaticEquilibrium(s, tolerance, iterations);
+             },
+             py::arg("state"), py::arg("relative_tolerance") = 1e-10, py::arg("max_iterations") = 50,
+             "Moves `state` (in place) to static equilibrium of bodies and ropes; returns the relative residual.")
         .def("max_constraint_error",
              [](const ReevingSubsystem& r, const State& s) {
                  realize(r, s, Stage::Dynamics);
@@ -528,6 +569,23 @@ void bindScenes(py::module_& m) {
         .def_property_readonly("time", &State::getTime, "[s]")
         .def_property_readonly("q", [](const State& s) { return vector(s.getQ()); }, "A copy of q.")
         .def_property_readonly("u", [](const State& s) { return vector(s.getU()); }, "A copy of u.")
+        .def_property_readonly("nq", [](const State& s) { return s.getNQ(); })
+        .def_property_readonly("nu", [](const State& s) { return s.getNU(); })
+        .def_property_readonly("nz", [](const State& s) { return s.getNZ(); }, "Auxiliary states (the ropes' modal coordinates and rates...).")
+        .def("set_time", [](State& s, double t) {
+                require(std::isfinite(t), "set_time: t must be finite");
+                s.setTime(t);
+            }, py::arg("t"), "[s]")
+        .def("set_q", [](State& s, const std::vector<double>& q) {
+                require(static_cast<int>(q.size()) == s.getNQ(), "set_q: " + std::to_string(q.size()) +
+                                                                     " values for nq = " + std::to_string(s.getNQ()));
+                for (int i = 0; i < s.getNQ(); ++i) s.updQ()[i] = q[static_cast<std::size_t>(i)];
+            }, py::arg("q"), "Sets every q (nq values).")
+        .def("set_u", [](State& s, const std::vector<double>& u) {
+                require(static_cast<int>(u.size()) == s.getNU(), "set_u: " + std::to_string(u.size()) +
+                                                                     " values for nu = " + std::to_string(s.getNU()));
+                for (int i = 0; i < s.getNU(); ++i) s.updU()[i] = u[static_cast<std::size_t>(i)];
+            }, py::arg("u"), "Sets every u (nu values).")
         .def("copy", [](const State& s) { return State(s); })
         .def("__copy__", [](const State& s) { return State(s); })
         .def("__repr__", [](const State& s) {
