@@ -610,6 +610,10 @@ void bindBodies(py::module_& m) {
         .def("__repr__", [](const Body& b) {
             return "Body(" + b.machine->kinds[b.index] + ", index=" + std::to_string(static_cast<int>(b.index)) + ")";
         })
+        .def("q_index", [](const Body& b, const State& s) { b.machine->check(s, Stage::Model); return static_cast<int>(b.get().getFirstQIndex(s)); },
+             py::arg("state"), "Where its q start in the state's q (the reports' q<i> columns).")
+        .def("u_index", [](const Body& b, const State& s) { b.machine->check(s, Stage::Model); return static_cast<int>(b.get().getFirstUIndex(s)); },
+             py::arg("state"), "Where its u start in the state's u (the reports' u<i> columns).")
         .def("q", [](const Body& b, const State& s) { b.machine->check(s, Stage::Model); return array(b.get().getQAsVector(s)); },
              py::arg("state"), "Its mobilizer's generalized coordinates (a Pin: the angle [rad]; a Slider: [m]; "
                                "Free: quaternion then translation).")

@@ -313,5 +313,45 @@ def test_handles_keep_their_system_alive():
     assert payload.kind == "Slider"
 
 
+# ---- examples/python/own_machine.py: a TurningSheave, a Weld, a Planar and a mobility force --------
+
+def test_own_machine_example():
+    import importlib.util
+    path = os.path.join(support.PY_EXAMPLES, "own_machine.py")
+    spec = importlib.util.spec_from_file_location("own_machine", path)
+    om = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(om)
+    side, speed = 300.0, 0.05
+    system, bodies, rope, state = om.build(speed, side)
+    assert [n.kind for n in rope.nodes] == ["WinchDrum", "TurningSheave", "RopeAnchor"]
+    assert isinstance(rope.node(1), sr.TurningSheaveHandle) and not hasattr(rope.node(1), "slip_rate")
+    assert [bodies[k].kind for k in ("drum", "jib", "sheave", "hook")] == ["Pin", "Weld", "Pin", "Planar"]
+    e = om.equilibrium(system, bodies, rope, state, side)
+    W = om.HOOK_M * om.G
+    force_err = np.max(np.abs(e["hook_force"] - e["hook_force_closed_form"])) / W
+    lean_err = abs(e["lean"] - e["lean_closed_form"])
+    # The wrap angle at the point sheave: the turn between the chords to the drum and to the hitch.
+    hitch = bodies["hook"].station_position(state, (0, om.HITCH, 0))
+    a, b = -om.HEAD, hitch - om.HEAD
+    alpha = math.pi - math.acos(np.dot(a, b) / np.linalg.norm(a) / np.linalg.norm(b))
+    alpha_err = abs(e["wrap_angle"] - alpha)
+    print("own machine: |F_hook - (-F, M g)| / M g %.3g, |lean - atan(F / (M g + rhoA g l / 2))| %.3g rad, "
+          "|alpha - closed form| %.3g rad" % (force_err, lean_err, alpha_err))
+    # Measured: 4.9e-8 (equilibrium to 1e-10 of the largest generalized force), 1.9e-6 rad (the
+    # chord of a weighted span, to first order in rhoA g l / M g = 0.02) and 4.4e-16 rad; bounds
+    # 1e-6, 2e-5 rad and 1e-14 rad (20x, 10x, 22x).
+    assert force_err <= 1e-6 and lean_err <= 2e-5 and alpha_err <= 1e-14
+    # Hauling: the stored rope grows by v t, exactly (a prescribed drum speed).
+    sim = system.simulation(state, integrator="rk-merson", accuracy=1e-7)
+    r = sim.run(t_end=0.5, report_interval=0.05)
+    drum_err = np.max(np.abs(r["rope0.node0.rope_on_drum"] - (om.STORED + speed * r["t"])))
+    print("own machine: |rope_on_drum - (stored + v t)| %.3g m" % drum_err)
+    assert drum_err <= 1e-12  # measured 0 m (round-off bound)
+    assert np.all(r["rope0.span1.axial_force_end"] > 0) and sim.limit_reached == ""
+    # The script runs and prints its table.
+    printed = support.python(path, "--t-end", "0.5").stdout
+    assert printed.startswith("equilibrium: lean 0.06048") and "limit: none" in printed, printed
+
+
 if __name__ == "__main__":
     sys.exit(support.main(globals()))
