@@ -293,6 +293,16 @@ def test_bad_specs_raise_value_error_with_the_cpp_message():
     raises(ValueError, system.add_rope, hoist_spec(sr.System()))
     raises(ValueError, good.node(0).rope_on_drum, other.default_state())
     raises(IndexError, good.node, 3)
+    # A state of another system anywhere is a ValueError (Simbody itself would abort), before the
+    # topology too.
+    scene = sr.PendulumScene()
+    scene_state = scene.make_initial_state()
+    raises(ValueError, system.reeving.axial_force, scene_state, 0, 0, 1.0)
+    raises(ValueError, scene.reeving.axial_force, state, 0, 0, 1.0)
+    raises(ValueError, scene.payload_position, state)
+    raises(ValueError, scene.simulation, state)
+    raises(ValueError, system.simulation, scene_state)
+    raises(ValueError, sr.System().reeving.mechanical_energy, scene_state)
     # An evaluation failure is a RuntimeError: the default state has the payload at the sheave.
     e = raises(RuntimeError, good.node(0).rope_on_drum, state)
     assert "ChordFrame: chord e = r2 - r1 = (0 0) is zero" in str(e), str(e)
