@@ -160,9 +160,14 @@ SimTK::Transform toTransform(const py::object& o, const char* what) {
     }
 }
 
+// A number (any with __float__: a numpy scalar too) or a sequence of numbers.
 std::vector<double> toValues(const py::object& o) {
-    if (py::isinstance<py::float_>(o) || py::isinstance<py::int_>(o)) return {o.cast<double>()};
-    return o.cast<std::vector<double>>();
+    if (!PySequence_Check(o.ptr()) && py::hasattr(o, "__float__")) return {py::float_(o).cast<double>()};
+    try {
+        return o.cast<std::vector<double>>();
+    } catch (const py::cast_error&) {
+        throw py::type_error("a number or a sequence of numbers, not " + std::string(py::str(o.get_type().attr("__name__"))));
+    }
 }
 
 // ---- node specs: the C++ kind structs with the body as a Python Body ----------------------------
@@ -668,7 +673,8 @@ void bindBodies(py::module_& m) {
         .def("prescribe_steady_speed",
              [](const Body& b, double u) {
                  b.machine->requireBuilding("prescribe_steady_speed");
-                 require(b.index != 0, "prescribe_steady_speed: ground has no mobilities");
+                 require(b.machine->mobilities[b.index] > 0,
+                         "prescribe_steady_speed: the " + b.machine->kinds[b.index] + " has no mobilities");
                  require(std::isfinite(u), "prescribe_steady_speed: u = " + text(u) + " must be finite");
                  SimTK::Motion::Steady(b.machine->matter.updMobilizedBody(b.index), u);
              },
