@@ -13,6 +13,13 @@
 
     rows = sr.run_study("studies/elevator-traction")       # reeving-study's results.csv as dicts
 
+    system = sr.System(gravity=(0, -9.81, 0))              # one's own machine
+    drum = system.add_pin(system.ground, sr.MassProperties(50, (0, 0, 0), 2.0))
+    load = system.add_free(system.ground, sr.MassProperties(100, (0, 0, 0), 1.0))
+    rope = system.add_rope(sr.RopeSpec(start=sr.WinchDrum(drum, radius=0.3, rope_on_drum=20),
+                                       end=sr.RopeAnchor(load, (0, 0.5, 0)), ...))
+    rope.node(0).rope_on_drum(state)                        # typed handles: WinchDrumHandle, ...
+
 Errors: a bad parameter raises ValueError with the C++ message (StudyError, a ValueError, for a
 bad study), other C++ failures RuntimeError; Ctrl-C ends a run or a study with KeyboardInterrupt.
 See docs/python.md.
@@ -22,6 +29,7 @@ import os as _os
 
 from ._core import (  # noqa: F401
     AxialDynamics,
+    Body,
     CraneCycle,
     CraneParameters,
     CraneScenario,
@@ -29,27 +37,47 @@ from ._core import (  # noqa: F401
     ElevatorParameters,
     ElevatorScenario,
     ElevatorScene,
+    DeviationSheave,
+    MassProperties,
     PendulumParameters,
     PendulumScene,
+    PinnedNodeHandle,
     ReevingSubsystem,
+    RopeAnchor,
+    RopeHandle,
+    RopeNodeHandle,
+    RopeProperties,
+    RopeSpec,
     SheaveModel,
     Simulation,
     SpanOptions,
     State,
     StudyError,
+    System,
+    TractionMode,
+    TractionSheave,
+    TractionSheaveHandle,
     TractionSlip,
+    Transform,
     TransverseDynamics,
+    TurningSheave,
+    TurningSheaveHandle,
     VelocityModel,
+    WinchDrum,
+    WinchDrumHandle,
     integrator_names,
     run_pendulum,
 )
 from . import _core
 
 __all__ = [
-    "AxialDynamics", "CraneCycle", "CraneParameters", "CraneScenario", "CraneScene",
-    "ElevatorParameters", "ElevatorScenario", "ElevatorScene", "PendulumParameters",
-    "PendulumScene", "ReevingSubsystem", "SheaveModel", "Simulation", "SpanOptions", "State",
-    "StudyError", "TractionSlip", "TransverseDynamics", "VelocityModel", "demo_dir",
+    "AxialDynamics", "Body", "CraneCycle", "CraneParameters", "CraneScenario", "CraneScene",
+    "DeviationSheave", "ElevatorParameters", "ElevatorScenario", "ElevatorScene", "MassProperties",
+    "PendulumParameters", "PendulumScene", "PinnedNodeHandle", "ReevingSubsystem", "RopeAnchor",
+    "RopeHandle", "RopeNodeHandle", "RopeProperties", "RopeSpec", "SheaveModel", "Simulation",
+    "SpanOptions", "State", "StudyError", "System", "TractionMode", "TractionSheave",
+    "TractionSheaveHandle", "TractionSlip", "Transform", "TransverseDynamics", "TurningSheave",
+    "TurningSheaveHandle", "VelocityModel", "WinchDrum", "WinchDrumHandle", "demo_dir",
     "integrator_names", "results_array", "run_pendulum", "run_study",
 ]
 

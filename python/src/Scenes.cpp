@@ -116,8 +116,34 @@ void checkNode(const ReevingSubsystem& r, int rope, int node) {
                                 " has " + std::to_string(r.getNumSpans(rope) + 1) + " nodes");
 }
 
+// A state of r's system: its topology realized and the state's layout its default state's (a state
+// of another system would crash Simbody's realizations).
+void checkState(const ReevingSubsystem& r, const State& s) {
+    const SimTK::System& system = r.getSystem();
+    require(system.systemTopologyHasBeenRealized(),
+            "the system's topology is not realized: make its states with default_state() (a System) or "
+            "make_initial_state() (a scene)");
+    const State& d = system.getDefaultState();
+    require(s.getNumSubsystems() == d.getNumSubsystems() && s.getNQ() == d.getNQ() && s.getNU() == d.getNU() &&
+                s.getNZ() == d.getNZ(),
+            "the state is not one of this system's (nq " + std::to_string(s.getNQ()) + ", nu " +
+                std::to_string(s.getNU()) + ", nz " + std::to_string(s.getNZ()) + "; the system's: nq " +
+                std::to_string(d.getNQ()) + ", nu " + std::to_string(d.getNU()) + ", nz " + std::to_string(d.getNZ()) +
+                ")");
+}
+
+// A scene's query: the state checked as one of the scene's, realized to `stage`.
+template <class Scene>
+void realizeScene(const Scene& scene, const State& s, Stage stage) {
+    checkState(scene.reeving(), s);
+    scene.system().realize(s, stage);
+}
+
 // Queries realize the state they are given as far as they need (a no-op on a realized state).
-void realize(const ReevingSubsystem& r, const State& s, Stage stage) { r.getSystem().realize(s, stage); }
+void realize(const ReevingSubsystem& r, const State& s, Stage stage) {
+    checkState(r, s);
+    r.getSystem().realize(s, stage);
+}
 
 void bindReeving(py::module_& m) {
     py::class_<ReevingSubsystem>(m, "ReevingSubsystem",
@@ -224,6 +250,48 @@ void bindReeving(py::module_& m) {
                  return r.getMaterialCoordinate(s, rope, node);
              },
              py::arg("state"), py::arg("rope"), py::arg("node"), "The rope's material coordinate s at the node [m].")
+        .def("node_force",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 realize(r, s, Stage::Dynamics);
+                 return vec3(r.getNodeForce(s, rope, node));
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"),
+             "The force the rope exerts on the node's body, in Ground [N] (at a sheave: the bearing load).")
+        .def("wrap_angle",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 realize(r, s, Stage::Position);
+                 return r.getWrapAngle(s, rope, node);
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"),
+             "alpha at a sheave [rad] (ValueError at an end node or a point sheave of a spatial rope).")
+        .def("arc_length",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 realize(r, s, Stage::Position);
+                 return r.getArcLength(s, rope, node);
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"), "The rope on the node's groove R alpha [m].")
+        .def("constraint_error",
+             [](const ReevingSubsystem& r, const State& s, int rope, int node) {
+                 checkNode(r, rope, node);
+                 require(node > 0 && node < r.getNumSpans(rope), "constraint_error: node " + std::to_string(node) +
+                                                                    " is an end node (sheaves: 1.." +
+                                                                    std::to_string(r.getNumSpans(rope) - 1) + ")");
+                 realize(r, s, Stage::Dynamics);
+                 return r.getConstraintError(s, rope, node);
+             },
+             py::arg("state"), py::arg("rope"), py::arg("node"),
+             "F_a - F_b at a sheave [N]: the tension-equality residual at a DeviationSheave.")
+        .def("find_static_equilibrium",
+             [](const ReevingSubsystem& r, State& s, double tolerance, int iterations) {
+                 checkState(r, s);
+                 py::gil_scoped_release release;
+                 return r.findStaticEquilibrium(s, tolerance, iterations);
+             },
+             py::arg("state"), py::arg("relative_tolerance") = 1e-10, py::arg("max_iterations") = 50,
+             "Moves `state` (in place) to static equilibrium of bodies and ropes; returns the relative residual.")
         .def("max_constraint_error",
              [](const ReevingSubsystem& r, const State& s) {
                  realize(r, s, Stage::Dynamics);
@@ -510,6 +578,7 @@ py::dict runPendulum(const PendulumRunOptions& o) {
 template <class Scene>
 std::unique_ptr<Simulation> makeSimulation(const Scene& scene, Observer observer, const State& state,
                                            const std::string& integrator, double accuracy, double fixedStep) {
+    checkState(scene.reeving(), state);
     py::gil_scoped_release release;
     return std::make_unique<Simulation>(scene.system(), scene.reeving(), state, integrator, accuracy, fixedStep,
                                         std::move(observer));
@@ -517,7 +586,7 @@ std::unique_ptr<Simulation> makeSimulation(const Scene& scene, Observer observer
 
 template <class Scene>
 double initialEnergy(const Scene& scene, const State& s) {
-    scene.system().realize(s, Stage::Velocity);
+    realizeScene(scene, s, Stage::Velocity);
     return scene.reeving().calcMechanicalEnergy(s);
 }
 
@@ -528,6 +597,23 @@ void bindScenes(py::module_& m) {
         .def_property_readonly("time", &State::getTime, "[s]")
         .def_property_readonly("q", [](const State& s) { return vector(s.getQ()); }, "A copy of q.")
         .def_property_readonly("u", [](const State& s) { return vector(s.getU()); }, "A copy of u.")
+        .def_property_readonly("nq", [](const State& s) { return s.getNQ(); })
+        .def_property_readonly("nu", [](const State& s) { return s.getNU(); })
+        .def_property_readonly("nz", [](const State& s) { return s.getNZ(); }, "Auxiliary states (the ropes' modal coordinates and rates...).")
+        .def("set_time", [](State& s, double t) {
+                require(std::isfinite(t), "set_time: t must be finite");
+                s.setTime(t);
+            }, py::arg("t"), "[s]")
+        .def("set_q", [](State& s, const std::vector<double>& q) {
+                require(static_cast<int>(q.size()) == s.getNQ(), "set_q: " + std::to_string(q.size()) +
+                                                                     " values for nq = " + std::to_string(s.getNQ()));
+                for (int i = 0; i < s.getNQ(); ++i) s.updQ()[i] = q[static_cast<std::size_t>(i)];
+            }, py::arg("q"), "Sets every q (nq values).")
+        .def("set_u", [](State& s, const std::vector<double>& u) {
+                require(static_cast<int>(u.size()) == s.getNU(), "set_u: " + std::to_string(u.size()) +
+                                                                     " values for nu = " + std::to_string(s.getNU()));
+                for (int i = 0; i < s.getNU(); ++i) s.updU()[i] = u[static_cast<std::size_t>(i)];
+            }, py::arg("u"), "Sets every u (nu values).")
         .def("copy", [](const State& s) { return State(s); })
         .def("__copy__", [](const State& s) { return State(s); })
         .def("__repr__", [](const State& s) {
@@ -693,16 +779,16 @@ void bindScenes(py::module_& m) {
             },
             py::arg("vx") = 1.0, py::arg("vy") = 0.0,
             "Static equilibrium, then the payload's velocity (vx, vy) [m/s]; realized to Stage::Velocity.")
-        .def("payload_position", [](const PendulumScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return vec3(sc.payloadPosition(s)); }, py::arg("state"), "[m]")
-        .def("payload_angle", [](const PendulumScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.payloadAngle(s); }, py::arg("state"), "[rad]")
-        .def("axial_force_at_payload", [](const PendulumScene& sc, const State& s) { sc.system().realize(s, Stage::Dynamics); return sc.axialForceAtPayload(s); }, py::arg("state"), "P = EA eps at the payload end of the vertical span [N]")
-        .def("axial_force_at_sheave", [](const PendulumScene& sc, const State& s) { sc.system().realize(s, Stage::Dynamics); return sc.axialForceAtSheave(s); }, py::arg("state"), "[N]")
-        .def("sheave_material_coordinate", [](const PendulumScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.sheaveMaterialCoordinate(s); }, py::arg("state"), "[m]")
+        .def("payload_position", [](const PendulumScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return vec3(sc.payloadPosition(s)); }, py::arg("state"), "[m]")
+        .def("payload_angle", [](const PendulumScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.payloadAngle(s); }, py::arg("state"), "[rad]")
+        .def("axial_force_at_payload", [](const PendulumScene& sc, const State& s) { realizeScene(sc, s, Stage::Dynamics); return sc.axialForceAtPayload(s); }, py::arg("state"), "P = EA eps at the payload end of the vertical span [N]")
+        .def("axial_force_at_sheave", [](const PendulumScene& sc, const State& s) { realizeScene(sc, s, Stage::Dynamics); return sc.axialForceAtSheave(s); }, py::arg("state"), "[N]")
+        .def("sheave_material_coordinate", [](const PendulumScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.sheaveMaterialCoordinate(s); }, py::arg("state"), "[m]")
         .def("wrap_angle", [](const PendulumScene& sc, const State& s) {
-                sc.system().realize(s, Stage::Position);
+                realizeScene(sc, s, Stage::Position);
                 return sc.parameters().sheaveModel == SheaveModel::Wrapped ? sc.reeving().getWrapAngle(s, 0, 1) : 0.0;
             }, py::arg("state"), "The deviation sheave's wrap angle [rad] (0 with the point sheave).")
-        .def("kinetic_energy", [](const PendulumScene& sc, const State& s) { sc.system().realize(s, Stage::Velocity); return sc.system().calcKineticEnergy(s); }, py::arg("state"), "The bodies' [J].")
+        .def("kinetic_energy", [](const PendulumScene& sc, const State& s) { realizeScene(sc, s, Stage::Velocity); return sc.system().calcKineticEnergy(s); }, py::arg("state"), "The bodies' [J].")
         .def(
             "simulation",
             [](const PendulumScene& sc, const State& s, const std::string& integrator, double accuracy, double step) {
@@ -756,16 +842,16 @@ void bindScenes(py::module_& m) {
         .def_property_readonly("duration", &ElevatorScene::duration, "The scenario's run [s].")
         .def_property_readonly("car_total_mass", &ElevatorScene::carTotalMass, "[kg]")
         .def("make_initial_state", [](const ElevatorScene& s) { py::gil_scoped_release r; return s.makeInitialState(); })
-        .def("car_height", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.carHeight(s); }, py::arg("state"), "[m]")
-        .def("counterweight_height", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.counterweightHeight(s); }, py::arg("state"), "[m]")
-        .def("car_velocity", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Velocity); return sc.carVelocity(s); }, py::arg("state"), "[m/s]")
-        .def("car_acceleration", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Acceleration); return sc.carAcceleration(s); }, py::arg("state"), "[m/s^2]")
-        .def("rope_travel", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.ropeTravel(s); }, py::arg("state"), "[m]")
-        .def("car_side_force", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Dynamics); return sc.carSideForce(s); }, py::arg("state"), "[N]")
-        .def("counterweight_side_force", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Dynamics); return sc.counterweightSideForce(s); }, py::arg("state"), "[N]")
-        .def("traction_wrap_angle", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.tractionWrapAngle(s); }, py::arg("state"), "[rad]")
-        .def("machine_work", [](const ElevatorScene& sc, const State& s) { sc.system().realize(s, Stage::Velocity); return sc.workMeter().getWork(s); }, py::arg("state"), "[J]")
-        .def("energy_residual", [](const ElevatorScene& sc, const State& s, double e0) { sc.system().realize(s, Stage::Velocity); return sc.energyResidual(s, e0); }, py::arg("state"), py::arg("e0"), "[J]")
+        .def("car_height", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.carHeight(s); }, py::arg("state"), "[m]")
+        .def("counterweight_height", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.counterweightHeight(s); }, py::arg("state"), "[m]")
+        .def("car_velocity", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Velocity); return sc.carVelocity(s); }, py::arg("state"), "[m/s]")
+        .def("car_acceleration", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Acceleration); return sc.carAcceleration(s); }, py::arg("state"), "[m/s^2]")
+        .def("rope_travel", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.ropeTravel(s); }, py::arg("state"), "[m]")
+        .def("car_side_force", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Dynamics); return sc.carSideForce(s); }, py::arg("state"), "[N]")
+        .def("counterweight_side_force", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Dynamics); return sc.counterweightSideForce(s); }, py::arg("state"), "[N]")
+        .def("traction_wrap_angle", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.tractionWrapAngle(s); }, py::arg("state"), "[rad]")
+        .def("machine_work", [](const ElevatorScene& sc, const State& s) { realizeScene(sc, s, Stage::Velocity); return sc.workMeter().getWork(s); }, py::arg("state"), "[J]")
+        .def("energy_residual", [](const ElevatorScene& sc, const State& s, double e0) { realizeScene(sc, s, Stage::Velocity); return sc.energyResidual(s, e0); }, py::arg("state"), py::arg("e0"), "[J]")
         .def(
             "simulation",
             [](const ElevatorScene& sc, const State& s, const std::string& integrator, double accuracy, double step) {
@@ -792,21 +878,21 @@ void bindScenes(py::module_& m) {
         .def_property_readonly("duration", [](const CraneScene& sc) { return sc.cycle().duration; }, "[s]")
         .def_property_readonly("falls", &CraneScene::falls)
         .def("make_initial_state", [](const CraneScene& s) { py::gil_scoped_release r; return s.makeInitialState(); })
-        .def("hook_position", [](const CraneScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return vec3(sc.hookPosition(s)); }, py::arg("state"), "[m]")
-        .def("sway_angle", [](const CraneScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.swayAngle(s); }, py::arg("state"), "[rad]")
+        .def("hook_position", [](const CraneScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return vec3(sc.hookPosition(s)); }, py::arg("state"), "[m]")
+        .def("sway_angle", [](const CraneScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.swayAngle(s); }, py::arg("state"), "[rad]")
         .def("fall_top_force", [](const CraneScene& sc, const State& s, int fall) {
                 if (fall < 0 || fall >= sc.falls()) throw std::out_of_range("fall " + std::to_string(fall) + " out of range: 0.." + std::to_string(sc.falls() - 1));
-                sc.system().realize(s, Stage::Dynamics);
+                realizeScene(sc, s, Stage::Dynamics);
                 return sc.fallTopForce(s, fall);
             }, py::arg("state"), py::arg("fall"), "[N]")
         .def("sheave_wrap_angle", [](const CraneScene& sc, const State& s, int k) {
                 if (k < 1 || k >= sc.falls()) throw std::out_of_range("sheave " + std::to_string(k) + " out of range: 1.." + std::to_string(sc.falls() - 1));
-                sc.system().realize(s, Stage::Position);
+                realizeScene(sc, s, Stage::Position);
                 return sc.sheaveWrapAngle(s, k);
             }, py::arg("state"), py::arg("k"), "[rad]")
-        .def("rope_on_drum", [](const CraneScene& sc, const State& s) { sc.system().realize(s, Stage::Position); return sc.ropeOnDrum(s); }, py::arg("state"), "[m]")
-        .def("motor_torque", [](const CraneScene& sc, const State& s) { sc.system().realize(s, Stage::Acceleration); return sc.motorTorque(s); }, py::arg("state"), "[N m]")
-        .def("energy_residual", [](const CraneScene& sc, const State& s, double e0) { sc.system().realize(s, Stage::Velocity); return sc.energyResidual(s, e0); }, py::arg("state"), py::arg("e0"), "[J]")
+        .def("rope_on_drum", [](const CraneScene& sc, const State& s) { realizeScene(sc, s, Stage::Position); return sc.ropeOnDrum(s); }, py::arg("state"), "[m]")
+        .def("motor_torque", [](const CraneScene& sc, const State& s) { realizeScene(sc, s, Stage::Acceleration); return sc.motorTorque(s); }, py::arg("state"), "[N m]")
+        .def("energy_residual", [](const CraneScene& sc, const State& s, double e0) { realizeScene(sc, s, Stage::Velocity); return sc.energyResidual(s, e0); }, py::arg("state"), py::arg("e0"), "[J]")
         .def(
             "simulation",
             [](const CraneScene& sc, const State& s, const std::string& integrator, double accuracy, double step) {

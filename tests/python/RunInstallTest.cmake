@@ -1,6 +1,6 @@
 # ctest driver of python.install: install the build tree to a temporary prefix, then import the
 # package from PREFIX/PACKAGE_DIR with no build folder on the path, run a pendulum case and a
-# one-case study through the installed demos.
+# one-case study through the installed demos, and add a body to a System.
 foreach(var BUILD_DIR WORK_DIR PYTHON PACKAGE_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "${var} not set")
@@ -24,6 +24,9 @@ case = sr.run_pendulum(axial_modes=1, t_end=0.5)
 assert case["summary"]["termination"] == "completed"
 rows = sr.run_study({"scene": "pendulum", "fixed": {"axial-modes": 1, "t-end": 0.5}, "metrics": ["steps"]})
 assert rows[0]["status"] == "ok" and rows[0]["steps"] == case["summary"]["steps"], rows
+machine = sr.System()
+drum = machine.add_pin(machine.ground, sr.MassProperties(1.0, (0, 0, 0), 1.0))
+assert drum.kind == "Pin" and machine.num_bodies == 2
 print("installed package:", sr.__file__)
 ]=])
 file(WRITE ${WORK_DIR}/check.py "${script}")
