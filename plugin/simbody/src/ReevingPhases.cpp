@@ -47,14 +47,17 @@ const RopeModel<Dim>& ReevingSubsystem::Guts::tractionPhaseModel(
     }
     std::vector<double> key(r.numTraction, 0.0);
     for (const RopeRecord::DrivenNode& d : r.driven) d.role.writePhaseKey(ts, key);
-    std::vector<MaterialNode> kinds = r.materialKinds;
-    for (const RopeRecord::DrivenNode& d : r.driven) d.role.phaseMaterialKind(key, kinds[d.node]);
-    std::vector<SpanModel<Dim>> spans;
-    for (int j = 0; j < r.numSpans(); ++j) spans.push_back(base->span(j));  // their reference frames too
-    auto model = std::make_shared<RopeModel<Dim>>(std::move(spans), r.spec.unstretchedLength, kinds, r.wraps);
-    for (const RopeRecord::DrivenNode& d : r.driven) d.role.setPhaseLaw(key, *model, d.node);
-    r.addStoredRope(*model);
-    model->setStationaryNodes(r.stationaryNodes());
+    // The phase's model is the stick model with each slipping node's law swapped
+    // (RopeModel::withNodeLaw): the spans (their reference frames too), their kernels and the
+    // groove arcs are shared with `base`, its stored rope and stationary nodes kept.
+    RopeModel<Dim> phase = *base;
+    for (const RopeRecord::DrivenNode& d : r.driven) {
+        MaterialNode kind = r.materialKinds[d.node];
+        d.role.phaseMaterialKind(key, kind);
+        if (kind != phase.nodeKind(d.node)) phase = phase.withNodeLaw(d.node, kind);
+        d.role.setPhaseLaw(key, phase, d.node);
+    }
+    auto model = std::make_shared<const RopeModel<Dim>>(std::move(phase));
     // Models derived from span frames that no state holds any more (a spatial rope's frames
     // changed): base held only by such entries.
     std::vector<bool> dead(models.size());

@@ -401,8 +401,7 @@ public:
     /// (not copied: span(j) is the same object); the node laws and the coordinate layout that
     /// depends on them (index maps, chain order, the band offsets of the mass entries: integers,
     /// linear in the spans) are built anew, with their allocations: a phase change, not an
-    /// evaluation (measured on a 3-span traction rope: 74 allocations, 16 kB planar, 28 kB
-    /// spatial, against 203 and 207, 36 and 52 kB, building it from scratch).
+    /// evaluation (docs/performance.md compares it with building the model anew).
     /// @param node          k, an interior node whose law is Driven or Slipping.
     /// @param kind          MaterialNode::Driven or MaterialNode::Slipping.
     /// @param kappa0        kappa_0 [-] of a Slipping law, finite and > 0; 1 for Driven.
