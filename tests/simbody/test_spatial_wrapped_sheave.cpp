@@ -34,6 +34,7 @@ struct Options {
     sr::RopeProperties properties{1e-9, 16.5e6, 0.0};  // weightless (1e-9 kg/m): the closed form's rope
     int axialModes = 0, transverseModes = 0;
     bool planar = false;  // a planar rope (planeNormal +z) instead
+    bool wrapped = true;  // false: SheaveModel::Point
     double unstretchedLength = 3.0 + 0.5 * Pi * kR + 5.0;  // [m]
     Vec3 loadStart = Vec3(kR, -5.0, 0);                    // [m]
 };
@@ -54,7 +55,7 @@ struct Scene {
                                           Body::Rigid(MassProperties(kLoad, Vec3(0), Inertia(1))), Transform());
         reeving = std::make_unique<sr::ReevingSubsystem>(system, Vec3(0, -kG, 0));
         sr::RopeSpec rope;
-        rope.sheaveModel = sr::SheaveModel::Wrapped;
+        rope.sheaveModel = o.wrapped ? sr::SheaveModel::Wrapped : sr::SheaveModel::Point;
         rope.properties = o.properties;
         rope.spanDefaults.axialModes = o.axialModes;
         rope.spanDefaults.transverseModes = o.transverseModes;
@@ -513,4 +514,24 @@ TEST(SpatialWrappedSheave, TiltedTurningSheaveConservesEnergy) {
                 drift / kinetic0, kinetic0, integ.getNumStepsTaken(), fleet * 180 / Pi);
     EXPECT_GT(fleet, 3 * Pi / 180);
     EXPECT_LT(drift, 1e-9 * kinetic0);
+}
+
+// A point sheave of a spatial rope has the turning angle between its two chords as its wrap angle,
+// pi minus the angle between them at the node (computed here from the anchor, the sheave's point
+// and the load's: measured 0 rad off, bound 1e-14), in the plane the chords span.
+TEST(SpatialWrappedSheave, PointSheaveOfASpatialRopeHasTheChordsTurningAngle) {
+    Options o;
+    o.wrapped = false;
+    o.loadStart = Vec3(0.4, -5.0, 0.7);
+    Scene sc(o);
+    sc.system.realize(sc.state, Stage::Position);
+    const Eigen::Vector3d A = toEigen(o.anchor), S(0, 0, 0), B = toEigen(sc.load.getBodyOriginLocation(sc.state));
+    const Eigen::Vector3d in = S - A, out = B - S;
+    const double expected = std::atan2(in.cross(out).norm(), in.dot(out));
+    const double alpha = sc.reeving->getWrapAngle(sc.state, 0, 1);
+    std::printf("point sheave of a spatial rope: wrap angle %.6f rad, chords' turning angle %.6f rad (%.1e off)\n",
+                alpha, expected, alpha - expected);
+    EXPECT_GT(expected, 1.0);
+    EXPECT_NEAR(alpha, expected, 1e-14);
+    EXPECT_THROW_MESSAGE(sc.reeving->getWrapAngle(sc.state, 0, 0), std::invalid_argument, "end node");
 }

@@ -126,12 +126,11 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
     if (driven >= 0 && r.driven[driven].role.wrapAngle(r.drivenRun(getGuts(), driven), s, alpha)) return alpha;
     if (node > 0 && node + 1 < r.numNodes() && r.wraps[node].radius > 0)
         return getArcLength(s, rope, node) / r.wraps[node].radius;
-    if (r.planar && node > 0 && node + 1 < r.numNodes()) {
-        const RopeCache& c = getGuts().positionCache(s).ropes[rope];  // a point sheave: its chords' angle
-        return c.planarModel->wrapAngle(c.planar, node);
+    if (node > 0 && node + 1 < r.numNodes()) {  // a point sheave: its chords' angle
+        const RopeCache& c = getGuts().positionCache(s).ropes[rope];
+        return r.planar ? c.planarModel->wrapAngle(c.planar, node) : c.spatialModel->wrapAngle(c.spatial, node);
     }
-    invalid("rope '" + r.spec.name + "' node " + std::to_string(node) +
-            " is neither a TractionSheave, a wrapped sheave nor a sheave of a planar rope: it has no wrap angle");
+    invalid("rope '" + r.spec.name + "' node " + std::to_string(node) + " is an end node: it has no wrap angle");
 }
 
 double ReevingSubsystem::getTotalFrictionWork(const State& s) const {

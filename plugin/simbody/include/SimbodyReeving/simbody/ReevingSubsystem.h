@@ -456,10 +456,10 @@ public:
     /// The wrap angle alpha [rad] (Stage::Position): at a TractionSheave the one its capstan law
     /// uses (the given one, else the current geometry's as below); at any other sheave the current
     /// geometry's: l / R with l = getArcLength with SheaveModel::Wrapped (planar or spatial), the
-    /// turning angle between the chords of the two spans at a point sheave of a planar rope (pi -
-    /// the angle between them at the node; RopeModel::wrapAngle).
-    /// @throws std::invalid_argument if rope or node is out of range, or the node is an end node
-    ///         or a point sheave of a spatial rope other than a TractionSheave with a given angle.
+    /// turning angle between the chords of the two spans at a point sheave (pi - the angle between
+    /// them at the node, in [0, pi]; of a spatial rope in the plane the two chords span;
+    /// RopeModel::wrapAngle).
+    /// @throws std::invalid_argument if rope or node is out of range, or the node is an end node.
     double getWrapAngle(const SimTK::State& state, int rope, int node) const;
     /// Length l = R alpha of the rope on node k's groove [m] (Stage::Position): > 0 at a wrapped
     /// DeviationSheave, TurningSheave or TractionSheave, 0 at every point node and at a wrapped
