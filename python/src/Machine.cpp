@@ -379,15 +379,8 @@ struct RopeRef {
     }
 };
 
-// Whether getWrapAngle answers at node k: a sheave of a planar or wrapped rope, or a TractionSheave
-// with a given wrap angle.
-bool hasWrapAngle(const ReevingSubsystem& r, int rope, int k) {
-    if (k <= 0 || k >= r.getNumSpans(rope)) return false;
-    const RopeSpec& spec = r.getRopeSpec(rope);
-    if (r.isPlanar(rope) || spec.sheaveModel == SheaveModel::Wrapped) return true;
-    const RopeNode n = spec.node(k);
-    return std::holds_alternative<TractionSheave>(n) && std::get<TractionSheave>(n).wrapAngle > 0;
-}
+// Whether getWrapAngle answers at node k: every sheave (the ends have none).
+bool hasWrapAngle(const ReevingSubsystem& r, int rope, int k) { return k > 0 && k < r.getNumSpans(rope); }
 
 // ---- the machine's reports: what Simulation.run returns for a System ----------------------------
 
@@ -991,14 +984,11 @@ void bindHandles(py::module_& m) {
              [check](const RopeRef& r, const State& s) {
                  check(r, s, Stage::Position);
                  py::array_t<double> a(r.numSpans() - 1);
-                 for (int k = 1; k < r.numSpans(); ++k)
-                     a.mutable_data()[k - 1] = hasWrapAngle(r.reeving(), r.index(), k)
-                                                   ? r.reeving().getWrapAngle(s, r.index(), k)
-                                                   : std::nan("");
+                 for (int k = 1; k < r.numSpans(); ++k) a.mutable_data()[k - 1] = r.reeving().getWrapAngle(s, r.index(), k);
                  return a;
              },
              py::arg("state"),
-             "alpha at sheaves 1..N-1 [rad] (NaN where the rope has none: a point sheave of a spatial rope).")
+             "alpha at sheaves 1..N-1 [rad] (at a point sheave the turning angle between its chords).")
         .def("fleet_angles",
              [check](const RopeRef& r, const State& s) {
                  check(r, s, Stage::Position);
