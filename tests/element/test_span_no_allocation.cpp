@@ -88,6 +88,53 @@ long allocationsPerRopeEvaluation(int numSpans, int na, int nt,
     return gAllocations.load() - before;
 }
 
+/// Allocations over repeated evaluations of a rope over one wrapped sheave (radius 0.3 m, the rope
+/// from an anchor over its top and down to a moving end) through the station forms (NodeMatrix:
+/// the station map's reduction), after one warm-up evaluation; with the node mass formed or not.
+template <int Dim>
+long allocationsPerWrappedRopeEvaluation(AxialDynamics axial, bool formNodeMass) {
+    SpanOptions o;
+    o.axialModes = 2;
+    o.transverseModes = 1;
+    o.axialDynamics = axial;
+    using Vec = Eigen::Matrix<double, Dim, 1>;
+    Vec g = Vec::Zero();
+    g[1] = -9.81;
+    std::vector<SpanModel<Dim>> spans;
+    for (int j = 0; j < 2; ++j)
+        spans.emplace_back(RopeProperties{0.6205, 16.5e6, 30.9}, o, g, Eigen::Matrix<double, Dim, Dim>::Identity());
+    Eigen::Matrix<double, Dim, Eigen::Dynamic> nodes = Eigen::Matrix<double, Dim, Eigen::Dynamic>::Zero(Dim, 3);
+    nodes(0, 0) = -3.0;
+    nodes(1, 0) = 0.3;
+    nodes(0, 2) = 0.3;
+    nodes(1, 2) = -5.0;
+    std::vector<NodeWrap> wraps(3);
+    wraps[1].radius = 0.3;
+    wraps[1].wrapSense = -1;
+    const RopeModel<Dim> rope(std::move(spans), 0.999 * (3.0 + 0.5 * 3.14159265358979 * 0.3 + 5.0),
+                              {MaterialNode::Fixed, MaterialNode::Sliding, MaterialNode::Fixed}, wraps);
+    Eigen::VectorXd qm = Eigen::VectorXd::Constant(rope.numModalCoordinates(), 1e-4);
+    Eigen::VectorXd qmd = Eigen::VectorXd::Constant(rope.numModalCoordinates(), 1e-3);
+    Eigen::Matrix<double, Dim, Eigen::Dynamic> velocities = Eigen::Matrix<double, Dim, Eigen::Dynamic>::Zero(Dim, 3);
+    velocities(0, 2) = 1.0;
+    Eigen::VectorXd nodeAcc = Eigen::VectorXd::Zero(rope.numStations() * Dim), qmdd;
+    RopeData<Dim> data;
+    data.formNodeMass = formNodeMass;
+    auto evaluate = [&] {
+        rope.solveDependentCoordinates(nodes, qm, data);
+        rope.computeDynamics(nodes, velocities, qm, qmd, data);
+        rope.modalAccelerations(data, nodeAcc, qmdd);
+        rope.recoverInertialStrain(data, nodeAcc, qmdd);
+    };
+    evaluate();  // warm-up: sizes the workspace
+    const long before = gAllocations.load();
+    for (int k = 0; k < 10; ++k) {
+        nodes(0, 2) += 1e-4;  // a new configuration every time
+        evaluate();
+    }
+    return gAllocations.load() - before;
+}
+
 }  // namespace
 
 TEST(SpanNoAllocation, CounterSeesAllocations) {
@@ -123,4 +170,14 @@ TEST(RopeNoAllocation, RopeEvaluationNeverAllocates) {
     EXPECT_EQ(allocationsPerRopeEvaluation<2>(2, 3, 1, AxialDynamics::QuasiStatic), 0);
     EXPECT_EQ(allocationsPerRopeEvaluation<2>(4, 2, 2, AxialDynamics::QuasiStatic), 0);
     EXPECT_EQ(allocationsPerRopeEvaluation<3>(3, 3, 2, AxialDynamics::QuasiStatic), 0);
+}
+
+// A wrapped rope evaluated from its stations (the Simbody layer's path): the reduction of the node
+// mass, force and modal coupling to the stations keeps its buffers between evaluations.
+TEST(RopeNoAllocation, WrappedRopeThroughItsStationsNeverAllocates) {
+    for (AxialDynamics axial : {AxialDynamics::Dynamic, AxialDynamics::QuasiStatic})
+        for (bool formed : {true, false}) {
+            EXPECT_EQ(allocationsPerWrappedRopeEvaluation<2>(axial, formed), 0) << "planar, formed " << formed;
+            EXPECT_EQ(allocationsPerWrappedRopeEvaluation<3>(axial, formed), 0) << "spatial, formed " << formed;
+        }
 }

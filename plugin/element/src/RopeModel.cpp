@@ -616,23 +616,41 @@ void RopeModel<Dim>::dynamicsToStations(RopeData<Dim>& data) const {
     detail::RopeWorkspace<Dim>& ws = data.ws();
     const Eigen::VectorXd& b = ws.stationMap.bias;
     const int nx = numExternalCoordinates();
+    // The station-level S_Y, h_Y and modal coupling go into buffers of their own, swapped with
+    // data's x-level ones (swapped back by the next evaluation, externalBuffersBack): each
+    // buffer keeps its shape, so nothing is allocated once the first evaluation has sized them.
     if (ws.nodeMassFormed) {
-        ws.stationScratch.noalias() = data.nodeMass * b;
-        data.nodeForce -= ws.stationScratch.col(0);
+        ws.stationMassBias.noalias() = data.nodeMass * b;
+        data.nodeForce -= ws.stationMassBias.col(0);
         ws.modalFree.noalias() -= ws.modalCoupling * b;
-        multiplyStationJacobianFromLeft(ws.modalCoupling, ws.stationMap, ws.stationScratch);
-        ws.modalCoupling = ws.stationScratch;
+        multiplyStationJacobianFromLeft(ws.modalCoupling, ws.stationMap, ws.stationModalCoupling);
+        ws.modalCoupling.swap(ws.stationModalCoupling);
         multiplyStationJacobianFromLeft(data.nodeMass, ws.stationMap, ws.stationScratch);
-        multiplyByStationJacobianTransposed(ws.stationMap, ws.stationScratch, data.nodeMass);
+        multiplyByStationJacobianTransposed(ws.stationMap, ws.stationScratch, ws.stationNodeMass);
+        data.nodeMass.swap(ws.stationNodeMass);
     } else {
-        multiplyByExternalMass(data, b, ws.stationScratch);
-        data.nodeForce -= ws.stationScratch.col(0);
+        multiplyByExternalMass(data, b, ws.stationMassBias);
+        data.nodeForce -= ws.stationMassBias.col(0);
         for (int m = 0; m < numModal_; ++m) ws.modalFree[m] += ws.productBlock[kktPos_[nx + m]];
         ws.productColumns = -1;
     }
     multiplyByStationJacobianTransposed(ws.stationMap, data.nodeForce, ws.stationForce);
-    data.nodeForce = ws.stationForce;
+    data.nodeForce.swap(ws.stationForce);
     ws.stationMode = true;
+    ws.stationBuffersSwapped = true;
+    ws.stationMassSwapped = ws.nodeMassFormed;
+}
+
+template <int Dim>
+void RopeModel<Dim>::externalBuffersBack(RopeData<Dim>& data) const {
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    if (!ws.stationBuffersSwapped) return;
+    data.nodeForce.swap(ws.stationForce);
+    if (ws.stationMassSwapped) {
+        data.nodeMass.swap(ws.stationNodeMass);
+        ws.modalCoupling.swap(ws.stationModalCoupling);
+    }
+    ws.stationBuffersSwapped = ws.stationMassSwapped = false;
 }
 
 template <int Dim>
@@ -1586,6 +1604,7 @@ void RopeModel<Dim>::computeDynamicsFromExternal(const Eigen::VectorXd& x, const
         if (same) return;
     }
     ws.dynamicsCurrent = false;
+    externalBuffersBack(data);  // data's x-level buffers back from the station forms' last reduction
     ws.stationMode = false;
 
     // Independent velocities w = [xdot (node blocks, sdot_driven); qdot_m].
@@ -1981,8 +2000,8 @@ void RopeModel<Dim>::recoverInertialStrain(RopeData<Dim>& data, const Eigen::Vec
     const int nz = nw + nd + numFixed_;
     zdd.setZero(nz);
     if (ws.stationMode) {  // xddot = J Yddot + b
-        multiplyByStationJacobian(ws.stationMap, nodeAccelerations, ws.stationForce);
-        zdd.head(nx) = ws.stationForce + ws.stationMap.bias;
+        multiplyByStationJacobian(ws.stationMap, nodeAccelerations, ws.stationAccelerations);
+        zdd.head(nx) = ws.stationAccelerations + ws.stationMap.bias;
     }
     else
         zdd.head(nx) = nodeAccelerations;

@@ -44,6 +44,14 @@ struct RopeWorkspace {
     bool stationMode = false;
     Eigen::MatrixXd stationScratch, stationProductX, stationProductSX, stationReducedMG;
     Eigen::VectorXd stationReducedQ;
+    /// The reduction to the stations' own buffers (RopeModel::dynamicsToStations): S b (nx x 1),
+    /// J^T S J and the modal coupling at the stations, swapped with data.nodeMass, data.nodeForce
+    /// (with stationForce) and modalCoupling while stationMode holds, so that each keeps its shape
+    /// between evaluations; xddot = J Yddot of recoverInertialStrain.
+    Eigen::MatrixXd stationMassBias, stationNodeMass, stationModalCoupling;
+    Eigen::VectorXd stationAccelerations;
+    bool stationBuffersSwapped = false;  ///< data.nodeForce holds the station-level h_Y (stationForce the x-level buffer)
+    bool stationMassSwapped = false;     ///< and data.nodeMass, modalCoupling their station-level values
     /// A query's stations and, when they are not those of stationMap or stationPositionMap, its
     /// own positions-only map.
     Eigen::VectorXd queryStations;

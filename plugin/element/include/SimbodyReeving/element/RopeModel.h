@@ -571,6 +571,10 @@ private:
     /// Carries nodeMass, nodeForce and the modal reduction of the last computeDynamics over to the
     /// stations (S_Y = J^T S J, h_Y = J^T (h - S b); the modal accelerations' share of b).
     void dynamicsToStations(RopeData<Dim>& data) const;
+    /// Swaps data's x-level nodeMass, nodeForce and modal coupling buffers back from the station
+    /// forms' last reduction (no allocation: each buffer keeps its shape), before an evaluation
+    /// forms them afresh.
+    void externalBuffersBack(RopeData<Dim>& data) const;
     /// S X at the external coordinates (multiplyByNodeMass without the stations).
     void multiplyByExternalMass(const RopeData<Dim>& data, const Eigen::Ref<const Eigen::MatrixXd>& X,
                                 Eigen::MatrixXd& SX) const;
