@@ -55,6 +55,8 @@ struct DrivenRoleDefaults {
     /// Declares the node's stored rope to a RopeModel<2> or <3> (none).
     template <class Model>
     void declareStoredRope(Model&, int /*node*/, double /*ropeLength*/) const {}
+    /// The rope stored at the node [m] (Stage::Position, from its rope's cache c): none, 0.
+    double storedRope(const DrivenRun&, const RopeCache& /*c*/) const { return 0.0; }
     /// Sets the node's part of its rope's initial TractionStates from the spec's s_ref [m] (none).
     void initialPhase(std::vector<TractionNodeState>&, double /*sRef*/) const {}
     /// The node's material coordinate s [m] at angle theta [rad] in state s, with its rate sdot
@@ -117,6 +119,8 @@ struct StoredRopeRole : DrivenRoleDefaults {
     }
     /// The drum out of rope: margin onDrum [m] (from the rope's evaluation in c).
     void limitMargin(const DrivenRun& run, const RopeCache& c, double& margin, std::string* which) const;
+    /// onDrum at the rope's material coordinate s_k where it leaves the drum (from c).
+    double storedRope(const DrivenRun& run, const RopeCache& c) const;
 };
 
 /// TractionSheave: index among its rope's traction sheaves (its TractionStates entry, its Z
@@ -233,6 +237,9 @@ struct DrivenRole {
     template <class Model>
     void declareStoredRope(Model& model, int node, double ropeLength) const {
         std::visit([&](const auto& u) { u.declareStoredRope(model, node, ropeLength); }, unit);
+    }
+    double storedRope(const DrivenRun& run, const RopeCache& c) const {
+        return std::visit([&](const auto& u) { return u.storedRope(run, c); }, unit);
     }
     void initialPhase(std::vector<TractionNodeState>& ropePhases, double sRef) const {
         std::visit([&](const auto& u) { u.initialPhase(ropePhases, sRef); }, unit);

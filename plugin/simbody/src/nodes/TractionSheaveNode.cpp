@@ -2,6 +2,7 @@
 // TurningSheave in stick with a TractionRole (DrivenRole.h); its run time (slip phases, Z
 // entries, events, queries) is in TractionSheaveRun.cpp.
 
+#include "NodeBend.h"
 #include "PinnedNode.h"
 
 #include <cmath>
@@ -35,6 +36,10 @@ void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
 NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     return grippingSheaveWrap(site, kName, planeNormal, false);
 }
+
+std::pair<double, double> TractionSheaveNode::heldInterval(const NodeBend& bend) { return sheaveInterval(bend); }
+
+SimTK::Vec3 TractionSheaveNode::bendAxis(const NodeBend& bend) { return pinnedSheaveBendAxis(bend); }
 
 }  // namespace detail
 }  // namespace SimbodyReeving
