@@ -25,7 +25,7 @@ void TractionSheaveNode::validate(const NodeSite& site) {
 void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
     TurningSheaveNode::addMaterialRelation(site);  // it starts in stick
     TractionRole traction;
-    traction.index = site.rope.numTraction++;
+    traction.index = site.rope.numPhaseNodes++;
     traction.frictionCoefficient = site.spec.frictionCoefficient;
     traction.givenWrapAngle = site.spec.wrapAngle;
     traction.geometricWrap = site.spec.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
