@@ -3,8 +3,9 @@
 // closed form ropeOnDrum + s_0 or ropeOnDrum + L - s_N, and through WinchDrumHandle against
 // ropeOnDrum - sense R theta); a TractionSheave's phase key entries (0 in stick and for
 // TractionSlip::RopeMomentum, e^(+-mu alpha) with a given wrap angle, +-1 with the geometry's),
-// the phase model's material kinds and its Z entries (friction work, Y and Ydot); a TurningSheave's
-// role adds nothing. And the power a pinned node's query reports: torque times the node's angle
+// the phase model's material kinds and its Z entries (friction work, Y and Ydot: laid out among
+// the rope's other driven nodes by DrivenRole::layoutZ, read and compared by the role itself); a
+// TurningSheave's role adds nothing. And the power a pinned node's query reports: torque times the node's angle
 // rate, which on a wrapped groove carried by a turning parent is the sheave body's own rate.
 #include "../../plugin/simbody/src/ReevingSubsystemGuts.h"
 
@@ -18,6 +19,7 @@
 #include <cstdio>
 #include <memory>
 #include <utility>
+#include <variant>
 #include <vector>
 
 // (Using-declarations, not the namespace: SimTK's generic operator!= would capture Eigen's
@@ -156,21 +158,47 @@ TEST(DrivenRole, TractionPhaseModelTakesTheSlippingSheavesOwnEntries) {
 }
 
 TEST(DrivenRole, TractionOwnsItsFrictionWorkAndSlipStateEntries) {
-    // Its rope's traction block starts at Z entry 10 (friction work, one per sheave), the slip
-    // states at 13 (Y, Ydot per sheave): sheave 2 owns 12, and 17 and 18.
-    const TractionRole t = tractionRole(2, 0.2, Pi, sr::TractionSlip::RopeMomentum);
-    EXPECT_EQ(t.frictionWorkZ(10), 12);
-    EXPECT_EQ(t.slipStateZ(13), 17);
-    sr::detail::RopeRecord r;
-    r.tractionZOffset = 10;
+    // Laid out as its rope lays them out (DrivenRole::layoutZ: each block over the rope's driven
+    // nodes in node order) from Z entry 10, a grip, traction sheaves a and b and a drum: the
+    // friction work of a at 10 and of b at 11 (DrivenZBlock::Work), then Y, Ydot of a at 12, 13
+    // and of b at 14, 15 (DrivenZBlock::States); the grip and the drum take none.
+    std::vector<DrivenRole> roles = {DrivenRole{GripRole{}},
+                                     DrivenRole{tractionRole(0, 0.2, Pi, sr::TractionSlip::RopeMomentum)},
+                                     DrivenRole{tractionRole(1, 0.2, Pi, sr::TractionSlip::RopeMomentum)},
+                                     DrivenRole{StoredRopeRole{}}};
+    int next = 10;
+    for (const sr::detail::DrivenZBlock block : {sr::detail::DrivenZBlock::Work, sr::detail::DrivenZBlock::States})
+        for (DrivenRole& role : roles) role.layoutZ(block, next);
+    EXPECT_EQ(next, 16);
+    const TractionRole& a = std::get<TractionRole>(roles[1].unit);
+    const TractionRole& b = std::get<TractionRole>(roles[2].unit);
+    EXPECT_EQ(a.frictionWorkZ(), 10);
+    EXPECT_EQ(b.frictionWorkZ(), 11);
+    EXPECT_EQ(a.slipStateZ(), 12);
+    EXPECT_EQ(b.slipStateZ(), 14);
     Vector z(20, 0.0);
-    z[12] = 3.5;  // [J]
-    z[11] = 100.0;  // another sheave's
+    z[10] = 100.0;  // a's friction work [J]
+    z[11] = 3.5;    // b's
+    z[14] = 2.5;    // b's Y [m]
+    z[15] = -0.75;  // its Ydot [m/s]
+    // Each reads and compares its own state entries; the others have none.
+    double y = 0, yDot = 0, none = 7.0;
+    roles[2].readZState(z, false, y);
+    roles[2].readZState(z, true, yDot);
+    roles[0].readZState(z, false, none);
+    roles[3].readZState(z, true, none);
+    EXPECT_EQ(y, 2.5);
+    EXPECT_EQ(yDot, -0.75);
+    EXPECT_EQ(none, 7.0);
+    EXPECT_TRUE(roles[2].zStateMatches(z, false, 2.5));
+    EXPECT_FALSE(roles[2].zStateMatches(z, true, 2.5));
+    EXPECT_TRUE(roles[1].zStateMatches(z, false, 0.0));
+    EXPECT_FALSE(roles[1].zStateMatches(z, false, 2.5));
+    EXPECT_TRUE(roles[0].zStateMatches(z, false, 1e9));
+    EXPECT_TRUE(roles[3].zStateMatches(z, true, 1e9));
     double w = 0.25;
-    DrivenRole{t}.addFrictionWork(r, z, w);
-    DrivenRole{GripRole{}}.addFrictionWork(r, z, w);
-    DrivenRole{StoredRopeRole{}}.addFrictionWork(r, z, w);
-    EXPECT_EQ(w, 0.25 + 3.5);
+    for (const DrivenRole& role : roles) role.addFrictionWork(z, w);
+    EXPECT_EQ(w, 0.25 + 100.0 + 3.5);
 }
 
 namespace {

@@ -31,7 +31,7 @@ template <int Dim>
 const RopeModel<Dim>& ReevingSubsystem::Guts::tractionPhaseModel(
     const State& s, const RopeRecord& r, const std::shared_ptr<const RopeModel<Dim>>& base,
     std::vector<RopeRecord::TractionPhaseModel<Dim>>& models) const {
-    if (r.numTraction == 0) return *base;
+    if (r.numPhaseNodes == 0) return *base;
     const std::vector<TractionNodeState>& ts = tractionStates(s).ropes[r.index];
     bool anySlip = false;
     for (const RopeRecord::DrivenNode& d : r.driven)
@@ -45,7 +45,7 @@ const RopeModel<Dim>& ReevingSubsystem::Guts::tractionPhaseModel(
             if (!d.role.phaseKeyMatches(m.key, ts)) same = false;
         if (same) return *m.model;
     }
-    std::vector<double> key(r.numTraction, 0.0);
+    std::vector<double> key(r.numPhaseNodes, 0.0);
     for (const RopeRecord::DrivenNode& d : r.driven) d.role.writePhaseKey(ts, key);
     // The phase's model is the stick model with each slipping node's law swapped
     // (RopeModel::withNodeLaw): the spans (their reference frames too), their kernels and the
@@ -136,7 +136,7 @@ double ReevingSubsystem::getWrapAngle(const State& s, int rope, int node) const 
 double ReevingSubsystem::getTotalFrictionWork(const State& s) const {
     double w = 0;
     for (const RopeRecord& r : getGuts().ropes)
-        for (const RopeRecord::DrivenNode& d : r.driven) d.role.addFrictionWork(r, getGuts().getZ(s), w);
+        for (const RopeRecord::DrivenNode& d : r.driven) d.role.addFrictionWork(getGuts().getZ(s), w);
     return w;
 }
 

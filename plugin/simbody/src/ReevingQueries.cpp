@@ -2,12 +2,14 @@
 // sampling, energies, evaluation failures).
 
 #include "ReevingSubsystemGuts.h"
+#include "nodes/NodeBend.h"
 #include "nodes/NodeKinds.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -192,6 +194,61 @@ double ReevingSubsystem::getMaxConstraintError(const State& s) const {
                               [](auto unit) { return decltype(unit)::kTensionEquality; }))
                 worst = std::max(worst, std::abs(getConstraintError(s, i, k)));
     return worst;
+}
+
+namespace {
+// Node `node` of rope r, or std::invalid_argument.
+void checkNode(const RopeRecord& r, int node) {
+    if (node < 0 || node >= r.numNodes())
+        invalid("node index = " + std::to_string(node) + " is outside 0.." + std::to_string(r.numNodes() - 1));
+}
+// std::logic_error unless s is realized to Stage::Position.
+void checkPosition(const State& s, const char* query) {
+    if (s.getSystemStage() < Stage::Position)
+        throw std::logic_error(std::string("ReevingSubsystem::") + query + ": realize the state to Stage::Position first");
+}
+}  // namespace
+
+double ReevingSubsystem::getNodeRadius(int rope, int node) const {
+    const RopeRecord& r = ropeAt(getGuts(), rope);
+    checkNode(r, node);
+    const NodeSpec& spec = r.nodeSpec(node);
+    return visitNodeKind(spec.kind, [&](auto unit) { return decltype(unit)::bendRadius(spec); });
+}
+
+std::pair<double, double> ReevingSubsystem::getNodeMaterialInterval(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    checkNode(r, node);
+    checkPosition(s, "getNodeMaterialInterval");
+    const NodeBend bend{g, r, node, s};
+    return visitNodeKind(r.nodeSpec(node).kind, [&](auto unit) { return decltype(unit)::heldInterval(bend); });
+}
+
+Vec3 ReevingSubsystem::getNodeBendAxis(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    checkNode(r, node);
+    checkPosition(s, "getNodeBendAxis");
+    const NodeBend bend{g, r, node, s};
+    const Vec3 axis = visitNodeKind(r.nodeSpec(node).kind, [&](auto unit) { return decltype(unit)::bendAxis(bend); });
+    if (r.planar) {  // the plane normal's side
+        const Vec3 normal = unitPlaneNormal(r);
+        const double along = SimTK::dot(axis, normal);
+        return along > 0 ? normal : along < 0 ? Vec3(-normal) : Vec3(0);
+    }
+    const double len = axis.norm();
+    return len > 0 ? Vec3(axis / len) : Vec3(0);
+}
+
+double ReevingSubsystem::getStoredRope(const State& s, int rope, int node) const {
+    const Guts& g = getGuts();
+    const RopeRecord& r = ropeAt(g, rope);
+    checkNode(r, node);
+    checkPosition(s, "getStoredRope");
+    const int d = r.drivenIndex(node);
+    if (d < 0) return 0.0;  // a Fixed or Sliding node: nothing turns rope onto it
+    return r.driven[static_cast<std::size_t>(d)].role.storedRope(r.drivenRun(g, d), g.positionCache(s).ropes[rope]);
 }
 
 std::vector<Vec3> ReevingSubsystem::sampleSpan(const State& s, int rope, int span, int numPoints) const {

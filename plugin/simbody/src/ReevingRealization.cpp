@@ -90,16 +90,15 @@ int ReevingSubsystem::Guts::realizeSubsystemTopologyImpl(State& s) const {
     }
     TractionStates traction;  // every traction sheave in stick at its spec's s_ref
     for (RopeRecord& r : self.ropes) {
-        r.tractionZOffset = z;  // friction work of each traction sheave
-        z += r.numTraction;
-        r.slipZOffset = z;  // slip states (Y, Ydot) of each traction sheave (TractionSlip::RopeMomentum)
-        z += 2 * r.numTraction;
+        // The driven nodes' Z entries (DrivenRole::layoutZ): their work integrals, then their states.
+        for (const DrivenZBlock block : {DrivenZBlock::Work, DrivenZBlock::States})
+            for (RopeRecord::DrivenNode& d : r.driven) d.role.layoutZ(block, z);
         bool damped = r.spec.properties.axialRetardationTime > 0;
         for (const SpanOptions& o : r.spanOptions) damped = damped || o.transverseDampingRatio > 0;
         r.dampingZOffset = damped ? z++ : -1;  // damping work
         r.tractionModels.clear();
         r.spatialTractionModels.clear();
-        traction.ropes.emplace_back(r.numTraction);
+        traction.ropes.emplace_back();  // each phase node's entry: DrivenRole::initialPhase
         for (const RopeRecord::DrivenNode& d : r.driven) d.role.initialPhase(traction.ropes.back(), d.sRef);
     }
     // The coupled vector y: every rope's mobile nodes (2 or 3 rows each), then every driven material
@@ -269,7 +268,7 @@ void ReevingSubsystem::Guts::seedDependentCoordinates(const State& from, const S
         };
         if (ropes[i].planar) {
             if (a.planarModel == b.planarModel) seed(a.planar, b.planar);
-        } else if (ropes[i].numTraction == 0 || a.spatialModel == b.spatialModel) {
+        } else if (ropes[i].numPhaseNodes == 0 || a.spatialModel == b.spatialModel) {
             seed(a.spatial, b.spatial);
         }
     }
@@ -285,6 +284,16 @@ void ReevingSubsystem::Guts::updateBodyKinematics(const State& s, PositionCache&
         for (size_t b = 0; b < n; ++b) pc.bodyX[b] = bodySlots_[b]->getBodyTransform(s);
     }
 }
+
+namespace {
+// The rope's driven nodes' Z states (their rates if `rates`) into `out`, one entry per driven node
+// (DrivenRole::readZState; 0 where a node has none).
+void readDrivenZStates(const Vector& z, const RopeRecord& r, bool rates, Eigen::VectorXd& out) {
+    const auto n = static_cast<Eigen::Index>(r.driven.size());
+    if (out.size() != n) out.setZero(n);
+    for (Eigen::Index d = 0; d < n; ++d) r.driven[static_cast<std::size_t>(d)].role.readZState(z, rates, out[d]);
+}
+}  // namespace
 
 void ReevingSubsystem::Guts::refreshFromZ(const State& s, PositionCache& pc, bool velocityLevel) const {
     for (size_t i = 0; i < ropes.size(); ++i) {
@@ -304,11 +313,11 @@ bool ReevingSubsystem::Guts::matchesZ(const State& s, const RopeRecord& r, const
     const int offset = r.zOffset + (rates ? r.numModal : 0);
     for (int j = 0; j < r.numModal; ++j)
         if (cached[j] != z[offset + j]) return false;
-    // The slip states Y (Ydot) of the traction sheaves (TractionSlip::RopeMomentum) are Z too.
-    const Eigen::VectorXd& slip = rates ? c.slipRates : c.slipStates;
-    if (slip.size() != r.numTraction) return false;
-    for (int t = 0; t < r.numTraction; ++t)
-        if (slip[t] != z[r.slipZOffset + 2 * t + (rates ? 1 : 0)]) return false;
+    // The driven nodes' Z states (rates) are Z too (DrivenRole::zStateMatches).
+    const Eigen::VectorXd& states = rates ? c.drivenZRates : c.drivenZStates;
+    if (states.size() != static_cast<Eigen::Index>(r.driven.size())) return false;
+    for (std::size_t d = 0; d < r.driven.size(); ++d)
+        if (!r.driven[d].role.zStateMatches(z, rates, states[static_cast<Eigen::Index>(d)])) return false;
     return true;
 }
 
@@ -318,8 +327,7 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
     for (int k = 0; k < r.numStations(); ++k)  // MobilizedBody::findStationLocationInGround, per body
         c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.station(k).second);
     modal(getZ(s), r, false, c.modalCoordinates);
-    c.slipStates.resize(r.numTraction);
-    for (int t = 0; t < r.numTraction; ++t) c.slipStates[t] = getZ(s)[r.slipZOffset + 2 * t];
+    readDrivenZStates(getZ(s), r, false, c.drivenZStates);
     drivenCoordinates(s, r, c, false);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
     // What Simbody 3.7 does with the exception (its sources, confirmed in
@@ -346,7 +354,7 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
             model.solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
         } else {
             const RopeModel<3>& model = spatialModel(s, r, c.nodes3);
-            if (r.numTraction > 0 && c.spatialModel != &model) {
+            if (r.numPhaseNodes > 0 && c.spatialModel != &model) {
                 // Another traction phase or other span frames: fresh data for its model, warm-started
                 // from the material coordinates and amplitudes of the last one (as planar ropes).
                 RopeData<3> fresh;
@@ -380,8 +388,7 @@ void ReevingSubsystem::Guts::updateVelocityPart(const State& s, const RopeRecord
         c.nodeVelocities3.col(k) = toEigen(V[1] + V[0] % p);
     }
     modal(getZ(s), r, true, c.modalRates);
-    c.slipRates.resize(r.numTraction);
-    for (int t = 0; t < r.numTraction; ++t) c.slipRates[t] = getZ(s)[r.slipZOffset + 2 * t + 1];
+    readDrivenZStates(getZ(s), r, true, c.drivenZRates);
     drivenCoordinates(s, r, c, true);
     // The coupled solve of the last realizeDynamics needed S only as products (productCoupling_):
     // then the rope does not form it.
@@ -560,7 +567,7 @@ const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const R
         }
         const_cast<SpatialFrames&>(frames).models[r.index] = makeSpatialModel(r, references);
     }
-    if (r.numTraction == 0) return *frames.models[r.index];
+    if (r.numPhaseNodes == 0) return *frames.models[r.index];
     return tractionPhaseModel<3>(s, r, frames.models[r.index], r.spatialTractionModels);
 }
 
@@ -569,7 +576,7 @@ const RopeModel<3>& ReevingSubsystem::Guts::spatialModel(const State& s, const R
     if (!frames.models[r.index])
         throw std::logic_error("ReevingSubsystem: rope '" + r.spec.name +
                                "': the state has no span frames yet (realize it to Stage::Position first)");
-    if (r.numTraction == 0) return *frames.models[r.index];
+    if (r.numPhaseNodes == 0) return *frames.models[r.index];
     return tractionPhaseModel<3>(s, r, frames.models[r.index], r.spatialTractionModels);
 }
 

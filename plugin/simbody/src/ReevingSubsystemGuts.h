@@ -103,9 +103,11 @@ struct RopeRecord {
 
     /// The nodes whose material coordinate turns with a pin, in node order (DrivenNode).
     using DrivenNode = detail::DrivenNode;
-    int numTraction = 0;      // TractionSheaves (TractionRole::index 0..numTraction-1)
-    int tractionZOffset = 0;  // first Z entry of the traction sheaves' friction work
-    int slipZOffset = 0;      // first Z entry of the traction sheaves' slip states (Y, Ydot) each
+    /// Nodes whose law changes with the rope's phase (a TractionSheave: TractionRole::index
+    /// 0..numPhaseNodes-1), each an entry of the rope's TractionStates and of its phase models'
+    /// keys; 0: the rope has one phase, its stick model. (The driven nodes' Z entries follow
+    /// its modal coordinates' block: DrivenRole::layoutZ.)
+    int numPhaseNodes = 0;
     int dampingZOffset = -1;  // Z entry of the rope's damping work (ropes with axialRetardationTime > 0)
     /// A rope model of one traction phase: the stick model `base` (a planar rope's planarModel,
     /// a spatial rope's model of the state's span frames, SpatialFrames) with the node of each
@@ -222,7 +224,9 @@ struct RopeCache {
     Eigen::MatrixXd condensedMass;
     Eigen::VectorXd condensedForce;
     bool condensed = false;
-    Eigen::VectorXd slipStates, slipRates;  // the Z slip states Y, Ydot these were computed from (per traction sheave)
+    // Per driven node: the Z state its role reads, and its rate (DrivenRole::readZState: a
+    // TractionSlip::RopeMomentum sheave's Y, Ydot; unused entries 0) these were computed from.
+    Eigen::VectorXd drivenZStates, drivenZRates;
     Eigen::VectorXd drivenS, drivenSdot;  // material coordinates and rates of the driven nodes
     Eigen::VectorXd drivenAngles, drivenAngleRates;  // their angles theta [rad] and rates [rad/s]
     // dynamics

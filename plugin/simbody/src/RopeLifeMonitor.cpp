@@ -4,10 +4,10 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <limits>
 #include <string>
-#include <type_traits>
+#include <tuple>
 #include <utility>
-#include <variant>
 
 namespace SimbodyReeving {
 
@@ -21,23 +21,6 @@ std::string lifeNumber(double v) {
     std::ostringstream o;
     o << v;
     return o.str();
-}
-
-/// The pin axis of a MobilizedBody::Pin in Ground (the z axis of its outboard frame M).
-SimTK::Vec3 lifePinAxisInGround(const SimTK::State& s, const SimTK::MobilizedBody& pin) {
-    return SimTK::Vec3((pin.getBodyRotation(s) * pin.getOutboardFrame(s).R()).z());
-}
-
-/// The radius of a sheave or drum [m]; 0 at an anchor.
-double lifeNodeRadius(const RopeNode& node) {
-    return std::visit(
-        [](const auto& n) -> double {
-            if constexpr (std::is_same_v<std::decay_t<decltype(n)>, RopeAnchor>)
-                return 0.0;
-            else
-                return n.radius;
-        },
-        node);
 }
 
 }  // namespace
@@ -94,9 +77,8 @@ RopeLifeMonitor::RopeLifeMonitor(const ReevingSubsystem& reeving, int rope, cons
     const RopeSpec& spec = reeving.getRopeSpec(rope);
     const int numNodes = reeving.getNumSpans(rope) + 1;
     for (int k = 0; k < numNodes; ++k) {
-        const RopeNode node = spec.node(k);
-        if (std::holds_alternative<RopeAnchor>(node)) continue;
-        const double radius = lifeNodeRadius(node);
+        const double radius = reeving.getNodeRadius(rope, k);
+        if (!(radius > 0)) continue;  // an Anchor: the rope ends there unbent
         const double ratio = 2.0 * radius / d;
         if (!(ratio >= 1))
             lifeMonitorInvalid("rope '" + spec.name + "', node " + std::to_string(k) + ": D/d = 2 R / d = 2 * " + lifeNumber(radius) +
@@ -104,7 +86,6 @@ RopeLifeMonitor::RopeLifeMonitor(const ReevingSubsystem& reeving, int rope, cons
         watchedNodes_.push_back(k);
         diameterRatios_.push_back(ratio);
     }
-    if (reeving.isPlanar(rope)) planeNormal_ = spec.planeNormal / spec.planeNormal.norm();
 }
 
 double RopeLifeMonitor::sectionLength(int section) const {
@@ -116,62 +97,19 @@ double RopeLifeMonitor::sectionLength(int section) const {
 
 std::vector<RopeLifeMonitor::NodeSample> RopeLifeMonitor::sampleNodes(const SimTK::State& state) const {
     reeving_.getSystem().realize(state, SimTK::Stage::Position);
-    const RopeSpec& spec = reeving_.getRopeSpec(rope_);
     const int numSpans = reeving_.getNumSpans(rope_);
     std::vector<NodeSample> out(watchedNodes_.size());
-    auto chord = [&](int span) {
-        const std::vector<SimTK::Vec3> ends = reeving_.sampleSpan(state, rope_, span, 2);
-        return ends[1] - ends[0];
-    };
     for (std::size_t w = 0; w < watchedNodes_.size(); ++w) {
         const int k = watchedNodes_[w];
         NodeSample& n = out[w];
-        SimTK::Vec3 axis(0);
-        if (k == 0) {  // a drum at the start: the rope below the tangent point is on it
-            const double s = reeving_.getSpanMaterialRange(state, rope_, 0).first;
-            n.lower = -kLifeInf;
-            n.upper = s;
-            n.tensionLower = n.tensionUpper = reeving_.getAxialForce(state, rope_, 0, s);
-            const WinchDrum& drum = std::get<WinchDrum>(spec.start);
-            axis = double(drum.payoutSense) * lifePinAxisInGround(state, drum.body);
-        } else if (k == numSpans) {  // a drum at the end
-            const double s = reeving_.getSpanMaterialRange(state, rope_, numSpans - 1).second;
-            n.lower = s;
-            n.upper = kLifeInf;
-            n.tensionLower = n.tensionUpper = reeving_.getAxialForce(state, rope_, numSpans - 1, s);
-            const WinchDrum& drum = std::get<WinchDrum>(spec.end);
-            axis = -double(drum.payoutSense) * lifePinAxisInGround(state, drum.body);
-        } else {  // a sheave: from the end of span k - 1 to the start of span k
-            n.lower = reeving_.getSpanMaterialRange(state, rope_, k - 1).second;
-            n.upper = reeving_.getSpanMaterialRange(state, rope_, k).first;
-            n.tensionLower = reeving_.getAxialForce(state, rope_, k - 1, n.lower);
-            n.tensionUpper = reeving_.getAxialForce(state, rope_, k, n.upper);
-            const RopeSheave& node = spec.sheaves[k - 1];
-            if (spec.sheaveModel == SheaveModel::Wrapped) {  // the wrap sense (half a turn: the chords are parallel)
-                if (const auto* idler = std::get_if<DeviationSheave>(&node)) {
-                    const SimTK::Vec3 grooveAxis = planeNormal_.normSqr() > 0
-                                                       ? planeNormal_
-                                                       : SimTK::Vec3(idler->body.getBodyRotation(state) * idler->axis);
-                    axis = double(idler->wrapSense) * grooveAxis;
-                } else {  // a TurningSheave or TractionSheave: -sense times its pin axis
-                    std::visit(
-                        [&](const auto& pinned) {
-                            if constexpr (!std::is_same_v<std::decay_t<decltype(pinned)>, DeviationSheave>)
-                                axis = -double(pinned.sense) * lifePinAxisInGround(state, pinned.body);
-                        },
-                        node);
-                }
-            } else {  // a point sheave: the turn between the two chords
-                axis = SimTK::cross(chord(k - 1), chord(k));
-            }
-        }
-        if (planeNormal_.normSqr() > 0) {
-            const double along = SimTK::dot(axis, planeNormal_);
-            n.bendAxis = along > 0 ? planeNormal_ : along < 0 ? SimTK::Vec3(-planeNormal_) : SimTK::Vec3(0);
-        } else {
-            const double len = axis.norm();
-            n.bendAxis = len > 0 ? SimTK::Vec3(axis / len) : SimTK::Vec3(0);
-        }
+        // The rope on the node (a drum's unbounded on its stored side) and the tension where it
+        // arrives and where it leaves (at an end node, the one span's end there).
+        std::tie(n.lower, n.upper) = reeving_.getNodeMaterialInterval(state, rope_, k);
+        n.tensionLower = k > 0 ? reeving_.getAxialForce(state, rope_, k - 1, n.lower)
+                               : reeving_.getAxialForce(state, rope_, 0, n.upper);
+        n.tensionUpper = k < numSpans ? reeving_.getAxialForce(state, rope_, k, n.upper)
+                                      : reeving_.getAxialForce(state, rope_, numSpans - 1, n.lower);
+        n.bendAxis = reeving_.getNodeBendAxis(state, rope_, k);
     }
     return out;
 }
@@ -239,13 +177,12 @@ void RopeLifeMonitor::record(const SimTK::State& state) {
     };
     auto halfLengthOf = [&](int i) { return 0.5 * (std::min(sMin_ + (i + 1) * ls, sMax_) - (sMin_ + i * ls)); };
     if (numSamples_ == 0) {  // fix the sections and where they lie
-        const RopeSpec& spec = reeving_.getRopeSpec(rope_);
         const int numSpans = reeving_.getNumSpans(rope_);
+        // The rope's material range, the rope stored at its ends (on drums) included.
         sMin_ = reeving_.getSpanMaterialRange(state, rope_, 0).first;
         sMax_ = reeving_.getSpanMaterialRange(state, rope_, numSpans - 1).second;
-        const RopeHandle rope = reeving_.getRope(rope_);
-        if (std::holds_alternative<WinchDrum>(spec.start)) sMin_ -= rope.getWinchDrum(0).getRopeOnDrum(state);
-        if (std::holds_alternative<WinchDrum>(spec.end)) sMax_ += rope.getWinchDrum(numSpans).getRopeOnDrum(state);
+        sMin_ -= reeving_.getStoredRope(state, rope_, 0);
+        sMax_ += reeving_.getStoredRope(state, rope_, numSpans);
         const int numSections = std::max(1, static_cast<int>(std::ceil((sMax_ - sMin_) / ls - 1e-9)));
         const int numBins = static_cast<int>(options_.tensionBinEdges.size()) + 1;
         sections_.assign(numSections, RopeSectionCount{});

@@ -1,6 +1,6 @@
 // NodeKind::DeviationSheave: a frictionless idler; s from the tension equality (paper eq 32).
 
-#include "NodeKinds.h"
+#include "NodeBend.h"
 
 #include <cmath>
 
@@ -40,6 +40,17 @@ NodeWrap DeviationSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& plan
     }
     w.axis = toEigen(inGround);
     return w;
+}
+
+std::pair<double, double> DeviationSheaveNode::heldInterval(const NodeBend& bend) { return sheaveInterval(bend); }
+
+SimTK::Vec3 DeviationSheaveNode::bendAxis(const NodeBend& bend) {
+    if (bend.rope.spec.sheaveModel != SheaveModel::Wrapped) return chordTurn(bend);
+    const NodeSpec& n = bend.spec();
+    // The wrap sense about the groove's axis (half a turn: the chords are parallel).
+    const SimTK::Vec3 grooveAxis =
+        bend.rope.planar ? unitPlaneNormal(bend.rope) : SimTK::Vec3(n.body.getBodyRotation(bend.state) * n.axis);
+    return double(n.sense) * grooveAxis;
 }
 
 }  // namespace detail

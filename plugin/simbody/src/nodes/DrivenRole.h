@@ -10,8 +10,8 @@
 ///     the state's TractionNodeState::sStick; slip the capstan law (TractionSlip::CapstanConstraint:
 ///     the node MaterialNode::Slipping in the phase's rope model) or the rope's momentum on the
 ///     groove (TractionSlip::RopeMomentum: the state Y, Ydot); its Z entries (friction work, Y,
-///     Ydot), its events (stick <-> slip), its condensation in the coupled solve and its queries
-///     (nodes/TractionSheaveRun.cpp).
+///     Ydot: their layout and reading), its events (stick <-> slip), its condensation in the
+///     coupled solve and its queries (nodes/TractionSheaveRun.cpp).
 /// Each unit has every hook of the interface below (DrivenRoleDefaults: the hooks a unit does not
 /// own do nothing); DrivenRole holds one of them (std::variant, dispatched by std::visit: no
 /// virtual call, no heap) and the generic code calls the hooks through it, never asking which kind
@@ -19,6 +19,7 @@
 
 #include "SimbodyReeving/simbody/ReevingSubsystem.h"
 
+#include <cstddef>
 #include <string>
 #include <variant>
 #include <vector>
@@ -49,12 +50,28 @@ struct DrivenRun {
     int driven;
 };
 
+/// The blocks of a rope's Z entries its driven nodes take (DrivenRole::layoutZ), laid out one
+/// after the other, each over the rope's driven nodes in node order: Work, integrals of a power
+/// [J] that no law reads (a traction sheave's friction work); States, states the rope's
+/// evaluation reads, each followed by its rate (a TractionSlip::RopeMomentum sheave's Y [m] and
+/// Ydot [m/s]).
+enum class DrivenZBlock { Work, States };
+
 /// The hooks of the interface, each doing nothing (or, for materialCoordinate, the plain driven
 /// relation): a unit replaces those it owns.
 struct DrivenRoleDefaults {
     /// Declares the node's stored rope to a RopeModel<2> or <3> (none).
     template <class Model>
     void declareStoredRope(Model&, int /*node*/, double /*ropeLength*/) const {}
+    /// Takes the node's Z entries of `block` from entry z on, advancing z past them (none).
+    void layoutZ(DrivenZBlock /*block*/, int& /*z*/) {}
+    /// Copies the node's Z state (DrivenZBlock::States; its rate if `rates`) from z into `entry`,
+    /// its element of the rope cache's RopeCache::drivenZStates (drivenZRates) (none: unchanged).
+    void readZState(const SimTK::Vector& /*z*/, bool /*rates*/, double& /*entry*/) const {}
+    /// True if `entry` holds the node's Z state (its rate if `rates`) of z (none: true).
+    bool zStateMatches(const SimTK::Vector& /*z*/, bool /*rates*/, double /*entry*/) const { return true; }
+    /// The rope stored at the node [m] (Stage::Position, from its rope's cache c): none, 0.
+    double storedRope(const DrivenRun&, const RopeCache& /*c*/) const { return 0.0; }
     /// Sets the node's part of its rope's initial TractionStates from the spec's s_ref [m] (none).
     void initialPhase(std::vector<TractionNodeState>&, double /*sRef*/) const {}
     /// The node's material coordinate s [m] at angle theta [rad] in state s, with its rate sdot
@@ -93,7 +110,7 @@ struct DrivenRoleDefaults {
     /// in state s (Stage::Position); true if its phase changed (never).
     bool startSlipOverLimit(const DrivenRun&, SimTK::State&) const { return false; }
     /// Adds the node's friction work [J] (a Z entry) to w (none).
-    void addFrictionWork(const RopeRecord&, const SimTK::Vector& /*z*/, double& /*w*/) const {}
+    void addFrictionWork(const SimTK::Vector& /*z*/, double& /*w*/) const {}
 };
 
 /// TurningSheave: the driven relation alone.
@@ -117,13 +134,17 @@ struct StoredRopeRole : DrivenRoleDefaults {
     }
     /// The drum out of rope: margin onDrum [m] (from the rope's evaluation in c).
     void limitMargin(const DrivenRun& run, const RopeCache& c, double& margin, std::string* which) const;
+    /// onDrum at the rope's material coordinate s_k where it leaves the drum (from c).
+    double storedRope(const DrivenRun& run, const RopeCache& c) const;
 };
 
-/// TractionSheave: index among its rope's traction sheaves (its TractionStates entry, its Z
-/// entries), friction coefficient mu [-], wrap angle alpha [rad] (given, or the geometry's,
-/// RopeModel::wrapAngle, when geometricWrap) and slip model.
+/// TractionSheave: index among its rope's traction sheaves (its TractionStates entry and its
+/// phase models' key entry), its Z entries (layoutZ), friction coefficient mu [-], wrap angle
+/// alpha [rad] (given, or the geometry's, RopeModel::wrapAngle, when geometricWrap) and slip model.
 struct TractionRole : DrivenRoleDefaults {
     int index = -1;
+    int workZ = -1;   // Z entry of its friction work [J] (DrivenZBlock::Work)
+    int stateZ = -1;  // Z entry of its slip state Y [m], Ydot [m/s] at stateZ + 1 (DrivenZBlock::States)
     double frictionCoefficient = 0;  // [-]
     double givenWrapAngle = 0;       // [rad]; unused when geometricWrap
     bool geometricWrap = false;
@@ -137,9 +158,9 @@ struct TractionRole : DrivenRoleDefaults {
 
     bool momentum() const { return slipModel == TractionSlip::RopeMomentum; }
     /// Its Z entries: the friction work [J], and the slip state Y [m] with its rate Ydot [m/s]
-    /// right after it (TractionSlip::RopeMomentum; zero rates otherwise), from its rope's offsets.
-    int frictionWorkZ(int tractionZOffset) const { return tractionZOffset + index; }
-    int slipStateZ(int slipZOffset) const { return slipZOffset + 2 * index; }
+    /// right after it (TractionSlip::RopeMomentum; zero rates otherwise).
+    int frictionWorkZ() const { return workZ; }
+    int slipStateZ() const { return stateZ; }
     /// Its entry of its rope's phase key (RopeRecord::TractionPhaseModel) in phase t: 0 in stick
     /// and with TractionSlip::RopeMomentum (Driven by Y), +-1 (the slip's direction) with the
     /// geometry's wrap angle, else kappa = P_{k-1} / P_k = e^(+-mu alpha): the tight side is the
@@ -147,7 +168,25 @@ struct TractionRole : DrivenRoleDefaults {
     double phaseKeyEntry(const TractionNodeState& t) const;
 
     // ---- the interface ----
-    void initialPhase(std::vector<TractionNodeState>& ropePhases, double sRef) const { ropePhases[index].sStick = sRef; }
+    /// Work: the friction work, one entry; States: Y and Ydot, two.
+    void layoutZ(DrivenZBlock block, int& z) {
+        if (block == DrivenZBlock::Work) {
+            workZ = z++;
+        } else {
+            stateZ = z;
+            z += 2;
+        }
+    }
+    /// Y (Ydot if `rates`).
+    void readZState(const SimTK::Vector& z, bool rates, double& entry) const { entry = z[stateZ + (rates ? 1 : 0)]; }
+    bool zStateMatches(const SimTK::Vector& z, bool rates, double entry) const {
+        return entry == z[stateZ + (rates ? 1 : 0)];
+    }
+    /// Its entry of the rope's phases (grown to hold it), sStick = s_ref.
+    void initialPhase(std::vector<TractionNodeState>& ropePhases, double sRef) const {
+        if (ropePhases.size() <= static_cast<std::size_t>(index)) ropePhases.resize(static_cast<std::size_t>(index) + 1);
+        ropePhases[index].sStick = sRef;
+    }
     /// Stick: s = sStick + g(theta); TractionSlip::RopeMomentum slip: s = Y, sdot = Ydot (Z); in
     /// CapstanConstraint slip the groove's coordinate sStick + g(theta) (no span reads it).
     void materialCoordinate(const DrivenRun& run, const SimTK::State& state, double theta, double thetaDot, bool rates,
@@ -183,7 +222,7 @@ struct TractionRole : DrivenRoleDefaults {
     /// The capstan law's alpha (wrapAngle(run, state) below; realizes nothing, needs Stage::Position).
     bool wrapAngle(const DrivenRun& run, const SimTK::State& state, double& alpha) const;
     bool startSlipOverLimit(const DrivenRun& run, SimTK::State& state) const;
-    void addFrictionWork(const RopeRecord& r, const SimTK::Vector& z, double& w) const;
+    void addFrictionWork(const SimTK::Vector& z, double& w) const;
 
     // ---- its run time (nodes/TractionSheaveRun.cpp) ----
     /// True if in TractionSlip::RopeMomentum slip in state s.
@@ -234,6 +273,18 @@ struct DrivenRole {
     void declareStoredRope(Model& model, int node, double ropeLength) const {
         std::visit([&](const auto& u) { u.declareStoredRope(model, node, ropeLength); }, unit);
     }
+    void layoutZ(DrivenZBlock block, int& z) {
+        std::visit([&](auto& u) { u.layoutZ(block, z); }, unit);
+    }
+    void readZState(const SimTK::Vector& z, bool rates, double& entry) const {
+        std::visit([&](const auto& u) { u.readZState(z, rates, entry); }, unit);
+    }
+    bool zStateMatches(const SimTK::Vector& z, bool rates, double entry) const {
+        return std::visit([&](const auto& u) { return u.zStateMatches(z, rates, entry); }, unit);
+    }
+    double storedRope(const DrivenRun& run, const RopeCache& c) const {
+        return std::visit([&](const auto& u) { return u.storedRope(run, c); }, unit);
+    }
     void initialPhase(std::vector<TractionNodeState>& ropePhases, double sRef) const {
         std::visit([&](const auto& u) { u.initialPhase(ropePhases, sRef); }, unit);
     }
@@ -277,8 +328,8 @@ struct DrivenRole {
     bool startSlipOverLimit(const DrivenRun& run, SimTK::State& state) const {
         return std::visit([&](const auto& u) { return u.startSlipOverLimit(run, state); }, unit);
     }
-    void addFrictionWork(const RopeRecord& r, const SimTK::Vector& z, double& w) const {
-        std::visit([&](const auto& u) { u.addFrictionWork(r, z, w); }, unit);
+    void addFrictionWork(const SimTK::Vector& z, double& w) const {
+        std::visit([&](const auto& u) { u.addFrictionWork(z, w); }, unit);
     }
 };
 

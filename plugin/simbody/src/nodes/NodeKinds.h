@@ -14,7 +14,10 @@
 ///     point); planeNormal is the planar rope's, zero for a spatial rope;
 ///   - kTensionEquality: the node's constraint row is the frictionless tension equality (its
 ///     residual counts in getMaxConstraintError);
-///   - draw(drawing): its Visualizer decoration (NodeDrawing.h).
+///   - draw(drawing): its Visualizer decoration (NodeDrawing.h);
+///   - bendRadius(spec), heldInterval(bend), bendAxis(bend): how it bends the rope, the radius it
+///     bends over, the material interval of rope on it and the axis the rope turns about there
+///     (NodeBend.h; ReevingSubsystem::getNodeRadius, getNodeMaterialInterval, getNodeBendAxis).
 /// What every node shares at run time (a station on a body: positions, velocities, the coupled
 /// solve's rows) is generic in ReevingRealization.cpp and ReevingCoupling.cpp; a Driven node's
 /// run time is its units' (DrivenAngle.h: how theta and its rate are measured and its row of the
@@ -25,6 +28,7 @@
 #include "../ReevingSubsystemGuts.h"
 
 #include <string>
+#include <utility>
 
 namespace SimbodyReeving {
 namespace detail {
@@ -32,6 +36,7 @@ namespace detail {
 /// A node of a rope being added (addRope): the record it fills, its index and spec, its name for
 /// messages ("rope 'r': sheave 0 (TurningSheave, node 1)").
 struct NodeDrawing;  // NodeDrawing.h
+struct NodeBend;     // NodeBend.h
 
 struct NodeSite {
     RopeRecord& rope;
@@ -64,6 +69,10 @@ struct AnchorNode {
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite&, const SimTK::Vec3&) { return {}; }
     static void draw(const NodeDrawing& drawing);
+    /// The rope ends here unbent: radius 0, its end's one point [s_k, s_k], no bend axis (zero).
+    static double bendRadius(const NodeSpec&) { return 0.0; }
+    static std::pair<double, double> heldInterval(const NodeBend& bend);
+    static SimTK::Vec3 bendAxis(const NodeBend&) { return SimTK::Vec3(0); }
 };
 
 /// A frictionless idler (paper eq 30/32): s solved from the tension equality. Inside a path.
@@ -74,6 +83,11 @@ struct DeviationSheaveNode {
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
+    /// Its radius; sheaveInterval (NodeBend.h); wrapped: wrapSense times its groove's axis (the
+    /// plane normal of a planar rope, its body's axis in Ground otherwise), a point: chordTurn.
+    static double bendRadius(const NodeSpec& spec) { return spec.radius; }
+    static std::pair<double, double> heldInterval(const NodeBend& bend);
+    static SimTK::Vec3 bendAxis(const NodeBend& bend);
 };
 
 /// A drum at a rope end on a Pin: s = s_end - or + sense R theta, its stored rope. Ends only.
@@ -84,6 +98,12 @@ struct WinchDrumNode {
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
+    /// Its radius; the rope on it, unbounded on its stored side: (-inf, s_0] at a start drum,
+    /// [s_N, +inf) at an end drum; payoutSense times its pin axis at a start drum (the rope
+    /// leaving it), minus that at an end drum (the rope arriving), wrapped or not.
+    static double bendRadius(const NodeSpec& spec) { return spec.radius; }
+    static std::pair<double, double> heldInterval(const NodeBend& bend);
+    static SimTK::Vec3 bendAxis(const NodeBend& bend);
 };
 
 /// A sheave on a Pin that grips the rope: s = s_ref + sense R theta. Inside a path.
@@ -94,6 +114,10 @@ struct TurningSheaveNode {
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
+    /// Its radius; sheaveInterval; pinnedSheaveBendAxis (NodeBend.h).
+    static double bendRadius(const NodeSpec& spec) { return spec.radius; }
+    static std::pair<double, double> heldInterval(const NodeBend& bend);
+    static SimTK::Vec3 bendAxis(const NodeBend& bend);
 };
 
 /// A sheave on a Pin that grips the rope by friction (stick: a TurningSheave with a state offset;
@@ -106,6 +130,10 @@ struct TractionSheaveNode {
     static void addMaterialRelation(NodeSite& site);
     static NodeWrap wrap(const NodeSite& site, const SimTK::Vec3& planeNormal);
     static void draw(const NodeDrawing& drawing);
+    /// Its radius; sheaveInterval; pinnedSheaveBendAxis (NodeBend.h), in stick and in slip.
+    static double bendRadius(const NodeSpec& spec) { return spec.radius; }
+    static std::pair<double, double> heldInterval(const NodeBend& bend);
+    static SimTK::Vec3 bendAxis(const NodeBend& bend);
 };
 
 /// Calls f with the unit of kind (a value of its empty struct) and returns what it returns: the

@@ -2,6 +2,7 @@
 // TurningSheave in stick with a TractionRole (DrivenRole.h); its run time (slip phases, Z
 // entries, events, queries) is in TractionSheaveRun.cpp.
 
+#include "NodeBend.h"
 #include "PinnedNode.h"
 
 #include <cmath>
@@ -24,7 +25,7 @@ void TractionSheaveNode::validate(const NodeSite& site) {
 void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
     TurningSheaveNode::addMaterialRelation(site);  // it starts in stick
     TractionRole traction;
-    traction.index = site.rope.numTraction++;
+    traction.index = site.rope.numPhaseNodes++;
     traction.frictionCoefficient = site.spec.frictionCoefficient;
     traction.givenWrapAngle = site.spec.wrapAngle;
     traction.geometricWrap = site.spec.wrapAngle == 0;  // the current geometry's (RopeModel::wrapAngle)
@@ -35,6 +36,10 @@ void TractionSheaveNode::addMaterialRelation(NodeSite& site) {
 NodeWrap TractionSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     return grippingSheaveWrap(site, kName, planeNormal, false);
 }
+
+std::pair<double, double> TractionSheaveNode::heldInterval(const NodeBend& bend) { return sheaveInterval(bend); }
+
+SimTK::Vec3 TractionSheaveNode::bendAxis(const NodeBend& bend) { return pinnedSheaveBendAxis(bend); }
 
 }  // namespace detail
 }  // namespace SimbodyReeving

@@ -80,7 +80,7 @@ void TractionRole::materialCoordinate(const DrivenRun& run, const State& s, doub
     // reads); with TractionSlip::RopeMomentum in slip it is the state Y.
     const TractionNodeState& t = phaseOf(run, s, index);
     if (momentum() && t.mode != TractionMode::Stick) {
-        const int zi = slipStateZ(run.rope.slipZOffset);
+        const int zi = slipStateZ();
         sk = run.guts.getZ(s)[zi];
         if (rates) skDot = run.guts.getZ(s)[zi + 1];
         return;
@@ -96,7 +96,7 @@ double TractionRole::slipRate(const DrivenRun& run, const State& s) const {
     if (phaseOf(run, s, index).mode == TractionMode::Stick) return 0;
     if (momentum()) {  // v - g'(theta) thetadot: the rope over the groove's top
         const DrivenAngleSite site = run.guts.angleSite(s, r, d);
-        return c.slipRates[index] - d.law.materialRate(d.angle.angle(site), d.angle.rate(site));
+        return c.drivenZRates[run.driven] - d.law.materialRate(d.angle.angle(site), d.angle.rate(site));
     }
     // The groove's surface where the rope arrives: g'(theta) thetadot, plus sigma R phi_in-dot on a
     // wrapped sheave (RopeModel::surfaceRate).
@@ -111,8 +111,8 @@ void TractionRole::startMomentumSlip(const DrivenRun& run, State& s, const Tract
     const DrivenAngleSite site = run.guts.angleSite(s, run.rope, d);
     const double theta = d.angle.angle(site), thetaDot = d.angle.rate(site);
     SimTK::Vector& z = run.guts.updZ(s);
-    z[slipStateZ(run.rope.slipZOffset)] = d.law.materialCoordinate(stick.sStick, theta);
-    z[slipStateZ(run.rope.slipZOffset) + 1] = d.law.materialRate(theta, thetaDot);
+    z[slipStateZ()] = d.law.materialCoordinate(stick.sStick, theta);
+    z[slipStateZ() + 1] = d.law.materialRate(theta, thetaDot);
 }
 
 double TractionRole::maxFriction(const DrivenRun& run, double tight, const State& s) const {
@@ -144,7 +144,7 @@ TractionRole::MomentumSlip TractionRole::momentumSlip(const DrivenRun& run, cons
     const TractionNodeState& t = phaseOf(run, s, index);
     MomentumSlip m;
     const auto [pa, pb] = run.guts.nodeTotalForces(s, r, d.node);
-    m.speed = c.slipRates[index];
+    m.speed = c.drivenZRates[run.driven];
     const double sigma = t.mode == TractionMode::SlipTowardStart ? 1.0 : -1.0;
     // mutation-site: tight-side
     const double tight = sigma > 0 ? pa : pb, rhoA = r.spec.properties.massPerLength;
@@ -181,14 +181,14 @@ void TractionRole::zDerivatives(const DrivenRun& run, const State& s, const Rope
     // Friction work: (P_a - P_b) v_slip, zero in stick; the slip states of TractionSlip::RopeMomentum
     // sheaves (zero rates in stick).
     const RopeRecord& r = run.rope;
-    const int zy = slipStateZ(r.slipZOffset);
+    const int zy = slipStateZ();
     zdot[zy] = zdot[zy + 1] = 0;
     if (inMomentumSlip(run, s)) {
         const int external = r.drivenExternal(run.driven);
         zdot[zy] = z[zy + 1];
         zdot[zy + 1] = c.externalAccelerations[external];
         for (const CouplingWorkspace::FreeSlip& f : ws.freeSlips)
-            if (f.rope == r.index && f.external == external) zdot[frictionWorkZ(r.tractionZOffset)] = f.workRate;
+            if (f.rope == r.index && f.external == external) zdot[frictionWorkZ()] = f.workRate;
         return;
     }
     const double v = slipRate(run, s);
@@ -197,7 +197,7 @@ void TractionRole::zDerivatives(const DrivenRun& run, const State& s, const Rope
         const auto [pa, pb] = run.guts.nodeAxialForces(s, r, run.node.node);
         power = (pa - pb) * v;
     }
-    zdot[frictionWorkZ(r.tractionZOffset)] = power;
+    zdot[frictionWorkZ()] = power;
 }
 
 double TractionRole::witness(const DrivenRun& run, const State& s) const {
@@ -241,7 +241,7 @@ void TractionRole::changeMode(const DrivenRun& run, State& s) const {
         next.mode = lim * pb - pa < lim * pa - pb ? TractionMode::SlipTowardStart : TractionMode::SlipTowardEnd;
     } else if (momentum()) {
         // s_k continuous: the stick offset takes over from Y (Y - g(theta)).
-        next.sStick = d.law.offsetOf(g.getZ(s)[slipStateZ(r.slipZOffset)], d.angle.angle(g.angleSite(s, r, d)));
+        next.sStick = d.law.offsetOf(g.getZ(s)[slipStateZ()], d.angle.angle(g.angleSite(s, r, d)));
         next.mode = TractionMode::Stick;
     } else {
         // s_k continuous: the surface coordinate where the rope arrives (sStick + g(theta),
@@ -262,7 +262,7 @@ void TractionRole::changeMode(const DrivenRun& run, State& s) const {
     g.updTractionStates(s).ropes[r.index][index] = next;
     g.getSystem().realize(s, Stage::Velocity);
     const double after = Guts::withRope(r, g.positionCache(s).ropes[r.index], kinetic);
-    g.updZ(s)[frictionWorkZ(r.tractionZOffset)] += before - after;
+    g.updZ(s)[frictionWorkZ()] += before - after;
 }
 
 bool TractionRole::wrapAngle(const DrivenRun& run, const State& s, double& alpha) const {
@@ -292,8 +292,8 @@ bool TractionRole::startSlipOverLimit(const DrivenRun& run, State& s) const {
     return true;
 }
 
-void TractionRole::addFrictionWork(const RopeRecord& r, const SimTK::Vector& z, double& w) const {
-    w += z[frictionWorkZ(r.tractionZOffset)];
+void TractionRole::addFrictionWork(const SimTK::Vector& z, double& w) const {
+    w += z[frictionWorkZ()];
 }
 
 namespace {
@@ -375,7 +375,7 @@ double TractionSheaveHandle::getSlipDistance(const State& s) const {
     // offset the stick phases so far have accumulated.
     const RopeCache& c = guts().positionCache(s).ropes[rope];
     if (t->inMomentumSlip(run, s))  // Y over the groove's top, less the pin's turn
-        return d.law.offsetOf(c.slipStates[t->index], d.angle.angle(guts().angleSite(s, r, d))) - d.sRef;
+        return d.law.offsetOf(c.drivenZStates[driven], d.angle.angle(guts().angleSite(s, r, d))) - d.sRef;
     const double sStick = guts().tractionStates(s).ropes[rope][t->index].sStick;
     return Guts::withRope(r, c, [&](const auto& model, const auto& data) {
                return data.materialCoordinates[node] - model.surfaceCoordinate(data, node);
@@ -413,7 +413,7 @@ double TractionSheaveHandle::getFrictionPower(const State& s) const {
 double TractionSheaveHandle::getFrictionWork(const State& s) const {
     const int rope = getRopeIndex(), node = getNodeIndex();
     const RopeRecord& r = ropeAt(guts(), rope);
-    return guts().getZ(s)[tractionAt(r, node).second->frictionWorkZ(r.tractionZOffset)];
+    return guts().getZ(s)[tractionAt(r, node).second->frictionWorkZ()];
 }
 
 int TractionSheaveHandle::getNumTractionTransitions(const State& s) const {

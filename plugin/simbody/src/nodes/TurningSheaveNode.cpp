@@ -1,5 +1,6 @@
 // NodeKind::TurningSheave: a sheave on a pin that grips the rope, s = s_ref + sense R theta.
 
+#include "NodeBend.h"
 #include "PinnedNode.h"
 
 #include <cmath>
@@ -25,6 +26,10 @@ void TurningSheaveNode::addMaterialRelation(NodeSite& site) {
 NodeWrap TurningSheaveNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNormal) {
     return grippingSheaveWrap(site, kName, planeNormal, true);
 }
+
+std::pair<double, double> TurningSheaveNode::heldInterval(const NodeBend& bend) { return sheaveInterval(bend); }
+
+SimTK::Vec3 TurningSheaveNode::bendAxis(const NodeBend& bend) { return pinnedSheaveBendAxis(bend); }
 
 }  // namespace detail
 }  // namespace SimbodyReeving

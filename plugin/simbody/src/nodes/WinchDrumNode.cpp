@@ -1,9 +1,11 @@
 // NodeKind::WinchDrum: a drum at a rope end; s turns with its pin, the rest is stored rope
 // (StoredRopeRole, DrivenRole.h: its declaration to the rope model, its limit and its query).
 
+#include "NodeBend.h"
 #include "PinnedNode.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace SimbodyReeving {
@@ -70,6 +72,25 @@ void StoredRopeRole::limitMargin(const DrivenRun& run, const RopeCache& c, doubl
         margin = stored;
         if (which) *which = "rope '" + r.spec.name + "' winch drum at node " + std::to_string(node) + " ran out of rope";
     }
+}
+
+std::pair<double, double> WinchDrumNode::heldInterval(const NodeBend& bend) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    if (bend.node == 0) return {-inf, bend.spanRange(0).first};  // below the tangent point: on the drum
+    return {bend.spanRange(bend.rope.numSpans() - 1).second, inf};
+}
+
+SimTK::Vec3 WinchDrumNode::bendAxis(const NodeBend& bend) {
+    const double sense = bend.spec().sense;  // payoutSense
+    if (bend.node == 0) return sense * pinAxisInGround(bend);
+    return -sense * pinAxisInGround(bend);
+}
+
+double StoredRopeRole::storedRope(const DrivenRun& run, const RopeCache& c) const {
+    const RopeRecord& r = run.rope;
+    const int node = run.node.node;
+    const double s = r.planar ? c.planar.materialCoordinates[node] : c.spatial.materialCoordinates[node];
+    return onDrum(node, s, r.spec.unstretchedLength);
 }
 
 }  // namespace detail

@@ -468,6 +468,43 @@ public:
     /// of the rope on its drums.
     /// @throws std::invalid_argument if rope or node is out of range.
     double getArcLength(const SimTK::State& state, int rope, int node) const;
+    /// Radius R of the groove or drum the rope bends over at node k [m]: the node's radius
+    /// (DeviationSheave, TurningSheave, TractionSheave, WinchDrum; > 0), 0 at a RopeAnchor (the
+    /// rope ends there unbent). A rope of diameter d bends at D/d = 2 R / d there (RopeLifeMonitor).
+    /// Fixed at addRope: needs no state.
+    /// @throws std::invalid_argument if rope or node is out of range.
+    double getNodeRadius(int rope, int node) const;
+    /// The material interval [s_a, s_b] of rope on node k [m] (Stage::Position), s_a <= s_b: at a
+    /// sheave (k = 1..N-1) from where the rope arrives on it (s_a, the end of span k - 1,
+    /// getSpanMaterialRange) to where it leaves (s_b, the start of span k): one point (s_a = s_b =
+    /// getMaterialCoordinate) at a point sheave, the arc s_b - s_a = getArcLength at a wrapped one;
+    /// at a WinchDrum the rope on it, unbounded on its stored side: (-inf, s_0] at a start drum,
+    /// [s_N, +inf) at an end drum, s_0 and s_N the material coordinates where the rope leaves it
+    /// (getStoredRope gives the stored rope's length); at a RopeAnchor the rope's end, s_a = s_b =
+    /// 0 at the start, L at the end (the unstretched length).
+    /// @throws std::invalid_argument if rope or node is out of range.
+    /// @throws std::logic_error if the state is not realized to Stage::Position.
+    std::pair<double, double> getNodeMaterialInterval(const SimTK::State& state, int rope, int node) const;
+    /// The unit axis in Ground [-] the rope turns about over node k as it runs from its start
+    /// towards its end (right hand; Stage::Position): at a wrapped sheave its wrap sense about its
+    /// groove's axis (DeviationSheave::wrapSense times its axis in Ground; a TurningSheave or
+    /// TractionSheave: -sense times its pin axis); at a point sheave the turn between the chords
+    /// of spans k - 1 and k (their cross product, normalized; zero if they are parallel); at a
+    /// WinchDrum, point or wrapped, payoutSense times its pin axis at a start drum, -payoutSense
+    /// times it at an end drum; zero at a RopeAnchor. On a planar rope it is the plane normal or
+    /// its opposite (RopeSpec::planeNormal normalized; zero where the axis is in the plane). Two
+    /// bends of a rope section about opposite axes bend it to opposite sides (a reverse bend,
+    /// RopeLifeMonitor).
+    /// @throws std::invalid_argument if rope or node is out of range.
+    /// @throws std::logic_error if the state is not realized to Stage::Position.
+    SimTK::Vec3 getNodeBendAxis(const SimTK::State& state, int rope, int node) const;
+    /// The rope stored at node k [m] (Stage::Position), >= 0 while the drum has rope: at a
+    /// WinchDrum the rope on it beyond its tangent point (WinchDrumHandle::getRopeOnDrum:
+    /// ropeOnDrum + s_0 at a start drum, ropeOnDrum + L - s_N at an end drum); 0 at every other
+    /// node. The rope's material runs from s_0 - getStoredRope(0) to s_N + getStoredRope(N).
+    /// @throws std::invalid_argument if rope or node is out of range.
+    /// @throws std::logic_error if the state is not realized to Stage::Position.
+    double getStoredRope(const SimTK::State& state, int rope, int node) const;
     /// The fleet angles gamma [rad] of a span (Stage::Position): at its start and at its end, the
     /// angle between the span and the groove's plane of the wrapped sheave it leaves or reaches
     /// (positive towards the groove's axis), asin(u . n) with u the span's direction; 0 at point

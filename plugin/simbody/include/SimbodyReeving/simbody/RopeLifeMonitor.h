@@ -104,8 +104,10 @@ struct RopeDamageEstimate {
 /// The rope is divided into sections of unstretched length l_s (RopeLifeOptions::sectionLength):
 /// section i covers material coordinates [s_min + i l_s, s_min + (i + 1) l_s), s_min the smallest
 /// material coordinate of the rope at the first sample (with rope on a start drum: the drum's
-/// stored rope included), up to the largest (the last section may be shorter). Each node has an
-/// interval of material coordinates:
+/// stored rope included, ReevingSubsystem::getStoredRope), up to the largest (the last section
+/// may be shorter). Each node that bends the rope (ReevingSubsystem::getNodeRadius > 0: every
+/// node but an anchor) has an interval of material coordinates
+/// (ReevingSubsystem::getNodeMaterialInterval):
 ///   - a sheave k (DeviationSheave, TurningSheave, TractionSheave): [s_a, s_b], s_a the end of
 ///     span k - 1 (the arrival tangent point of a wrapped sheave) and s_b the start of span k (the
 ///     departure tangent point); at a point sheave s_a = s_b, so a pass is one crossing;
@@ -133,8 +135,8 @@ struct RopeDamageEstimate {
 /// bend counts as First and the next is compared with the one before it); at a wrapped sheave its wrap sense (SheaveModel::Wrapped:
 /// DeviationSheave::wrapSense about the plane normal or the groove's axis, -sense times the pin
 /// axis for a TurningSheave or TractionSheave); at a drum the pin axis times +payoutSense at the
-/// start, -payoutSense at the end. A bend whose b points against that of the section's previous bend
-/// (b . b_prev < 0) is a reverse bend and both its halves count reverseBendFactor times; a planar
+/// start, -payoutSense at the end (ReevingSubsystem::getNodeBendAxis). A bend whose b points
+/// against that of the section's previous bend (b . b_prev < 0) is a reverse bend and both its halves count reverseBendFactor times; a planar
 /// rope keeps its sides (b = +-n), on a spatial rope b is compared in Ground (the rope's twist
 /// between the sheaves is not modelled). A section on a node at the first sample carries that
 /// node's sense as its previous bend.
@@ -212,7 +214,6 @@ private:
     RopeLifeOptions options_;
     std::vector<int> watchedNodes_;       // node indices of sheaves and drums
     std::vector<double> diameterRatios_;  // D/d per watched node
-    SimTK::Vec3 planeNormal_{0};
     double sMin_ = 0, sMax_ = 0;
     int numSamples_ = 0;
     double lastTime_ = 0;
