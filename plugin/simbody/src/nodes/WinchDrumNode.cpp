@@ -2,6 +2,7 @@
 // (StoredRopeRole, DrivenRole.h: its declaration to the rope model, its limit and its query).
 
 #include "PinnedNode.h"
+#include "SimbodyReeving/element/WalkingGroove.h"
 
 #include <cmath>
 #include <string>
@@ -44,17 +45,21 @@ NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNorma
     // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus sigma R
     // phi); the stored rope is the rest.
     NodeWrap w = grippingSheaveWrap(site, kName, planeNormal, true);
-    if (site.spec.pitch != 0) {
-        // x = p (Y - s_ref) / (2 pi R) along the pin axis, Y = s_ref + g(theta): stored rope
-        // grows with Y at the start and as Y falls at the end.
+    const double pitch = site.spec.pitch;
+    if (pitch != 0) {
+        // A drum that spools across its width, a WalkingGroove: x = p (Y - s_ref) / (2 pi R)
+        // along the pin axis, Y = s_ref + g(theta): stored rope grows with Y at the start and as
+        // Y falls at the end.
         const RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
         const double toward = site.node == 0 ? 1.0 : -1.0;
         const SimTK::Vec3 pinAxis = referenceOrientation(site.spec.body.getParentMobilizedBody()) *
                                     site.spec.body.getDefaultInboardFrame().R().z();
         // (NodeWrap::axis is the pin axis in Ground at the reference, or its opposite.)
         const double along = SimTK::dot(pinAxis, SimTK::Vec3(w.axis[0], w.axis[1], w.axis[2])) > 0 ? 1.0 : -1.0;
-        w.layRate = along * toward * site.spec.pitch / (2 * SimTK::Pi * site.spec.radius);
-        w.layOffset = -w.layRate * d.sRef;
+        WalkingGroove walking;
+        walking.dxdY = along * toward * pitch / (2 * SimTK::Pi * site.spec.radius);
+        walking.x0 = -walking.dxdY * d.sRef;
+        w.groove.unit = walking;
     }
     return w;
 }
