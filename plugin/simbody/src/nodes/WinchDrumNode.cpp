@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <variant>
 
 namespace SimbodyReeving {
 namespace detail {
@@ -14,7 +15,7 @@ void WinchDrumNode::validate(const NodeSite& site) {
     validatePinnedNode(site);
     const double stored = site.spec.ropeOnDrum;
     if (!std::isfinite(stored) || stored < 0) invalid(mustBe(site.name + " ropeOnDrum [m]", stored, "finite and >= 0"));
-    const double pitch = site.spec.pitch;
+    const double pitch = std::get<WinchDrum>(site.rope.spec.node(site.node)).pitch;
     if (!std::isfinite(pitch) || !(std::abs(pitch) < 2 * SimTK::Pi * site.spec.radius))
         invalid(mustBe(site.name + " pitch [m]", pitch, "finite and |pitch| < 2 pi radius"));
     if (pitch != 0 && (site.rope.spec.sheaveModel != SheaveModel::Wrapped || site.rope.spec.planeNormal.norm() > 0))
@@ -45,7 +46,7 @@ NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNorma
     // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus sigma R
     // phi); the stored rope is the rest.
     NodeWrap w = grippingSheaveWrap(site, kName, planeNormal, true);
-    const double pitch = site.spec.pitch;
+    const double pitch = std::get<WinchDrum>(site.rope.spec.node(site.node)).pitch;
     if (pitch != 0) {
         // A drum that spools across its width, a WalkingGroove: x = p (Y - s_ref) / (2 pi R)
         // along the pin axis, Y = s_ref + g(theta): stored rope grows with Y at the start and as
