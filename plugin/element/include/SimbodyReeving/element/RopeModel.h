@@ -98,7 +98,7 @@ struct NodeWrap {
     /// CentredGroove: x = 0. A unit off the centre needs a wrapped Driven end node of a spatial
     /// rope (a drum: its one tangent point leaves the groove at c + x n; the stored rope's ring
     /// stays at the node's position).
-    GroovePlacement groove;
+    GroovePlacement groove{};
 };
 
 template <int Dim>
