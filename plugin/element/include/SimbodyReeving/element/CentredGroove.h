@@ -9,7 +9,7 @@ namespace SimbodyReeving {
 /// axial offset x = 0 [m] whatever the node's driven coordinate Y. Every node, point or wrapped,
 /// planar or spatial; no parameters.
 struct CentredGroove {
-    static constexpr const char* kName = "centred";
+    static constexpr const char* kName = "centred";  ///< the unit's name in messages
     /// x does not depend on Y: the station map adds no Y columns and no lay terms for it.
     static constexpr bool kFollowsDriven = false;
     /// x = 0 identically: the node may be any node (GroovePlacement).

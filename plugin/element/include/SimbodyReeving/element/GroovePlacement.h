@@ -22,7 +22,7 @@ namespace SimbodyReeving {
 /// rope (RopeModel<3>: a drum, whose one tangent point follows the groove; the node block's centre
 /// c and the stored rope's ring stay at the node's position). Default: CentredGroove.
 struct GroovePlacement {
-    std::variant<CentredGroove, WalkingGroove> unit;
+    std::variant<CentredGroove, WalkingGroove> unit;  ///< the unit (its registration: this list)
 };
 
 /// A placement's x, dx/dY and d2x/dY2 at one Y.
@@ -32,17 +32,21 @@ struct GrooveLay {
     double ddx = 0;  ///< [1/m]
 };
 
-/// A trait of the placement's unit: e.g. placementTrait(p, [](auto u) { return decltype(u)::kName; }).
+/// A trait of the placement's unit, trait(unit type{}): e.g. the name, a lambda returning the
+/// unit type's kName.
 template <class Trait>
 auto placementTrait(const GroovePlacement& p, const Trait& trait) {
     return std::visit([&](const auto& u) { return trait(std::decay_t<decltype(u)>{}); }, p.unit);
 }
+/// The unit's kName.
 inline const char* placementName(const GroovePlacement& p) {
     return placementTrait(p, [](auto u) { return decltype(u)::kName; });
 }
+/// The unit's kFollowsDriven: x depends on the driven coordinate Y.
 inline bool followsDriven(const GroovePlacement& p) {
     return placementTrait(p, [](auto u) { return decltype(u)::kFollowsDriven; });
 }
+/// The unit's kAtCentre: x = 0 identically.
 inline bool isAtCentre(const GroovePlacement& p) {
     return placementTrait(p, [](auto u) { return decltype(u)::kAtCentre; });
 }

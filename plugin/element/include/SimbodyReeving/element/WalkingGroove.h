@@ -21,9 +21,9 @@ namespace SimbodyReeving {
 /// no second layer); the stored rope's ring stays at the node's position (RopeModel::setStoredRope).
 /// For a wrapped Driven end node of a spatial rope (a winch drum, GroovePlacement).
 struct WalkingGroove {
-    static constexpr const char* kName = "walking";
-    static constexpr bool kFollowsDriven = true;
-    static constexpr bool kAtCentre = false;
+    static constexpr const char* kName = "walking";  ///< the unit's name in messages
+    static constexpr bool kFollowsDriven = true;     ///< x depends on Y: a Driven node
+    static constexpr bool kAtCentre = false;         ///< off the centre: a drum (GroovePlacement)
 
     double x0 = 0;    ///< x at Y = 0 [m], finite
     double dxdY = 0;  ///< the groove's axial advance per unit of Y [-], finite
