@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <variant>
 
 using namespace SimbodyReeving;
 using Eigen::Vector2d;
@@ -183,8 +184,9 @@ TEST(WrapStationMap, SpatialJacobianAndBiasMatchFiniteDifferences) {
 // xdot = J Ydot and xddot = J Yddot + b against 4th-order differences of x(t) (h = 1e-3 s) for a
 // turning sheave between two points and for a turning sheave next to a fixed-axis one (their
 // circle-to-circle tangent), fleet angles of several degrees; and drums whose groove walks along
-// their axis as rope is stored (NodeWrap::layRate: the centre c + (x0 + x' Y) n moves with the
-// drum's coordinate Y, and with n where the axis turns). Bounds as the fixed-axis test's.
+// their axis as rope is stored (NodeWrap::groove a WalkingGroove: the centre c + (x0 + x' Y) n
+// moves with the drum's coordinate Y, and with n where the axis turns). Bounds as the fixed-axis
+// test's.
 TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
     const RopeProperties props{1.0, 1e6, 0.0};
     struct Turning {
@@ -204,8 +206,7 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
         return w;
     };
     auto layWrap = [](NodeWrap w) {
-        w.layRate = 0.2;
-        w.layOffset = 0.1;
+        w.groove.unit = WalkingGroove{0.1, 0.2};
         return w;
     };
     const Eigen::Vector3d tilted = Eigen::Vector3d(0.12, 0.05, 1.0).normalized();
@@ -224,7 +225,7 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
          {{-1.0, 0.0, 0.3}, {0.2, -2.0, 0.0}, {1.2, 0.1, -0.2}},
          {{1, Eigen::Vector3d(0.6, 0.3, 0.2).normalized(), 0.8, -0.6}},
          {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed}},
-        // Drums that spool across their width (NodeWrap::layRate): the groove x = 0.1 + 0.2 Y
+        // Drums that spool across their width (WalkingGroove): the groove x = 0.1 + 0.2 Y
         // along the axis from the drum's centre, the axis fixed (to a hanging end) and turning (to
         // a tilted sheave).
         {{layWrap(wrap3(0.4, 1, tilted)), NodeWrap{}},
@@ -295,7 +296,7 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
         largestFleet = std::max({largestFleet, d.startFleetAngles.cwiseAbs().maxCoeff(), d.endFleetAngles.cwiseAbs().maxCoeff()});
         // A walking groove's tangent point lies x = 0.1 + 0.2 Y along the axis from the centre.
         for (int k = 0; k < rope.numNodes(); ++k) {
-            if (rope.grooveLayRate(k) == 0) continue;
+            if (!std::holds_alternative<WalkingGroove>(rope.groovePlacement(k).unit)) continue;
             const Eigen::Vector3d c = Y.segment<3>(3 * k), T = d.x.segment<3>(rope.nodeCoordinateOffset(k) +
                                                                                    RopeModel<3>::wrappedDepartureOffset());
             const int a = rope.axisStation(k);
@@ -318,8 +319,8 @@ TEST(WrapStationMap, TurningGrooveAxesJacobianAndBiasMatchFiniteDifferences) {
     EXPECT_LT(worstAcceleration, 1e-7);
 }
 
-// A groove lay (a drum spooling across its width): only at a wrapped Driven end node of a spatial
-// rope, finite.
+// A walking groove (a drum spooling across its width): only at a wrapped Driven end node of a
+// spatial rope, finite.
 TEST(WrapStationMap, GrooveLaysAreForWrappedDrumsOfSpatialRopes) {
     const RopeProperties props{1.0, 1e6, 0.0};
     auto spans3 = [&]() {
@@ -328,25 +329,25 @@ TEST(WrapStationMap, GrooveLaysAreForWrappedDrumsOfSpatialRopes) {
         return spans;
     };
     NodeWrap drum = wrap3(0.3, 1, Eigen::Vector3d::UnitZ());
-    drum.layRate = 0.01;
+    drum.groove.unit = WalkingGroove{0.0, 0.01};
     const std::vector<MaterialNode> kinds{MaterialNode::Driven, MaterialNode::Sliding, MaterialNode::Fixed};
     const RopeModel<3> rope(spans3(), 20.0, kinds, {drum, NodeWrap{}, NodeWrap{}});
-    EXPECT_EQ(rope.grooveLayRate(0), 0.01);
-    EXPECT_EQ(rope.grooveLayRate(1), 0.0);
+    EXPECT_EQ(std::get<WalkingGroove>(rope.groovePlacement(0).unit).dxdY, 0.01);
+    EXPECT_TRUE(std::holds_alternative<CentredGroove>(rope.groovePlacement(1).unit));
     const char* where = "needs a wrapped Driven end node of a spatial rope";
     EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, {MaterialNode::Fixed, MaterialNode::Driven, MaterialNode::Fixed},
                                       {NodeWrap{}, drum, NodeWrap{}}),
                          std::invalid_argument, where);
     NodeWrap point;
-    point.layOffset = 0.2;
+    point.groove.unit = WalkingGroove{0.2, 0.0};
     EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, kinds, {point, NodeWrap{}, NodeWrap{}}), std::invalid_argument, where);
     std::vector<SpanModel<2>> planar;
     for (int j = 0; j < 2; ++j) planar.emplace_back(props, spanOptions(0, 0), Vector2d(0.0, -kG));
     NodeWrap planarDrum = wrap(0.3, 1);
-    planarDrum.layRate = 0.01;
+    planarDrum.groove.unit = WalkingGroove{0.0, 0.01};
     EXPECT_THROW_MESSAGE(RopeModel<2>(std::move(planar), 20.0, kinds, {planarDrum, NodeWrap{}, NodeWrap{}}),
                          std::invalid_argument, where);
-    drum.layRate = std::nan("");
+    drum.groove.unit = WalkingGroove{0.0, std::nan("")};
     EXPECT_THROW_MESSAGE(RopeModel<3>(spans3(), 20.0, kinds, {drum, NodeWrap{}, NodeWrap{}}), std::invalid_argument,
                          "must be finite");
 }

@@ -145,23 +145,26 @@ RopeModel<Dim>::RopeModel(std::vector<SpanModel<Dim>> spans, double unstretchedL
     nodeOffset_.assign(N + 2, 0);
     grooveAxes_.assign(N + 1, Eigen::Vector3d::UnitZ());
     axisStation_.assign(N + 1, -1);
-    layRate_.assign(N + 1, 0.0);
-    layOffset_.assign(N + 1, 0.0);
+    placements_.assign(N + 1, GroovePlacement{});
     for (int k = 0; k <= N; ++k) {
         const NodeWrap& wrap = wraps[k];
-        if (!std::isfinite(wrap.layRate) || !std::isfinite(wrap.layOffset)) {
-            std::ostringstream msg;
-            msg << "RopeModel: node " << k << "'s lay (layRate = " << wrap.layRate << ", layOffset = " << wrap.layOffset
-                << " m) must be finite";
-            throw std::invalid_argument(msg.str());
+        // The groove placement's registration with its node: the unit checks its parameters; one
+        // off the node's centre needs a drum (a wrapped end node is Driven: its single tangent
+        // point follows the groove, Y its driven coordinate; a sheave's arc and every node block's
+        // centre stay at the node's position).
+        try {
+            validatePlacement(wrap.groove);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("RopeModel: node " + std::to_string(k) + ": " + e.what());
         }
-        if (wrap.layRate != 0 || wrap.layOffset != 0) {
-            if (Dim != 3 || !(wrap.radius > 0) || (k != 0 && k != N) || !detail::isDrum(laws_[k]))
-                throw std::invalid_argument("RopeModel: node " + std::to_string(k) +
-                                            ": a groove lay (NodeWrap::layRate, layOffset: a drum spooling across its "
-                                            "width) needs a wrapped Driven end node of a spatial rope (RopeModel<3>)");
-            layRate_[k] = wrap.layRate;
-            layOffset_[k] = wrap.layOffset;
+        if (!isAtCentre(wrap.groove)) {
+            if (Dim != 3 || !(wrap.radius > 0) || (k != 0 && k != N) || !detail::isDrum(laws_[k]) ||
+                (followsDriven(wrap.groove) && !detail::hasExternalCoordinate(laws_[k])))
+                throw std::invalid_argument("RopeModel: node " + std::to_string(k) + ": a " +
+                                            placementName(wrap.groove) +
+                                            " groove (NodeWrap::groove, off the node's centre) needs a wrapped "
+                                            "Driven end node of a spatial rope (RopeModel<3>)");
+            placements_[k] = wrap.groove;
         }
         if (!std::isfinite(wrap.radius) || wrap.radius < 0) {
             std::ostringstream msg;

@@ -47,8 +47,9 @@ struct StoredRopeTerms {
 ///     U = -rhoA l g . c + rhoA |g| sigma kappa R^2 (sin phi - sin psi_e),
 /// u(psi) = cos psi up + sin psi n x up, |g| the magnitude of gravity in the groove's plane. The
 /// last terms are the partial turn's: the energy of a full turn does not depend on where the drum
-/// stands. These are exact for a single layer of any number of turns in the groove's plane (no
-/// pitch across the drum), with the axis constant (a drum whose body keeps its orientation).
+/// stands. These are exact for a single layer of any number of turns in the groove's plane (the
+/// ring does not advance across the drum), with the axis constant (a drum whose body keeps its
+/// orientation).
 ///
 /// **Wrapped drum whose axis turns** (Dim = 3, setTurningAxis: a drum on a slewing or luffing
 /// body; n = a - c from an axis station a, |n| = 1): the stored rope turns rigidly with the drum.

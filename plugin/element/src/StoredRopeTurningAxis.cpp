@@ -44,8 +44,8 @@ void StoredRope<3>::evaluateTurningAxis(const Eigen::VectorXd& x, const Eigen::V
 
     // The tangent point's radial e, f = n x e, and the stored arc from there: length l, turned by
     // Delta = -sigma kappa l / R about n (u(t) = cos t e + sin t f, dlambda = -sigma kappa R dt).
-    // (T - c projected onto the groove's plane: a drum that spools across its width has its
-    // tangent point along n from c, NodeWrap::layRate; the stored ring stays in c's plane.)
+    // (T - c projected onto the groove's plane: a drum's groove placement may put its tangent
+    // point along n from c, NodeWrap::groove; the stored ring stays in c's plane.)
     const AdVec3 r = T - c;
     const AdVec3 e = (r - n * n.dot(r)) / R, f = cross(n, e);
     const Ad l = lengthAtZero_ + kappa * sk;

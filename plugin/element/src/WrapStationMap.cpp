@@ -95,16 +95,18 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         const int a = rope.axisStation(k);
         return lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * a) - stationRates.template segment<Dim>(Dim * k)));
     };
-    // A drum spooling across its width: its groove lies x = layOffset + layRate Y along the axis
-    // from the node's position (NodeWrap::layRate), Y its driven coordinate.
+    // Where the groove circle lies: x(Y) along the axis from the node's position (its
+    // GroovePlacement, NodeWrap::groove), Y its driven coordinate (read only by a placement that
+    // follows it: such a node is Driven), with dx/dY and d2x/dY2. A centred groove's x = 0.
     auto drivenColumn = [&](int k) { return Dim * numStations + rope.drivenIndex(k); };
+    auto follows = [&](int k) { return followsDriven(rope.groovePlacement(k)); };
     auto lay = [&](int k) {
-        if (rope.grooveLayRate(k) == 0 && rope.grooveLayOffset(k) == 0) return 0.0;
-        return rope.grooveLayOffset(k) + rope.grooveLayRate(k) * stations[drivenColumn(k)];
+        if (isAtCentre(rope.groovePlacement(k))) return GrooveLay{};
+        return layAt(rope.groovePlacement(k), follows(k) ? stations[drivenColumn(k)] : 0.0);
     };
     auto groove = [&](int k) {
         GrooveCircle g;
-        g.centre = lift<Dim>(station(k)) + lay(k) * axis(k);
+        g.centre = lift<Dim>(station(k)) + lay(k).x * axis(k);
         g.axis = axis(k);
         g.radius = rope.arc(k).radius();
         g.wrapSense = rope.arc(k).wrapSense();
@@ -154,14 +156,19 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
                 mb.velocity = lift<Dim>(Vec(stationRates.template segment<Dim>(Dim * (j + 1))));
                 ma.axisRate = axisRate(j);
                 mb.axisRate = axisRate(j + 1);
-                // A walking groove's centre c + x n moves at cdot + x' Ydot n + x ndot, and
-                // accelerates by 2 x' Ydot ndot with the stations' and Y's second derivatives 0.
+                // A groove's centre c + x(Y) n moves at cdot + x' Ydot n + x ndot, and accelerates
+                // by 2 x' Ydot ndot + x'' Ydot^2 n with the stations' and Y's second derivatives 0
+                // (their shares are J's columns); a placement that does not follow Y moves with n only.
                 for (auto [node, motion] : {std::pair<int, EndMotion*>{j, &ma}, std::pair<int, EndMotion*>{j + 1, &mb}}) {
-                    const double rate = rope.grooveLayRate(node);
-                    if (rate == 0 && rope.grooveLayOffset(node) == 0) continue;
+                    if (isAtCentre(rope.groovePlacement(node))) continue;
+                    const GrooveLay g = lay(node);
+                    if (!follows(node)) {
+                        motion->velocity += g.x * motion->axisRate;
+                        continue;
+                    }
                     const double ydot = stationRates[drivenColumn(node)];
-                    motion->velocity += rate * ydot * axis(node) + lay(node) * motion->axisRate;
-                    motion->acceleration = 2 * rate * ydot * motion->axisRate;
+                    motion->velocity += g.dx * ydot * axis(node) + g.x * motion->axisRate;
+                    motion->acceleration = 2 * g.dx * ydot * motion->axisRate + g.ddx * ydot * ydot * axis(node);
                 }
                 computeTangencyRates(a, b, t, ma, mb, rates);
             }
@@ -177,19 +184,20 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
         // Dim coordinates of the points and the stations of nodes j (columns 0..) and j + 1 (6..).
         // A turning axis n = a - c: its columns (3.. and 9..) go to the axis station (+) and the
         // centre (-).
-        // A walking groove's centre c + x n (x = layOffset + layRate Y; n = a - c where the axis
-        // turns) adds layRate n to Y's column, and moves x of the centre's column to the axis
+        // A groove's centre c + x(Y) n (n = a - c where the axis turns) adds x'(Y) n to Y's
+        // column where its placement follows Y, and moves x of the centre's column to the axis
         // station's.
         auto rowsOver = [&](int row, double scale, int r) {
             for (const auto& [node, column] : {std::pair<int, int>{j, 0}, std::pair<int, int>{j + 1, 6}}) {
                 const Eigen::Matrix<double, 1, Dim> Jc = scale * Jt.template block<1, Dim>(row, column);
-                const double x = lay(node);
+                const GrooveLay g = lay(node);
+                const double x = g.x;
                 const int as = rope.axisStation(node);
                 data.jacobian.template block<1, Dim>(r, Dim * node) += (as >= 0 ? 1 - x : 1.0) * Jc;
                 if (as >= 0 && x != 0) data.jacobian.template block<1, Dim>(r, Dim * as) += x * Jc;
-                if (rope.grooveLayRate(node) != 0)
+                if (follows(node) && g.dx != 0)
                     data.jacobian(r, drivenColumn(node)) +=
-                        rope.grooveLayRate(node) * scale * Jt.template block<1, 3>(row, column).dot(axis(node));
+                        g.dx * scale * Jt.template block<1, 3>(row, column).dot(axis(node));
             }
             for (const auto& [node, column] : {std::pair<int, int>{j, 3}, std::pair<int, int>{j + 1, 9}}) {
                 const int as = rope.axisStation(node);

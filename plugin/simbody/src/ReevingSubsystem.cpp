@@ -60,7 +60,6 @@ NodeSpec toNodeSpec(const RopeNode& node) {
             n.radius = w.radius;
             n.sense = w.payoutSense;
             n.ropeOnDrum = w.ropeOnDrum;
-            n.pitch = w.pitch;
         }
         void operator()(const TurningSheave& t) const {
             n.kind = NodeKind::TurningSheave;

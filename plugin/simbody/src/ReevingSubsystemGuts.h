@@ -61,7 +61,6 @@ struct NodeSpec {
     int sense = 1;              // WinchDrum: payoutSense; TurningSheave, TractionSheave: sense;
                                 // DeviationSheave: wrapSense
     double ropeOnDrum = 0;      // WinchDrum [m]
-    double pitch = 0;           // WinchDrum [m]
     double materialCoordinateAtZeroAngle = 0;  // TurningSheave, TractionSheave [m]
     double frictionCoefficient = 0;            // TractionSheave [-]
     double wrapAngle = 0;                      // TractionSheave [rad]; 0: from the geometry

@@ -3,10 +3,12 @@
 
 #include "NodeBend.h"
 #include "PinnedNode.h"
+#include "SimbodyReeving/element/WalkingGroove.h"
 
 #include <cmath>
 #include <limits>
 #include <string>
+#include <variant>
 
 namespace SimbodyReeving {
 namespace detail {
@@ -15,7 +17,7 @@ void WinchDrumNode::validate(const NodeSite& site) {
     validatePinnedNode(site);
     const double stored = site.spec.ropeOnDrum;
     if (!std::isfinite(stored) || stored < 0) invalid(mustBe(site.name + " ropeOnDrum [m]", stored, "finite and >= 0"));
-    const double pitch = site.spec.pitch;
+    const double pitch = std::get<WinchDrum>(site.rope.spec.node(site.node)).pitch;
     if (!std::isfinite(pitch) || !(std::abs(pitch) < 2 * SimTK::Pi * site.spec.radius))
         invalid(mustBe(site.name + " pitch [m]", pitch, "finite and |pitch| < 2 pi radius"));
     if (pitch != 0 && (site.rope.spec.sheaveModel != SheaveModel::Wrapped || site.rope.spec.planeNormal.norm() > 0))
@@ -46,17 +48,21 @@ NodeWrap WinchDrumNode::wrap(const NodeSite& site, const SimTK::Vec3& planeNorma
     // The rope leaves the drum at its tangent point (s_0 or s_N there: the drum's s plus sigma R
     // phi); the stored rope is the rest.
     NodeWrap w = grippingSheaveWrap(site, kName, planeNormal, true);
-    if (site.spec.pitch != 0) {
-        // x = p (Y - s_ref) / (2 pi R) along the pin axis, Y = s_ref + g(theta): stored rope
-        // grows with Y at the start and as Y falls at the end.
+    const double pitch = std::get<WinchDrum>(site.rope.spec.node(site.node)).pitch;
+    if (pitch != 0) {
+        // A drum that spools across its width, a WalkingGroove: x = p (Y - s_ref) / (2 pi R)
+        // along the pin axis, Y = s_ref + g(theta): stored rope grows with Y at the start and as
+        // Y falls at the end.
         const RopeRecord::DrivenNode& d = site.rope.driven[site.rope.drivenIndex(site.node)];
         const double toward = site.node == 0 ? 1.0 : -1.0;
         const SimTK::Vec3 pinAxis = referenceOrientation(site.spec.body.getParentMobilizedBody()) *
                                     site.spec.body.getDefaultInboardFrame().R().z();
         // (NodeWrap::axis is the pin axis in Ground at the reference, or its opposite.)
         const double along = SimTK::dot(pinAxis, SimTK::Vec3(w.axis[0], w.axis[1], w.axis[2])) > 0 ? 1.0 : -1.0;
-        w.layRate = along * toward * site.spec.pitch / (2 * SimTK::Pi * site.spec.radius);
-        w.layOffset = -w.layRate * d.sRef;
+        WalkingGroove walking;
+        walking.dxdY = along * toward * pitch / (2 * SimTK::Pi * site.spec.radius);
+        walking.x0 = -walking.dxdY * d.sRef;
+        w.groove.unit = walking;
     }
     return w;
 }

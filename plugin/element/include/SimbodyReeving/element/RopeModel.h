@@ -4,6 +4,7 @@
 /// sheave tension-equality constraint (paper eq 32) by coordinate partitioning, and the rope's
 /// dynamics reduced to its node accelerations (for an exact coupling with rigid bodies).
 
+#include "SimbodyReeving/element/GroovePlacement.h"
 #include "SimbodyReeving/element/SpanModel.h"
 
 #include <Eigen/Core>
@@ -91,18 +92,13 @@ struct NodeWrap {
     /// rope turns and tumbles with the drum, setStoredRope); not a Slipping node. Not for planar
     /// ropes.
     bool turningAxis = false;
-    /// Dim = 3, a wrapped Driven end node (a drum that spools across its width): the exit point
-    /// walks along the groove's axis as rope is stored. The groove circle the span leaves lies
-    ///   x = layOffset + layRate Y  [m]
-    /// along n from the node's position, Y the node's driven coordinate (the material coordinate
-    /// at the drum's "up", RopeModel's s_driven). A drum with pitch p (the axial advance per turn,
-    /// about the rope's diameter) and radius R has layRate = +-p / (2 pi R) (the sign: the way the
-    /// exit point walks as rope is stored); the tangent point's roll (sigma R phi) does not move
-    /// it, so a swinging fall shifts the exit point by less than p |delta phi| / (2 pi) from the
-    /// groove's helix. The stored rope's ring stays at the node's position. layRate [-] and
-    /// layOffset [m] finite; 0 (the default): the groove stays at the node's position.
-    double layRate = 0;
-    double layOffset = 0;  ///< see layRate [m]
+    /// Where the groove circle lies along n from the node's position: x(Y) [m], Y the node's
+    /// driven coordinate (the material coordinate at the groove's "up", RopeModel's s_driven); one
+    /// of the units of GroovePlacement (GroovePlacement.h), checked by the unit. The default,
+    /// CentredGroove: x = 0. A unit off the centre needs a wrapped Driven end node of a spatial
+    /// rope (a drum: its one tangent point leaves the groove at c + x n; the stored rope's ring
+    /// stays at the node's position).
+    GroovePlacement groove{};
 };
 
 template <int Dim>
@@ -291,10 +287,9 @@ public:
     /// The column of node k's axis station in the NodeMatrix forms' node arguments (N + 1 + its
     /// index among the turning nodes), or -1 if its axis does not turn.
     int axisStation(int node) const { return axisStation_[node]; }
-    /// The groove's lay of node k: x = layOffset + layRate Y along its axis (NodeWrap::layRate;
-    /// 0 and 0 where the groove does not walk).
-    double grooveLayRate(int node) const { return layRate_[node]; }
-    double grooveLayOffset(int node) const { return layOffset_[node]; }  ///< [m], see grooveLayRate
+    /// Where node k's groove circle lies along its axis (NodeWrap::groove; CentredGroove at
+    /// point nodes and where none was given).
+    const GroovePlacement& groovePlacement(int node) const { return placements_[node]; }
     int numWrappedNodes() const;  ///< nodes with a groove arc
     /// The rope on the groove of wrapped node k (its mass, radius and sense).
     /// @throws std::invalid_argument if node is not wrapped.
@@ -623,7 +618,7 @@ private:
     std::vector<int> arcIndex_, arcNode_;  // node -> arc index or -1; arc -> node
     std::vector<int> nodeOffset_;          // node -> first external coordinate of its block
     std::vector<Eigen::Vector3d> grooveAxes_;  // node -> its groove's axis (+z at point nodes and in 2D)
-    std::vector<double> layRate_, layOffset_;    // node -> NodeWrap::layRate, layOffset
+    std::vector<GroovePlacement> placements_;  // node -> NodeWrap::groove
     std::vector<int> axisStation_;             // node -> its axis station's column, or -1 (NodeWrap::turningAxis)
     int numAxisStations_ = 0;
     int numNodeCoordinates_ = 0;

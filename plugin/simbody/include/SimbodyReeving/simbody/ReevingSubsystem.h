@@ -140,8 +140,9 @@ struct WinchDrum {
     /// along the axis from `centre`, s_top the material coordinate at the drum's top (the drum's
     /// turns: s_0 = -sense R theta at the start, s_N = L + sense R theta at the end, the sign
     /// such that stored rope walks along +p); the tangent point's roll as the fall swings
-    /// (sigma R phi) does not move it (NodeWrap::layRate). One layer, of unbounded width: the
-    /// flanges and a second layer are not modelled. The stored rope stays a ring at `centre`.
+    /// (sigma R phi) does not move it (the element layer's WalkingGroove). One layer, of
+    /// unbounded width: the flanges and a second layer are not modelled. The stored rope stays a
+    /// ring at `centre`.
     /// 0 (the default): the rope leaves the drum in `centre`'s plane. Finite, |p| < 2 pi R.
     double pitch = 0;
 };
