@@ -40,6 +40,7 @@ using SimTK::Vec3;
 using SimTK::Vector;
 using SimTK::ZAxis;
 namespace sr = SimbodyReeving;
+using sr::detail::DrivenZBlock;
 using sr::detail::DrivenRole;
 using sr::detail::GripRole;
 using sr::detail::StoredRopeRole;
@@ -51,7 +52,9 @@ namespace {
 // What a role declares to a rope model (RopeModel::setStoredRope's (node, lengthAtZero)).
 struct StoredRopeRecorder {
     std::vector<std::pair<int, double>> declared;
+    std::vector<int> grips;
     void setStoredRope(int node, double lengthAtZero) { declared.emplace_back(node, lengthAtZero); }
+    void setGrip(int node) { grips.push_back(node); }
 };
 
 std::vector<TractionNodeState> phases(std::vector<sr::TractionMode> modes) {
@@ -92,6 +95,35 @@ TEST(DrivenRole, StoredRopeIsTheDrumsRopeBeyondTheExit) {
     DrivenRole{GripRole{}}.declareStoredRope(model, 0, L);
     DrivenRole{tractionRole(0, 0.2, Pi, sr::TractionSlip::CapstanConstraint)}.declareStoredRope(model, 1, L);
     EXPECT_EQ(model.declared.size(), 2u);
+    EXPECT_TRUE(model.grips.empty());  // a point drum does not grip
+}
+
+// A wrapped drum grips the rope (RopeModel::setGrip) and takes two Z entries: the wound rope's
+// strain energy among the work integrals, its creep among the states; the energy is potential.
+TEST(DrivenRole, WrappedDrumGripsAndHoldsItsCreepAndWoundEnergy) {
+    StoredRopeRole drum;
+    drum.ropeOnDrum = 3.0;
+    drum.grips = true;
+    StoredRopeRecorder model;
+    DrivenRole role{drum};
+    role.declareStoredRope(model, 0, 40.0);
+    ASSERT_EQ(model.grips, std::vector<int>{0});
+    int z = 7;
+    role.layoutZ(DrivenZBlock::Work, z);
+    EXPECT_EQ(z, 8);
+    role.layoutZ(DrivenZBlock::States, z);
+    EXPECT_EQ(z, 9);
+    SimTK::Vector zv(9, 0.0);
+    zv[7] = 2.5;   // U_w [J]
+    zv[8] = 1e-3;  // c [m]
+    double u = 1.0;
+    role.addHeldEnergy(zv, u);
+    EXPECT_EQ(u, 3.5);
+    double entry = 0;
+    role.readZState(zv, false, entry);
+    EXPECT_EQ(entry, 1e-3);
+    EXPECT_TRUE(role.zStateMatches(zv, false, 1e-3));
+    EXPECT_FALSE(role.zStateMatches(zv, false, 0.0));
 }
 
 TEST(DrivenRole, TractionPhaseKeyIsTheCapstanRatioOfTheSlipsDirection) {

@@ -138,10 +138,11 @@ double swingPeriod(const Options& o, double* stretchedFall = nullptr) {
 // The period under a held drum equals the period over a frictionless wrapped sheave of the same
 // radius, at R / l = 0.01 and 0.05, each taken per square root of its fall's stretched length at
 // rest (the sheave's fall also holds the stretch of the 1 m on the anchor's side: 6e-5 of l).
-// Measured 3.0e-8 at both ratios (a ring at the rope's rate at the tangent point made it 3e-5 at
-// 0.01 and 3.6e-5 at 0.05); bound 1e-6 relative (the rope's sliding mass on the sheave's side adds
-// about rhoA (1 m + the arc) R^2 / (M l^2) < 2e-6 to the sheave's period, a little of it seen here;
-// the swing's amplitude adds theta^2 / 16 = 6e-8 to both).
+// Measured 4.5e-8 at 0.01 and 4.1e-7 at 0.05 (a ring at the rope's rate at the tangent point made
+// it 3e-5 and 3.6e-5; the groove carrying R of unstretched rope per radian, no grip, 6e-8 and
+// 7.8e-7). Bound 1e-5 relative, the issue's: the rope's sliding mass on the sheave's side adds
+// about rhoA (1 m + the arc) R^2 / (M l^2) < 2e-6 to the sheave's period, some of it seen here;
+// the swing's amplitude adds theta^2 / 16 = 6e-8 to both.
 TEST(WrappedDrumSwing, PeriodUnderAHeldDrumIsTheFrictionlessSheavesPeriod) {
     for (double ratio : {0.01, 0.05}) {
         Options o;
@@ -154,15 +155,17 @@ TEST(WrappedDrumSwing, PeriodUnderAHeldDrumIsTheFrictionlessSheavesPeriod) {
         std::printf("R / l = %.2f: held drum %.8f s (fall %.6f m), sheave %.8f s (fall %.6f m): per sqrt(l) %.2e; "
                     "2 pi sqrt(l / g) %.8f s\n",
                     ratio, drum, drumFall, sheave, sheaveFall, relative, 2 * Pi * std::sqrt(drumFall / kG));
-        EXPECT_LT(std::abs(relative), 1e-6) << "R / l = " << ratio;
+        EXPECT_LT(std::abs(relative), 1e-5) << "R / l = " << ratio;
     }
 }
 
 // The rope stored on a held drum does not move: 1 m or 300 m of a heavy rope (6 kg/m: 1.8 t of
 // it, more than the load) give the same period. The two runs differ in the stored rope alone, which
-// neither moves nor changes the forces on a held drum's neighbours: bound 1e-12 relative over the
-// round-off of the zero crossings (measured 1e-15); a ring at the rope's rate at the tangent point
-// made it 2.2e-3.
+// turns with the drum (at the groove's rate, not the rope's at the tangent point) and so neither
+// moves nor changes the forces on a held drum's neighbours: bound 1e-12 relative over the
+// round-off of the zero crossings (measured 1e-15; the issue asks 1e-5); a ring at the rope's
+// rate at the tangent point made it 2.2e-3, and a gripped rope whose ring took the material's
+// rate sdot = v / lambda 8.6e-10.
 TEST(WrappedDrumSwing, PeriodDoesNotDependOnTheRopeStoredOnAHeldDrum) {
     Options o;
     o.radius = 0.5;
@@ -214,14 +217,15 @@ Hoist hoistStraightUp(double ropeOnDrum) {
 }
 }  // namespace
 
-// A load hoisted straight up by a wrapped drum: the rope being wound on does not push it
-// sideways, however much rope the drum holds (1 m against 300 m of it, 1.8 t: the same sway to
-// 1e-12 m, measured 0; a ring at the rope's rate at the tangent point made the 300 m swing the
-// load by 0.19 m). What sway there is comes from the groove's material per radian being R of
-// unstretched rope (s = Y_s + sigma R phi): the load rests eps R off the vertical under the
-// tangent point, and that offset follows the strain where the rope leaves the drum as the hoist
-// loads it: the sway stays below R times the strain's largest change (measured 1.9e-5 m against
-// 1.3e-4 m; 1.9e-6 m with ten times the stiffness).
+// A load hoisted straight up by a wrapped drum does not sway: the drum grips the rope where it
+// leaves the groove (the material there moves with the groove's surface, sdot = v / lambda) and
+// the wound rope keeps its strain energy, so nothing pulls the tangent point round the drum; with
+// 1 m or 300 m on the drum (1.8 t) alike. Measured 1.2e-7 m for both (the groove carrying R of
+// unstretched rope per radian, s = Y_s + sigma R phi, left the load about eps R = 3e-4 m (computed) off the vertical
+// under the tangent point and swayed it 1.9e-5 m as the hoist changed the strain; a grip without
+// the wound rope's strain energy halved the offset and kept the sway; a ring at the rope's rate at
+// the tangent point made the 300 m sway 0.19 m). Bound 1e-6 m, the issue's (8x the measured sway,
+// 1/160 of the ungripped groove's); the two runs differ in the stored rope alone: 1e-12 m.
 TEST(WrappedDrumSwing, LoadHoistedStraightUpIsNotPushedSideways) {
     const Hoist little = hoistStraightUp(1.0), much = hoistStraightUp(300.0);
     const double R = 0.5;
@@ -229,5 +233,6 @@ TEST(WrappedDrumSwing, LoadHoistedStraightUpIsNotPushedSideways) {
                 much.lift, little.sway, much.sway, R * much.strainRange);
     EXPECT_NEAR(much.lift, Pi * R, 0.01);  // half a turn of the drum, less the rope's change of stretch
     EXPECT_LT(std::abs(much.sway - little.sway), 1e-12);
-    EXPECT_LT(much.sway, R * much.strainRange);
+    EXPECT_LT(much.sway, 1e-6);
+    EXPECT_LT(little.sway, 1e-6);
 }

@@ -703,6 +703,64 @@ void RopeModel<Dim>::setStoredRope(int node, double lengthAtZero) {
 }
 
 template <int Dim>
+void RopeModel<Dim>::setGrip(int node) {
+    const int N = numSpans();
+    if ((node != 0 && node != N) || !detail::isDrum(laws_[node]) || !isWrapped(node))
+        throw std::invalid_argument("RopeModel::setGrip: node " + std::to_string(node) +
+                                    " is not a wrapped Driven end node (a drum whose rope leaves at its tangent point)");
+    if (!grips(node)) gripNodes_.push_back(node);
+}
+
+template <int Dim>
+bool RopeModel<Dim>::grips(int node) const {
+    return std::find(gripNodes_.begin(), gripNodes_.end(), node) != gripNodes_.end();
+}
+
+namespace {
+// The creep c_k of Driven index d (RopeData::gripCreep; 0 if not given).
+template <int Dim>
+double gripCreepAt(const RopeData<Dim>& data, int d) {
+    return data.gripCreep.size() > d ? data.gripCreep[d] : 0.0;
+}
+// The span at gripping end node k and which of its ends is there.
+inline std::pair<int, SpanEnd> gripSpan(int node, int numSpans) {
+    return node == 0 ? std::pair<int, SpanEnd>{0, SpanEnd::First} : std::pair<int, SpanEnd>{numSpans - 1, SpanEnd::Second};
+}
+}  // namespace
+
+// The grip's velocity constraint (setGrip) on the station map of this evaluation: the node's row
+// of J and of xdot scaled by 1 / lambda (lambda from the positions, solved here if they are not),
+// the surface speed Ydot_s + sigma R phidot kept for the bias and the creep rate.
+template <int Dim>
+void RopeModel<Dim>::applyGripRates(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, RopeData<Dim>& data) const {
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    if (!positionsMatch(x, qm, data)) solveDependentCoordinatesFromExternal(x, qm, data);
+    WrapStationMapData& m = ws.stationMap;
+    data.gripCreepRates.setZero(numDriven_);
+    ws.gripSurfaceSpeeds.resize(static_cast<Eigen::Index>(gripNodes_.size()));
+    ws.gripInverseStretch.resize(static_cast<Eigen::Index>(gripNodes_.size()));
+    for (std::size_t g = 0; g < gripNodes_.size(); ++g) {
+        const int k = gripNodes_[g], d = drivenIndex_[k], row = numNodeCoordinates_ + d;
+        const auto [j, end] = gripSpan(k, numSpans());
+        const SpanModel<Dim>& span = elements_->spans[j];
+        const Eigen::VectorXd& q = ws.spanQ[j];
+        const double eps = span.strain(q, q[end == SpanEnd::First ? span.s1Index() : span.s2Index()]);
+        const double stretch2 = 1.0 + 2.0 * eps;
+        if (!(stretch2 > 0))
+            throw std::domain_error("RopeModel: the span at gripping node " + std::to_string(k) +
+                                    " is compressed to zero length at its end (stretch^2 = " + std::to_string(stretch2) + ")");
+        const double inv = 1.0 / std::sqrt(stretch2);
+        const double v = m.xdot[row];
+        ws.gripSurfaceSpeeds[static_cast<Eigen::Index>(g)] = v;
+        ws.gripInverseStretch[static_cast<Eigen::Index>(g)] = inv;
+        m.jacobian.row(row) *= inv;
+        m.xdot[row] = v * inv;
+        m.bias[row] *= inv;
+        data.gripCreepRates[d] = v * (inv - 1.0);
+    }
+}
+
+template <int Dim>
 void RopeModel<Dim>::setSlipRatio(int node, double kappa) {
     detail::SlippingLaw* law = node < 0 || node > numSpans() ? nullptr : std::get_if<detail::SlippingLaw>(&laws_[node].law);
     if (!law)
@@ -921,12 +979,79 @@ detail::StoredRope<Dim> storedRopeLaw(const RopeModel<Dim>& model, int k, double
 }
 }  // namespace
 
+// The grip's terms after the x-level dynamics (setGrip): the bias d(1/lambda)/dt v = -lambda^-3
+// epsdot v of the node's row, with epsdot the span's end-strain rate at the complete velocities of
+// this evaluation; and, unless the evaluation was a repeat (its results already carried to the
+// stations), the wound rope's strain energy and the stored ring at the groove's own rate.
+template <int Dim>
+void RopeModel<Dim>::applyGripTerms(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, bool repeated,
+                                    RopeData<Dim>& data) const {
+    detail::RopeWorkspace<Dim>& ws = data.ws();
+    if (!repeated) data.gripStrainEnergyRates.setZero(numDriven_);
+    for (std::size_t g = 0; g < gripNodes_.size(); ++g) {
+        const int k = gripNodes_[g], d = drivenIndex_[k], row = numNodeCoordinates_ + d;
+        const auto [j, end] = gripSpan(k, numSpans());
+        const SpanModel<Dim>& span = elements_->spans[j];
+        EndStrain<Dim> e;
+        span.endStrain(ws.spanQ[j], ws.spanQdot[j], end, e);
+        const double inv = ws.gripInverseStretch[static_cast<Eigen::Index>(g)];
+        const double v = ws.gripSurfaceSpeeds[static_cast<Eigen::Index>(g)];
+        ws.stationMap.bias[row] -= inv * inv * inv * e.rate * v;
+        if (repeated) continue;
+        // The wound rope keeps the strain it had at the tangent point: U_w grows by w = EA F(eps)
+        // per metre of material stored, dU_w/dt = kappa w sdot_k (kappa = +1 at a start drum,
+        // -1 at an end drum), a generalized force -kappa w on s_k.
+        const double kappa = k == 0 ? 1.0 : -1.0;
+        const double w = span.axialLaw().EA * span.axialLaw().F(e.strain);
+        data.nodeForce[row] -= kappa * w;
+        data.gripStrainEnergyRates[d] = kappa * w * v * inv;
+        // The stored ring turns with the groove: its law is evaluated at the groove's rate v
+        // (not sdot_k = v / lambda) and carried to s_k by its rate's map, d(v) = lambda d(sdot_k)
+        // + lambdadot sdot_k: mass D M D, force D (f - M e_s lambdadot sdot_k), D = diag(1.., lambda
+        // at s_k).
+        for (std::size_t i = 0; i < storage_.size(); ++i) {
+            if (storage_[i].node != k) continue;
+            detail::StoredRopeTerms<Dim>& t = ws.storedRope[i];
+            for (int a = 0; a < t.count; ++a) {
+                data.nodeForce[t.cols[a]] -= t.force[a];
+                if (data.formNodeMass)
+                    for (int b = 0; b < t.count; ++b) data.nodeMass(t.cols[a], t.cols[b]) -= t.mass(a, b);
+            }
+            data.kineticEnergy -= t.kineticEnergy;
+            data.gravityEnergy -= t.gravityEnergy;
+            const double creep = gripCreepAt(data, d);
+            ws.gripXdot = xdot;
+            ws.gripXdot[row] = v;
+            storedRopeLaw(*this, k, storage_[i].lengthAtZero, storage_[i].slope)
+                .evaluate(x, ws.gripXdot, data.materialCoordinates[k] - creep, v, t);
+            int at = -1;
+            for (int a = 0; a < t.count; ++a)
+                if (t.cols[a] == row) at = a;
+            if (at >= 0) {
+                const double lambda = 1.0 / inv, lambdaDot = e.rate * inv, sdot = v * inv;
+                for (int a = 0; a < t.count; ++a) t.force[a] -= t.mass(a, at) * lambdaDot * sdot;
+                t.force[at] *= lambda;
+                t.mass.row(at) *= lambda;
+                t.mass.col(at) *= lambda;
+            }
+            for (int a = 0; a < t.count; ++a) {
+                data.nodeForce[t.cols[a]] += t.force[a];
+                if (data.formNodeMass)
+                    for (int b = 0; b < t.count; ++b) data.nodeMass(t.cols[a], t.cols[b]) += t.mass(a, b);
+            }
+            data.kineticEnergy += t.kineticEnergy;
+            data.gravityEnergy += t.gravityEnergy;
+        }
+    }
+}
+
 template <int Dim>
 double RopeModel<Dim>::storedRopeGravityEnergy(const NodeMatrix& nodes, const RopeData<Dim>& data) const {
     double u = 0;
     for (const Storage& st : storage_) {
         const detail::StoredRope<Dim> law = storedRopeLaw(*this, st.node, st.lengthAtZero, st.slope);
-        const double s = data.materialCoordinates[st.node];
+        double s = data.materialCoordinates[st.node];
+        if (grips(st.node)) s -= gripCreepAt(data, drivenIndex_[st.node]);  // (laid from the groove's coordinate)
         if (!law.isWrapped()) {
             u -= properties().massPerLength * law.length(s) * elements_->spans.front().gravity().dot(nodes.col(st.node));
             continue;
@@ -1563,7 +1688,11 @@ void RopeModel<Dim>::computeDynamics(const NodeMatrix& nodes, const NodeMatrix& 
     }
     const Eigen::VectorXd& x = stationsToExternal(nodes, &nodeVelocities, drivenS, &drivenSdot, data);
     const Eigen::VectorXd& xdot = elements_->arcs.empty() ? data.ws().packedXdot : data.ws().stationMap.xdot;
+    if (!gripNodes_.empty()) applyGripRates(x, qm, data);
     computeDynamicsFromExternal(x, xdot, qm, qmdot, data);
+    // (With wrapped nodes stationMode is still set only if computeDynamicsFromExternal found a
+    // repeat of the last evaluation.)
+    if (!gripNodes_.empty()) applyGripTerms(x, xdot, data.ws().stationMode, data);
     // A rope with wrapped nodes is coupled at its stations: S, h and the modal reduction carried
     // over (once per evaluation: a repeated one returns above with them already carried).
     if (!elements_->arcs.empty() && !data.ws().stationMode) dynamicsToStations(data);

@@ -60,6 +60,9 @@ struct RopeWorkspace {
     std::vector<EndStrain<Dim>> firstEnd, secondEnd;
     std::vector<AxialCondensationData<Dim>> condensation;  ///< per span (ropes with condensed spans)
     std::vector<Eigen::VectorXd> spanQ, spanQdot;
+    // Per gripping node (RopeModel::setGrip): the surface speed Ydot_s + sigma R phidot [m/s] and 1 / lambda.
+    Eigen::VectorXd gripSurfaceSpeeds, gripInverseStretch;
+    Eigen::VectorXd gripXdot;  // xdot with a gripping node's rate the groove's (its stored ring's law)
     Eigen::VectorXd w;                    ///< independent velocities [xdot (node blocks, sdot_driven); qdot_m]
     /// The velocity-level results (computeDynamics) belong to the positions of the span coordinates,
     /// the velocities w and these dependent coordinates [s; q_condensed; nu]; cleared by

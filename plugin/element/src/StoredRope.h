@@ -40,7 +40,8 @@ struct StoredRopeTerms {
 /// the angle psi(s) = sigma (s - Y_s) / R from "up" (counter-clockwise about n, against gravity
 /// projected onto the groove's plane; +y without gravity), Y_s = s_k - sigma R phi the drum's
 /// surface coordinate at "up" and phi the tangent point's angle; its velocity is
-/// cdot - sigma v u'(psi), v = Ydot_s = sdot_k - sigma R phidot the drum's surface speed, whatever
+/// cdot - sigma v u'(psi), v = Ydot_s = sdot_k - sigma R phidot the drum's surface speed (at a
+/// gripping drum, RopeModel::setGrip, the caller passes the groove's rate for sdot_k), whatever
 /// the tangent point does. Integrated over the stored material (from the tangent point to the
 /// far end at psi_e = phi - sigma kappa l / R):
 ///     T = 1/2 rhoA [l (|cdot|^2 + v^2) - 2 R kappa v cdot . (u(phi) - u(psi_e))],

@@ -328,6 +328,8 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
         c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.station(k).second);
     modal(getZ(s), r, false, c.modalCoordinates);
     readDrivenZStates(getZ(s), r, false, c.drivenZStates);
+    // A gripping drum's creep (its Z state; RopeModel::setGrip) lays its stored ring.
+    (r.planar ? c.planar.gripCreep : c.spatial.gripCreep) = c.drivenZStates;
     drivenCoordinates(s, r, c, false);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
     // What Simbody 3.7 does with the exception (its sources, confirmed in
@@ -441,6 +443,7 @@ Real ReevingSubsystem::Guts::calcPotentialEnergy(const State& s) const {
         } else {
             u += potential(spatialModel(s, r), c.spatial, c.nodes3, modal(getZ(s), r, false));
         }
+        for (const RopeRecord::DrivenNode& d : r.driven) d.role.addHeldEnergy(getZ(s), u);
     }
     return u;
 }

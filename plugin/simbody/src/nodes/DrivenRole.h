@@ -111,6 +111,8 @@ struct DrivenRoleDefaults {
     bool startSlipOverLimit(const DrivenRun&, SimTK::State&) const { return false; }
     /// Adds the node's friction work [J] (a Z entry) to w (none).
     void addFrictionWork(const SimTK::Vector& /*z*/, double& /*w*/) const {}
+    /// Adds the potential energy [J] the node holds in a Z entry to u (none).
+    void addHeldEnergy(const SimTK::Vector& /*z*/, double& /*u*/) const {}
 };
 
 /// TurningSheave: the driven relation alone.
@@ -118,15 +120,51 @@ struct GripRole : DrivenRoleDefaults {};
 
 /// WinchDrum: the rope stored on the drum, ropeOnDrum [m] with s at its exit at the drum's
 /// reference (s_0 = 0 at a start drum, s_N = L at an end drum).
+///
+/// A wrapped drum grips the rope where it leaves the groove (RopeModel::setGrip): the material
+/// coordinate there is s = s_ref + g(theta) + sigma R phi + c, with c the rope's creep against the
+/// unstretched groove, a Z entry of its own (DrivenZBlock::States, no rate entry: its rate comes
+/// from the rope's evaluation, RopeData::gripCreepRates); and the strain energy U_w the wound rope
+/// holds, a Z entry (DrivenZBlock::Work, rate RopeData::gripStrainEnergyRates) that is part of the
+/// subsystem's potential energy (addHeldEnergy). Both 0 in a default state.
 struct StoredRopeRole : DrivenRoleDefaults {
     double ropeOnDrum = 0;  // [m]
+    bool grips = false;     // a wrapped drum (RopeModel::setGrip)
+    int creepZ = -1;        // Z entry of its creep c [m] (grips only)
+    int heldEnergyZ = -1;   // Z entry of the wound rope's strain energy U_w [J] (grips only)
 
     /// The stored rope at zero exit coordinate (RopeModel::setStoredRope: l = that + s_0 at the
-    /// start, that - s_N at the end): ropeOnDrum at a start drum, ropeOnDrum + L at an end drum.
+    /// start, that - s_N at the end): ropeOnDrum at a start drum, ropeOnDrum + L at an end drum;
+    /// and the grip of a wrapped drum.
     template <class Model>
     void declareStoredRope(Model& model, int node, double ropeLength) const {
         model.setStoredRope(node, node == 0 ? ropeOnDrum : ropeOnDrum + ropeLength);
+        if (grips) model.setGrip(node);
     }
+    /// Work: the wound rope's strain energy U_w; States: the creep c (a wrapped drum).
+    void layoutZ(DrivenZBlock block, int& z) {
+        if (grips && block == DrivenZBlock::Work) heldEnergyZ = z++;
+        if (grips && block == DrivenZBlock::States) creepZ = z++;
+    }
+    /// U_w [J].
+    void addHeldEnergy(const SimTK::Vector& z, double& u) const {
+        if (heldEnergyZ >= 0) u += z[heldEnergyZ];
+    }
+    /// c (positions; its rate is not a Z entry: unchanged).
+    void readZState(const SimTK::Vector& z, bool rates, double& entry) const {
+        if (creepZ >= 0 && !rates) entry = z[creepZ];
+    }
+    bool zStateMatches(const SimTK::Vector& z, bool rates, double entry) const {
+        return creepZ < 0 || rates || entry == z[creepZ];
+    }
+    /// s = s_ref + g(theta) + c, sdot = g'(theta) thetadot (the creep's rate is the rope's, inside
+    /// its evaluation).
+    void materialCoordinate(const DrivenRun& run, const SimTK::State& state, double theta, double thetaDot, bool rates,
+                            double& s, double& sdot) const;
+    /// cdot and dU_w/dt from the rope's evaluation in c (RopeData::gripCreepRates,
+    /// gripStrainEnergyRates).
+    void zDerivatives(const DrivenRun& run, const SimTK::State& state, const RopeCache& c, const CouplingWorkspace& ws,
+                      const SimTK::Vector& z, SimTK::Vector& zdot) const;
     /// The rope on the drum [m] with the rope's material coordinate s [m] where it leaves it:
     /// ropeOnDrum + s at a start drum (node 0), ropeOnDrum + L - s at an end drum.
     double onDrum(int node, double s, double ropeLength) const {
@@ -330,6 +368,9 @@ struct DrivenRole {
     }
     void addFrictionWork(const SimTK::Vector& z, double& w) const {
         std::visit([&](const auto& u) { u.addFrictionWork(z, w); }, unit);
+    }
+    void addHeldEnergy(const SimTK::Vector& z, double& energy) const {
+        std::visit([&](const auto& u) { u.addHeldEnergy(z, energy); }, unit);
     }
 };
 

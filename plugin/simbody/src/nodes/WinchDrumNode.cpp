@@ -30,6 +30,7 @@ void WinchDrumNode::addMaterialRelation(NodeSite& site) {
     RopeRecord::DrivenNode d = drivenNodeOf(site);
     StoredRopeRole stored;
     stored.ropeOnDrum = site.spec.ropeOnDrum;
+    stored.grips = site.rope.spec.sheaveModel == SheaveModel::Wrapped;
     d.role.unit = stored;
     // Paying out (sense R theta > 0) moves material out of the drum: s_0 = -sense R theta at the
     // start, s_N = L + sense R theta at the end.
@@ -90,6 +91,21 @@ SimTK::Vec3 WinchDrumNode::bendAxis(const NodeBend& bend) {
     const double sense = bend.spec().sense;  // payoutSense
     if (bend.node == 0) return sense * pinAxisInGround(bend);
     return -sense * pinAxisInGround(bend);
+}
+
+void StoredRopeRole::materialCoordinate(const DrivenRun& run, const SimTK::State& state, double theta, double thetaDot,
+                                        bool rates, double& s, double& sdot) const {
+    DrivenRoleDefaults::materialCoordinate(run, state, theta, thetaDot, rates, s, sdot);
+    if (creepZ >= 0) s += run.guts.getZ(state)[creepZ];
+}
+
+void StoredRopeRole::zDerivatives(const DrivenRun& run, const SimTK::State&, const RopeCache& c,
+                                  const CouplingWorkspace&, const SimTK::Vector&, SimTK::Vector& zdot) const {
+    if (creepZ < 0) return;
+    const Eigen::VectorXd& rates = run.rope.planar ? c.planar.gripCreepRates : c.spatial.gripCreepRates;
+    zdot[creepZ] = rates.size() > run.driven ? rates[run.driven] : 0.0;
+    const Eigen::VectorXd& power = run.rope.planar ? c.planar.gripStrainEnergyRates : c.spatial.gripStrainEnergyRates;
+    zdot[heldEnergyZ] = power.size() > run.driven ? power[run.driven] : 0.0;
 }
 
 double StoredRopeRole::storedRope(const DrivenRun& run, const RopeCache& c) const {

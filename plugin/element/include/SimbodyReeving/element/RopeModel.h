@@ -142,6 +142,16 @@ struct RopeData {
     Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s] (Driven nodes: as given)
     Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
     Eigen::VectorXd multiplierRates;  ///< rates of multipliers
+    /// Per Driven node, the rate of its creep state c_k [m/s] (setGrip): (Ydot_s + sigma R phidot)
+    /// (1 / lambda_k - 1) at a gripping node, 0 elsewhere (empty for a rope without grips).
+    Eigen::VectorXd gripCreepRates;
+    /// Input (set by the caller before computeDynamics): per Driven node, the creep c_k [m] its
+    /// drivenS entry includes (setGrip), read at gripping nodes only; empty: 0. The stored ring is
+    /// laid from the groove's own coordinate s_k - c_k.
+    Eigen::VectorXd gripCreep;
+    /// Per Driven node, the rate [W] of the strain energy U_w held by the rope wound on it
+    /// (setGrip): kappa EA F(eps_k) sdot_k, 0 elsewhere (empty for a rope without grips).
+    Eigen::VectorXd gripStrainEnergyRates;
     /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
     /// (see RopeModel::recoverInertialStrain); valid once computed for the current accelerations.
     Eigen::VectorXd inertialCorrection;
@@ -328,6 +338,38 @@ public:
     /// Added to nodeMass, nodeForce and the energies by computeDynamics.
     /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
     void setStoredRope(int node, double lengthAtZero);
+    /// Declares that the wrapped Driven end node k (a drum, NodeWrap) grips the rope where it
+    /// leaves the groove: the material there moves with the groove's surface, whatever the strain,
+    ///     sdot_k = (Ydot_s + sigma R phidot) / lambda_k,   lambda_k = sqrt(1 + 2 eps_k),
+    /// lambda_k the stretch (spatial length per unstretched length) of the span at its end there,
+    /// Ydot_s + sigma R phidot the groove surface's speed past the tangent point [m/s] (the rope's
+    /// external coordinate's rate as WrapStationMap writes it, drivenS's rate plus the tangent
+    /// point's turn). Without the grip the groove carries R of unstretched rope per radian (sdot_k =
+    /// Ydot_s + sigma R phidot): a span stretched by eps then gains eps R of slack material per radian
+    /// the tangent point rolls, and the load rests eps R off the vertical under the tangent point.
+    /// The relation is not integrable (lambda_k changes with the tension), so it is a velocity
+    /// constraint: s_k = Y_s + sigma R phi + c_k with c_k, the creep of the rope against the
+    /// unstretched groove, a state of the caller, carried in drivenS (which then holds
+    /// Y_s + c_k), and cdot_k = (Ydot_s + sigma R phidot)(1 / lambda_k - 1), which computeDynamics
+    /// reports in RopeData::gripCreepRates. computeDynamics scales the node's row of the station
+    /// map's Jacobian by 1 / lambda_k and adds d(1/lambda_k)/dt (Ydot_s + sigma R phidot) to its
+    /// bias (the span's end-strain rate, SpanModel::endStrain): the rope's equations reduced to the
+    /// stations are then Maggi's for the constraint, which does no work.
+    /// The wound rope keeps the strain it had at the tangent point: it holds the strain energy
+    ///     U_w = int EA F(eps) ds over the material wound on since the start,
+    /// whose rate kappa EA F(eps_k) sdot_k (kappa = +1 at a start drum, -1 at an end drum)
+    /// computeDynamics reports in RopeData::gripStrainEnergyRates (the caller integrates it: T + U
+    /// + U_w is invariant) and whose generalized force -kappa EA F(eps_k) on s_k it adds to h; the
+    /// drum then holds the rope with its true force EA eps_k lambda_k. The stored rope's ring
+    /// (setStoredRope) turns with the groove: its law is evaluated at the groove's rate Ydot_s +
+    /// sigma R phidot and laid from the groove's coordinate s_k - c_k (RopeData::gripCreep, which
+    /// the caller sets), so it is a holonomic function of the stations, carried to s_k by the
+    /// grip's rate map. Not modelled: the ring's amount is that of s_k - c_k, short of the
+    /// material wound on by the creep c_k (of order eps of it), and the strain of the rope on
+    /// the drum does not change its length there (a wound metre covers 1 m of groove).
+    /// @throws std::invalid_argument if node is not a wrapped Driven end node.
+    void setGrip(int node);
+    bool grips(int node) const;  ///< true if setGrip(node) was called
     /// Sets the tension ratio kappa = P_{k-1} / P_k [-] of the Slipping node k (see
     /// MaterialNode::Slipping; default 1): setSlipLaw(node, kappa, 0).
     /// @throws std::invalid_argument if node is not Slipping or kappa is not finite and > 0.
@@ -642,6 +684,9 @@ private:
         double lengthAtZero = 0, slope = 0;  // l = lengthAtZero + slope s_node
     };
     std::vector<Storage> storage_;                 // rope stored at Driven end nodes (drums)
+    std::vector<int> gripNodes_;                   // wrapped Driven end nodes that grip (setGrip)
+    void applyGripRates(const Eigen::VectorXd& x, const Eigen::VectorXd& qm, RopeData<Dim>& data) const;
+    void applyGripTerms(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, bool repeated, RopeData<Dim>& data) const;
     // Chain order (buildChainOrder): positions in the KKT system of the coordinates z (-1: external
     // or Fixed) and of the constraint rows; positions in C_d of its rows and of the dependents.
     std::vector<int> kktPos_, kktRowPos_, dependentRowPos_, dependentColPos_;

@@ -127,6 +127,16 @@ struct DeviationSheave {
 /// TurningSheave's (theta is then the drum's own angle, see there). The stored rope lies on
 /// the groove and turns with the drum (its kinetic and gravity energies are those of one layer of
 /// it, the partial turn included; RopeModel::setStoredRope), whatever the tangent point does.
+/// A wrapped drum grips the rope where it leaves the groove (RopeModel::setGrip): the material
+/// there moves with the groove's surface, sdot = (surface speed) / lambda with lambda =
+/// sqrt(1 + 2 eps) the fall's stretch there, so the rope is wound on at its strain and a load
+/// hoisted straight up is not pulled sideways; the relation is not holonomic, so the state holds
+/// the rope's creep c against the unstretched groove (s = s_ref - sense R theta + sigma R phi + c
+/// at a start drum; c = 0 in the default state) and the strain energy U_w the wound rope keeps
+/// (EA eps^2 / 2 per metre wound on since the start: part of the subsystem's potential energy,
+/// so the drive's work still balances the mechanical energy). The drum then holds the rope with
+/// its true force EA eps lambda. The stored ring turns with the groove; its amount is short of
+/// the rope wound on by the creep c (of order eps of it), and a wound metre covers 1 m of groove.
 struct WinchDrum {
     SimTK::MobilizedBody body;  ///< the drum: a MobilizedBody::Pin
     double radius = 0;          ///< R [m], > 0
@@ -277,7 +287,8 @@ struct TractionSheave {
 /// energy balance stays exact: the work of whatever drives the pin equals the change of the
 /// system's mechanical energy (MotionWorkMeter, PinnedNodeHandle::getPower). Tracking
 /// R theta / stretch instead (rope wound at its strain) would make s depend on the strain: not
-/// holonomic, and different by the strain in the hoisting speed. The rope stored on a WinchDrum
+/// holonomic, and different by the strain in the hoisting speed; a wrapped WinchDrum does so all
+/// the same (it grips the rope at its tangent point: see WinchDrum). The rope stored on a WinchDrum
 /// keeps its mass: a ring of rhoA (ropeOnDrum - sense R theta) at radius R on the node, whose
 /// weight and inertia load the drum's body and whose kinetic and gravity energy are part of the
 /// rope's (RopeModel::setStoredRope; without it the drum torque would depend on the height datum).
