@@ -607,6 +607,7 @@ const Eigen::VectorXd& RopeModel<Dim>::stationsToExternal(const NodeMatrix& node
         m.wrapAngles = other.wrapAngles;
         m.arrivalAngles = other.arrivalAngles;
     }
+    if (!gripNodes_.empty()) m.gripCreep = data.gripCreep;  // a walking groove follows the groove, not the rope
     if (nodeVelocities)
         WrapStationMap<Dim>(*this).evaluate(Y, packExternal(*nodeVelocities, *drivenSdot, data, true), m);
     else
@@ -639,6 +640,7 @@ void RopeModel<Dim>::dynamicsToStations(RopeData<Dim>& data) const {
     }
     multiplyByStationJacobianTransposed(ws.stationMap, data.nodeForce, ws.stationForce);
     data.nodeForce.swap(ws.stationForce);
+    multiplyByStationJacobianTransposed(ws.stationMap, ws.stationMassBias.col(0), data.nodeMassBias);
     ws.stationMode = true;
     ws.stationBuffersSwapped = true;
     ws.stationMassSwapped = ws.nodeMassFormed;

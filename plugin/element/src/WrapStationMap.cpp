@@ -102,7 +102,10 @@ void WrapStationMap<Dim>::evaluateMap(const Eigen::VectorXd& stations, const Eig
     auto follows = [&](int k) { return followsDriven(rope.groovePlacement(k)); };
     auto lay = [&](int k) {
         if (isAtCentre(rope.groovePlacement(k))) return GrooveLay{};
-        return layAt(rope.groovePlacement(k), follows(k) ? stations[drivenColumn(k)] : 0.0);
+        if (!follows(k)) return layAt(rope.groovePlacement(k), 0.0);
+        const int d = rope.drivenIndex(k);
+        const double creep = rope.grips(k) && data.gripCreep.size() > d ? data.gripCreep[d] : 0.0;
+        return layAt(rope.groovePlacement(k), stations[drivenColumn(k)] - creep);
     };
     auto groove = [&](int k) {
         GrooveCircle g;

@@ -126,6 +126,18 @@ double TractionRole::maxFriction(const DrivenRun& run, double tight, const State
     return pressing * (1.0 - std::exp(-frictionCoefficient * wrapAngle(run, s)));
 }
 
+namespace {
+// (J^T M b) at the rope's external coordinate `external`: the inertia of the station map's bias in
+// the rope's h (RopeData::nodeMassBias; 0 when the rope's nodes are not stations). The momentum
+// balance over the groove keeps it: its accelerations are the stations' plus that bias (a
+// gripping drum's material acceleration d(v / lambda)/dt, a rolling tangent point's).
+double stationBiasInertia(const RopeRecord& r, const RopeCache& c, int external) {
+    return Guts::withRope(r, c, [&](const auto&, const auto& data) {
+        return data.nodeMassBias.size() > external ? data.nodeMassBias[external] : 0.0;
+    });
+}
+}  // namespace
+
 double TractionRole::stickFriction(const DrivenRun& run, const State& s) const {
     const RopeRecord& r = run.rope;
     const RopeCache& c = run.guts.positionCache(s).ropes[r.index];
@@ -134,7 +146,7 @@ double TractionRole::stickFriction(const DrivenRun& run, const State& s) const {
     // ropeReaction = h - S xddot, so (S xddot)_Y = h_Y - reaction_Y.
     const double h = Guts::withRope(r, c, [&](const auto&, const auto& data) { return data.nodeForce[external]; });
     const double sxdd = h - run.guts.ropeReaction(s, r, c)[external];
-    return pa - pb - sxdd;
+    return pa - pb - sxdd - stationBiasInertia(r, c, external);
 }
 
 TractionRole::MomentumSlip TractionRole::momentumSlip(const DrivenRun& run, const State& s) const {
@@ -153,10 +165,12 @@ TractionRole::MomentumSlip TractionRole::momentumSlip(const DrivenRun& run, cons
     const double pressing = std::max(tight - rhoA * m.speed * m.speed, 0.0);
     // mutation-site: capstan-exponent
     m.friction = sigma * pressing * (1.0 - std::exp(-frictionCoefficient * wrapAngle(run, s)));
-    m.drive = pa - pb - m.friction;
     m.external = r.drivenExternal(r.drivenIndex(d.node));
-    m.correction =
-        pa - pb - Guts::withRope(r, c, [&](const auto&, const auto& data) { return data.nodeForce[m.external]; });
+    // S_YY Yddot + S_Yx xddot + (J^T M b)_Y = P_a - P_b - F: the balance keeps the bias's inertia.
+    const double biasInertia = stationBiasInertia(r, c, m.external);
+    m.drive = pa - pb - m.friction - biasInertia;
+    m.correction = pa - pb - biasInertia -
+                   Guts::withRope(r, c, [&](const auto&, const auto& data) { return data.nodeForce[m.external]; });
     const DrivenAngleSite site = run.guts.angleSite(s, r, d);
     m.slipRate = m.speed - d.law.materialRate(d.angle.angle(site), d.angle.rate(site));
     m.workRate = m.friction * m.slipRate - m.correction * m.speed;

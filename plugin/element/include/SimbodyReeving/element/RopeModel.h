@@ -162,6 +162,12 @@ struct RopeData {
     /// f = S xddot - h (for a Driven s_k: the force [N] that holds the rope's material there).
     Eigen::MatrixXd nodeMass;
     Eigen::VectorXd nodeForce;  ///< h [N] (see nodeMass)
+    /// The inertia of the station map's bias in h: h = Q - J^T M b, with b the external
+    /// coordinates' accelerations at zero station accelerations (a wrapped node's rolling tangent
+    /// point, a gripping drum's stretch rate, RopeModel::setGrip); this is J^T M b [N], at the
+    /// stations. A law that replaces the rope's forces Q on one coordinate (a traction sheave's
+    /// momentum balance) keeps it. Empty when the rope's nodes are not stations (no wrapped node).
+    Eigen::VectorXd nodeMassBias;
     /// Set false before computeDynamics to skip forming nodeMass (left empty; one solve per moving
     /// external coordinate saved): RopeModel::multiplyByNodeMass gives S X, and modalAccelerations
     /// solves for its accelerations instead. Default true.

@@ -19,6 +19,10 @@ namespace SimbodyReeving {
 /// Results of a WrapStationMap evaluation.
 struct WrapStationMapData {
     Eigen::VectorXd stations;  ///< Y, the stations this evaluation is at [m]
+    /// Input, per Driven index (empty: all 0): the creep c of a node that grips the rope
+    /// (RopeModel::setGrip, RopeData::gripCreep), whose driven station Y includes it. A groove
+    /// placement that follows Y (WalkingGroove) follows the groove's own coordinate Y - c [m].
+    Eigen::VectorXd gripCreep;
     Eigen::VectorXd x;     ///< the rope's external coordinates (RopeModel layout) [m]
     Eigen::VectorXd xdot;  ///< their rates J Ydot [m/s]
     /// b = xddot at Yddot = 0 (the tangency's second derivatives at these rates) [m/s^2].
