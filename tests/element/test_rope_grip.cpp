@@ -30,11 +30,11 @@ NodeWrap drumWrap() {
     return w;
 }
 
-RopeModel<2> drumRope(bool grip) {
+RopeModel<2> drumRope(bool grip, const Eigen::Vector2d& gravity = Eigen::Vector2d::Zero()) {
     SpanOptions o;
     o.axialModes = 0;
     o.transverseModes = 0;
-    std::vector<SpanModel<2>> spans{SpanModel<2>(RopeProperties{1.0, kEA, 0.0}, o, Eigen::Vector2d::Zero())};
+    std::vector<SpanModel<2>> spans{SpanModel<2>(RopeProperties{1.0, kEA, 0.0}, o, gravity)};
     RopeModel<2> rope(std::move(spans), kL, {MaterialNode::Driven, MaterialNode::Fixed}, {drumWrap(), NodeWrap{}});
     rope.setStoredRope(0, 30.0);
     if (grip) rope.setGrip(0);
@@ -104,7 +104,40 @@ TEST(RopeGrip, MaterialMovesWithTheGroovesSurface) {
     ASSERT_EQ(d.gripCreepRates.size(), 1);
     EXPECT_NEAR(d.gripCreepRates[0], v * (1.0 / e.lambda - 1.0), 1e-12 * v);
     const double power = 0.5 * kEA * e.eps * e.eps * v / e.lambda;
-    EXPECT_NEAR(d.gripStrainEnergyRates[0], power, 1e-12 * power);
+    EXPECT_NEAR(d.gripHeldEnergyRates[0], power, 1e-12 * power);
+}
+
+// Under gravity (9.81 m/s^2, rhoA 1 kg/m) the stored ring lies on the groove it covers, short of
+// the material wound on by the creep; the creep's mass is held at the tangent point's height (its
+// weight's energy, rhoA phi_T cdot, is part of gripHeldEnergyRates), so the rope's mass is
+// conserved and no force depends on where y = 0 is. The whole drum and fall moved up by 15 m: the
+// drum's force on Y_s and the anchor's are unchanged (measured identical; bound 1e-12); without the
+// creep's weight the drum's would change by rhoA g 15 m (1 - 1 / lambda) = 13 N. The held energy's
+// rate is EA eps^2 / 2 sdot + rhoA phi_T v (1 / lambda - 1), phi_T = -g . r_T, to 1e-16 (bound
+// 1e-12 of its terms).
+TEST(RopeGrip, ForcesDoNotDependOnTheHeightDatum) {
+    const double v = 0.3, g = 9.81, lift = 15.0;
+    const Eigen::VectorXd Ys = Eigen::VectorXd::Constant(1, surfaceCoordinate()), rate = Eigen::VectorXd::Constant(1, v);
+    const Eigen::VectorXd none;
+    const RopeModel<2> rope = drumRope(true, Eigen::Vector2d(0, -g));
+    double drum[2], anchor[2];
+    for (int i = 0; i < 2; ++i) {
+        Eigen::Matrix2Xd nodes = drumNodes();
+        nodes.row(1).array() += i * lift;
+        RopeData<2> d;
+        rope.computeDynamics(nodes, Eigen::Matrix2Xd::Zero(2, 2), Ys, rate, none, none, d);
+        drum[i] = d.nodeForce[d.nodeForce.size() - 1];
+        anchor[i] = d.nodeForce[3];
+        const Expected e = fromGeometry(d.materialCoordinates[0]);
+        const double yT = nodes(1, 0);  // the tangent point, at the drum's height (its right-hand side)
+        const double strain = 0.5 * kEA * e.eps * e.eps * v / e.lambda, weight = 1.0 * g * yT * v * (1 / e.lambda - 1);
+        std::printf("datum +%.0f m: drum %.9f N, anchor %.9f N; held energy rate %.9e W (strain %.6e, creep's weight "
+                    "%.6e)\n",
+                    i * lift, drum[i], anchor[i], d.gripHeldEnergyRates[0], strain, weight);
+        EXPECT_NEAR(d.gripHeldEnergyRates[0], strain + weight, 1e-12 * (std::abs(strain) + std::abs(weight)));
+    }
+    EXPECT_NEAR(drum[1], drum[0], 1e-12 * std::abs(drum[0]));
+    EXPECT_NEAR(anchor[1], anchor[0], 1e-12 * std::abs(anchor[0]));
 }
 
 // Only a wrapped Driven end node (a drum whose rope leaves at its tangent point) can grip.

@@ -989,7 +989,7 @@ template <int Dim>
 void RopeModel<Dim>::applyGripTerms(const Eigen::VectorXd& x, const Eigen::VectorXd& xdot, bool repeated,
                                     RopeData<Dim>& data) const {
     detail::RopeWorkspace<Dim>& ws = data.ws();
-    if (!repeated) data.gripStrainEnergyRates.setZero(numDriven_);
+    if (!repeated) data.gripHeldEnergyRates.setZero(numDriven_);
     for (std::size_t g = 0; g < gripNodes_.size(); ++g) {
         const int k = gripNodes_[g], d = drivenIndex_[k], row = numNodeCoordinates_ + d;
         const auto [j, end] = gripSpan(k, numSpans());
@@ -1006,7 +1006,22 @@ void RopeModel<Dim>::applyGripTerms(const Eigen::VectorXd& x, const Eigen::Vecto
         const double kappa = k == 0 ? 1.0 : -1.0;
         const double w = span.axialLaw().EA * span.axialLaw().F(e.strain);
         data.nodeForce[row] -= kappa * w;
-        data.gripStrainEnergyRates[d] = kappa * w * v * inv;
+        data.gripHeldEnergyRates[d] = kappa * w * v * inv;
+        // The creep's weight (with a stored ring, which is laid over the groove it covers, kappa
+        // (s_k - c_k), and so is short of the material wound on by kappa c_k): the creep's mass
+        // rhoA kappa c_k is held at the height where it was wound, U_c with rate kappa rhoA phi_T
+        // cdot_k (phi_T = -g . r_T, r_T the tangent point), a generalized force
+        // kappa rhoA phi_T (lambda - 1) on s_k (its power is -dU_c/dt). The rope's mass is then
+        // conserved, and no force depends on the height datum.
+        bool hasRing = false;
+        for (const Storage& st : storage_) hasRing = hasRing || st.node == k;
+        if (hasRing) {
+            const Eigen::Matrix<double, Dim, 1> rT =
+                ws.spanQ[j].template segment<Dim>(end == SpanEnd::First ? span.r1Index() : span.r2Index());
+            const double phiT = -span.gravity().dot(rT), rhoA = properties().massPerLength;
+            data.nodeForce[row] += kappa * rhoA * phiT * (1.0 / inv - 1.0);
+            data.gripHeldEnergyRates[d] += kappa * rhoA * phiT * v * (inv - 1.0);
+        }
         // The stored ring turns with the groove: its law is evaluated at the groove's rate v
         // (not sdot_k = v / lambda) and carried to s_k by its rate's map, d(v) = lambda d(sdot_k)
         // + lambdadot sdot_k: mass D M D, force D (f - M e_s lambdadot sdot_k), D = diag(1.., lambda

@@ -124,14 +124,14 @@ struct GripRole : DrivenRoleDefaults {};
 /// A wrapped drum grips the rope where it leaves the groove (RopeModel::setGrip): the material
 /// coordinate there is s = s_ref + g(theta) + sigma R phi + c, with c the rope's creep against the
 /// unstretched groove, a Z entry of its own (DrivenZBlock::States, no rate entry: its rate comes
-/// from the rope's evaluation, RopeData::gripCreepRates); and the strain energy U_w the wound rope
-/// holds, a Z entry (DrivenZBlock::Work, rate RopeData::gripStrainEnergyRates) that is part of the
+/// from the rope's evaluation, RopeData::gripCreepRates); and the energy the wound rope
+/// holds (its strain energy U_w and the creep's weight U_c), a Z entry (DrivenZBlock::Work, rate RopeData::gripHeldEnergyRates) that is part of the
 /// subsystem's potential energy (addHeldEnergy). Both 0 in a default state.
 struct StoredRopeRole : DrivenRoleDefaults {
     double ropeOnDrum = 0;  // [m]
     bool grips = false;     // a wrapped drum (RopeModel::setGrip)
     int creepZ = -1;        // Z entry of its creep c [m] (grips only)
-    int heldEnergyZ = -1;   // Z entry of the wound rope's strain energy U_w [J] (grips only)
+    int heldEnergyZ = -1;   // Z entry of the wound rope's held energy U_w + U_c [J] (grips only)
 
     /// The stored rope at zero exit coordinate (RopeModel::setStoredRope: l = that + s_0 at the
     /// start, that - s_N at the end): ropeOnDrum at a start drum, ropeOnDrum + L at an end drum;
@@ -141,12 +141,12 @@ struct StoredRopeRole : DrivenRoleDefaults {
         model.setStoredRope(node, node == 0 ? ropeOnDrum : ropeOnDrum + ropeLength);
         if (grips) model.setGrip(node);
     }
-    /// Work: the wound rope's strain energy U_w; States: the creep c (a wrapped drum).
+    /// Work: the wound rope's held energy U_w + U_c; States: the creep c (a wrapped drum).
     void layoutZ(DrivenZBlock block, int& z) {
         if (grips && block == DrivenZBlock::Work) heldEnergyZ = z++;
         if (grips && block == DrivenZBlock::States) creepZ = z++;
     }
-    /// U_w [J].
+    /// U_w + U_c [J].
     void addHeldEnergy(const SimTK::Vector& z, double& u) const {
         if (heldEnergyZ >= 0) u += z[heldEnergyZ];
     }
@@ -161,8 +161,8 @@ struct StoredRopeRole : DrivenRoleDefaults {
     /// its evaluation).
     void materialCoordinate(const DrivenRun& run, const SimTK::State& state, double theta, double thetaDot, bool rates,
                             double& s, double& sdot) const;
-    /// cdot and dU_w/dt from the rope's evaluation in c (RopeData::gripCreepRates,
-    /// gripStrainEnergyRates).
+    /// cdot and d(U_w + U_c)/dt from the rope's evaluation in c (RopeData::gripCreepRates,
+    /// gripHeldEnergyRates).
     void zDerivatives(const DrivenRun& run, const SimTK::State& state, const RopeCache& c, const CouplingWorkspace& ws,
                       const SimTK::Vector& z, SimTK::Vector& zdot) const;
     /// The rope on the drum [m] with the rope's material coordinate s [m] where it leaves it:

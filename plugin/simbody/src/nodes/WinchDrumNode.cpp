@@ -104,7 +104,7 @@ void StoredRopeRole::zDerivatives(const DrivenRun& run, const SimTK::State&, con
     if (creepZ < 0) return;
     const Eigen::VectorXd& rates = run.rope.planar ? c.planar.gripCreepRates : c.spatial.gripCreepRates;
     zdot[creepZ] = rates.size() > run.driven ? rates[run.driven] : 0.0;
-    const Eigen::VectorXd& power = run.rope.planar ? c.planar.gripStrainEnergyRates : c.spatial.gripStrainEnergyRates;
+    const Eigen::VectorXd& power = run.rope.planar ? c.planar.gripHeldEnergyRates : c.spatial.gripHeldEnergyRates;
     zdot[heldEnergyZ] = power.size() > run.driven ? power[run.driven] : 0.0;
 }
 

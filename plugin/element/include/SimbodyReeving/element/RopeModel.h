@@ -149,9 +149,11 @@ struct RopeData {
     /// drivenS entry includes (setGrip), read at gripping nodes only; empty: 0. The stored ring is
     /// laid from the groove's own coordinate s_k - c_k.
     Eigen::VectorXd gripCreep;
-    /// Per Driven node, the rate [W] of the strain energy U_w held by the rope wound on it
-    /// (setGrip): kappa EA F(eps_k) sdot_k, 0 elsewhere (empty for a rope without grips).
-    Eigen::VectorXd gripStrainEnergyRates;
+    /// Per Driven node, the rate [W] of the energy held by the rope wound on it (setGrip): its
+    /// strain energy U_w, kappa EA F(eps_k) sdot_k, plus, with a stored ring, the creep's weight
+    /// U_c, kappa rhoA phi_T cdot_k (phi_T = -g . r_T at the tangent point); 0 elsewhere (empty for
+    /// a rope without grips).
+    Eigen::VectorXd gripHeldEnergyRates;
     /// Mode-acceleration correction of the dependent coordinates [q_condensed, s_1..s_{N-1}, nu]
     /// (see RopeModel::recoverInertialStrain); valid once computed for the current accelerations.
     Eigen::VectorXd inertialCorrection;
@@ -364,15 +366,21 @@ public:
     /// The wound rope keeps the strain it had at the tangent point: it holds the strain energy
     ///     U_w = int EA F(eps) ds over the material wound on since the start,
     /// whose rate kappa EA F(eps_k) sdot_k (kappa = +1 at a start drum, -1 at an end drum)
-    /// computeDynamics reports in RopeData::gripStrainEnergyRates (the caller integrates it: T + U
+    /// computeDynamics reports in RopeData::gripHeldEnergyRates (the caller integrates it: T + U
     /// + U_w is invariant) and whose generalized force -kappa EA F(eps_k) on s_k it adds to h; the
     /// drum then holds the rope with its true force EA eps_k lambda_k. The stored rope's ring
     /// (setStoredRope) turns with the groove: its law is evaluated at the groove's rate Ydot_s +
     /// sigma R phidot and laid from the groove's coordinate s_k - c_k (RopeData::gripCreep, which
     /// the caller sets), so it is a holonomic function of the stations, carried to s_k by the
-    /// grip's rate map. Not modelled: the ring's amount is that of s_k - c_k, short of the
-    /// material wound on by the creep c_k (of order eps of it), and the strain of the rope on
-    /// the drum does not change its length there (a wound metre covers 1 m of groove).
+    /// grip's rate map. The ring's amount is that of s_k - c_k, short of the material wound on by
+    /// the creep c_k (of order eps of it): the creep's mass rhoA kappa c_k is held at the height of
+    /// the tangent point where it was wound, an energy U_c whose rate, kappa rhoA phi_T cdot_k
+    /// (phi_T = -g . r_T), computeDynamics adds to RopeData::gripHeldEnergyRates, with the
+    /// generalized force kappa rhoA phi_T (lambda_k - 1) on s_k: the rope's mass is conserved and
+    /// no force depends on the height datum. Not modelled: the creep's mass does not turn with
+    /// the drum (its kinetic energy, at most rhoA |c_k| v^2 / 2, and its weight's change as the
+    /// drum turns, at most rhoA |c_k| g 2 R, are left out), and the strain of the rope on the drum
+    /// does not change its length there (a wound metre covers 1 m of groove).
     /// @throws std::invalid_argument if node is not a wrapped Driven end node.
     void setGrip(int node);
     bool grips(int node) const;  ///< true if setGrip(node) was called

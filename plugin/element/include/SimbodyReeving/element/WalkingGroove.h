@@ -13,7 +13,9 @@ namespace SimbodyReeving {
 /// The groove circle the span leaves lies
 ///   x(Y) = x0 + dxdY Y  [m]
 /// along the groove's axis n from the node's position, Y the node's driven coordinate (the
-/// material coordinate at the drum's "up", RopeModel's s_driven): dx/dY = dxdY, d2x/dY2 = 0. A
+/// material coordinate at the drum's "up", RopeModel's s_driven; at a drum that grips the rope,
+/// RopeModel::setGrip, the groove's own coordinate there, s_driven less the creep
+/// RopeData::gripCreep, so the exit point follows the groove's helix): dx/dY = dxdY, d2x/dY2 = 0. A
 /// drum with pitch p (the axial advance per turn, about the rope's diameter) and radius R has
 /// dxdY = +-p / (2 pi R) (the sign: the way the exit point walks as rope is stored); the tangent
 /// point's roll (sigma R phi) does not move it, so a swinging fall shifts the exit point by less

@@ -135,8 +135,12 @@ struct DeviationSheave {
 /// at a start drum; c = 0 in the default state) and the strain energy U_w the wound rope keeps
 /// (EA eps^2 / 2 per metre wound on since the start: part of the subsystem's potential energy,
 /// so the drive's work still balances the mechanical energy). The drum then holds the rope with
-/// its true force EA eps lambda. The stored ring turns with the groove; its amount is short of
-/// the rope wound on by the creep c (of order eps of it), and a wound metre covers 1 m of groove.
+/// its true force EA eps lambda. The stored ring turns with the groove and covers the groove the
+/// rope was wound on; its amount is short of the rope wound on by the creep c (of order eps of
+/// it), whose mass is held at the height where it was wound (its weight's energy is part of the
+/// held energy too: the rope's mass is conserved and the drum's torque does not depend on the
+/// height datum; the creep's mass does not turn with the drum). A wound metre covers 1 m of
+/// groove.
 struct WinchDrum {
     SimTK::MobilizedBody body;  ///< the drum: a MobilizedBody::Pin
     double radius = 0;          ///< R [m], > 0
@@ -147,7 +151,7 @@ struct WinchDrum {
     /// advance of the rope's exit point per turn of rope stored, p [m] (about the rope's diameter
     /// on a grooved drum); p > 0 walks along the pin's +z (the drum's axis) as rope is stored,
     /// p < 0 along -z. The groove circle the rope leaves lies x = p (s_top - s_top,0) / (2 pi R)
-    /// along the axis from `centre`, s_top the material coordinate at the drum's top (the drum's
+    /// along the axis from `centre`, s_top the groove's coordinate at the drum's top (the drum's
     /// turns: s_0 = -sense R theta at the start, s_N = L + sense R theta at the end, the sign
     /// such that stored rope walks along +p); the tangent point's roll as the fall swings
     /// (sigma R phi) does not move it (the element layer's WalkingGroove). One layer, of
