@@ -10,6 +10,7 @@
 
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -173,4 +174,38 @@ TEST(WrappedDrum, HeldDrumAndSwingingLoadKeepLengthAndEnergy) {
     EXPECT_GT(rolledOn, 0.02);  // the swing rolls rope on the drum and back off it
     EXPECT_GT(rolledOff, 0.02);
     EXPECT_LE(worstRoll, 2e-11);
+}
+
+// A state's first realization lays the stored ring with the grip's creep like any other: a default
+// state given the Y of a run's state (say, one read back from a saved trajectory) has that state's
+// energy and accelerations. Before the creep was set after the fresh rope data of a first
+// realization, it was dropped there: the ring laid from s instead of s - c, the energy off by about
+// rhoA c g R. Measured at t = 1.5 s (creep 6.6e-6 m from the geometry, rhoA c g R = 1.9e-5 J): energy
+// 9.1e-13 J (bound 1e-10 J; 7.9e-6 J with the creep dropped), state rates 6.1e-12 of their norm (the
+// span's Newton solve warm-started from elsewhere; bound 1e-10; the ring's missing mass rhoA c moves
+// them no more than that).
+TEST(WrappedDrum, FirstRealizationOfAStateKeepsTheGripsCreep) {
+    SwingingLoad s;
+    RungeKuttaMersonIntegrator integ(s.system);
+    integ.setAccuracy(1e-9);
+    TimeStepper ts(s.system, integ);
+    ts.initialize(s.state);
+    ts.stepTo(1.5);
+    State run = integ.getState();
+    s.system.realize(run, Stage::Acceleration);
+    State fresh = s.system.getDefaultState();
+    fresh.setTime(run.getTime());
+    fresh.updY() = run.getY();
+    s.system.realize(fresh, Stage::Acceleration);
+    // The creep from the geometry: the stored rope beyond what the tangent point's roll covers.
+    const double creep = std::abs(s.reeving->getRope(0).getWinchDrum(0).getRopeOnDrum(run) - kStored -
+                                  measureDrumGeometry(s, run).arcFromTop);
+    const double energyGap = std::abs(s.reeving->calcMechanicalEnergy(fresh) - s.reeving->calcMechanicalEnergy(run));
+    const Vector gap = fresh.getYDot() - run.getYDot();
+    const double accelerationGap = std::sqrt(gap.normSqr()), largest = std::sqrt(run.getYDot().normSqr());
+    std::printf("first realization: energy %.1e J, rates %.1e of %.2e; creep %.2e m (rhoA c g R = %.1e J)\n",
+                energyGap, accelerationGap, largest, creep, 1.2 * creep * kG * kR);
+    EXPECT_GT(1.2 * creep * kG * kR, 1e4 * 1e-10);  // the creep is large enough to be seen
+    EXPECT_LE(energyGap, 1e-10);
+    EXPECT_LE(accelerationGap, 1e-10 * largest);
 }

@@ -328,8 +328,6 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
         c.nodes3.col(k) = toEigen(pc.bodyX[r.nodeSlot[k]] * r.station(k).second);
     modal(getZ(s), r, false, c.modalCoordinates);
     readDrivenZStates(getZ(s), r, false, c.drivenZStates);
-    // A gripping drum's creep (its Z state; RopeModel::setGrip) lays its stored ring.
-    (r.planar ? c.planar.gripCreep : c.spatial.gripCreep) = c.drivenZStates;
     drivenCoordinates(s, r, c, false);
     // A failure here is usually a trial state of an integrator step (an extrapolation too far).
     // What Simbody 3.7 does with the exception (its sources, confirmed in
@@ -353,6 +351,9 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
                 c.planar = std::move(fresh);
                 c.planarModel = &model;
             }
+            // A gripping drum's creep (its Z state; RopeModel::setGrip) lays its stored ring and
+            // walks its groove: set after a fresh RopeData (a state's first realization, a new phase).
+            c.planar.gripCreep = c.drivenZStates;
             model.solveDependentCoordinates(c.nodes2, c.drivenS, c.modalCoordinates, c.planar);
         } else {
             const RopeModel<3>& model = spatialModel(s, r, c.nodes3);
@@ -365,6 +366,7 @@ void ReevingSubsystem::Guts::updatePositionPart(const State& s, const RopeRecord
                 c.spatial = std::move(fresh);
             }
             c.spatialModel = &model;
+            c.spatial.gripCreep = c.drivenZStates;  // (as planar ropes: after a fresh RopeData)
             model.solveDependentCoordinates(c.nodes3, c.drivenS, c.modalCoordinates, c.spatial);
         }
     } catch (const std::exception& e) {
