@@ -139,14 +139,17 @@ struct RopeData {
     Eigen::VectorXd multipliers;
     int newtonIterations = 0;             ///< of the last dependent-coordinate solve
     // ---- dynamics (filled by RopeModel::computeDynamics)
-    Eigen::VectorXd materialRates;  ///< sdot_0..sdot_N [m/s] (Driven nodes: as given)
+    /// sdot_0..sdot_N [m/s] (Driven nodes: as given; a gripping node (setGrip): the groove's rate
+    /// over the stretch there, (Ydot_s + sigma R phidot) / lambda_k)
+    Eigen::VectorXd materialRates;
     Eigen::VectorXd condensedRates; ///< rates of condensedAmplitudes [m/s]
     Eigen::VectorXd multiplierRates;  ///< rates of multipliers
     /// Per Driven node, the rate of its creep state c_k [m/s] (setGrip): (Ydot_s + sigma R phidot)
     /// (1 / lambda_k - 1) at a gripping node, 0 elsewhere (empty for a rope without grips).
     Eigen::VectorXd gripCreepRates;
-    /// Input (set by the caller before computeDynamics): per Driven node, the creep c_k [m] its
-    /// drivenS entry includes (setGrip), read at gripping nodes only; empty: 0. The stored ring is
+    /// Input (set by the caller before solveDependentCoordinates): per Driven node, the creep c_k
+    /// [m] its drivenS entry includes (setGrip), read at gripping nodes only; empty: 0. The stored
+    /// ring (its energies, mass and forces) and a walking groove's exit point (WalkingGroove) are
     /// laid from the groove's own coordinate s_k - c_k.
     Eigen::VectorXd gripCreep;
     /// Per Driven node, the rate [W] of the energy held by the rope wound on it (setGrip): its
@@ -325,7 +328,9 @@ public:
 
     /// Declares rope stored at a Driven end node (a winch drum): its length is
     ///     l = lengthAtZero + s_0 (start node) or l = lengthAtZero - s_N (end node) [m]
-    /// (hauling material out of the spans stores it). At a point drum it is held as a ring at the
+    /// (hauling material out of the spans stores it; at a gripping node (setGrip) s_k - c_k
+    /// instead of s_k, c_k the creep, and v below is the groove's rate Ydot_s + sigma R phidot,
+    /// carried to sdot_k = v / lambda_k by its rate's map). At a point drum it is held as a ring at the
     /// node moving with it at the rope's rate there (the drum's surface speed):
     ///     T_stored = 1/2 rhoA l (|rdot_k|^2 + sdot_k^2),   U_stored = -rhoA l g . r_k.
     /// At a wrapped drum (NodeWrap) it lies on the groove and turns with the drum, whatever the
@@ -342,7 +347,8 @@ public:
     /// Without it the material would vanish from the model at the drum, carrying its potential
     /// energy -rhoA g . r_k per metre out through the span's generalized force on s_k: a drum torque
     /// that depends on the height datum. With it the torque is datum-free, the stored rope's weight
-    /// and inertia load the node's body, and T + U (spans + stored rope) keeps its invariance.
+    /// and inertia load the node's body, and T + U (spans + stored rope; with a grip also the held
+    /// energy U_w + U_c of setGrip) keeps its invariance.
     /// Added to nodeMass, nodeForce and the energies by computeDynamics.
     /// @throws std::invalid_argument if node is not a Driven end node or lengthAtZero is not finite.
     void setStoredRope(int node, double lengthAtZero);
@@ -379,8 +385,9 @@ public:
     /// generalized force kappa rhoA phi_T (lambda_k - 1) on s_k: the rope's mass is conserved and
     /// no force depends on the height datum. Not modelled: the creep's mass does not turn with
     /// the drum (its kinetic energy, at most rhoA |c_k| v^2 / 2, and its weight's change as the
-    /// drum turns, at most rhoA |c_k| g 2 R, are left out), and the strain of the rope on the drum
-    /// does not change its length there (a wound metre covers 1 m of groove).
+    /// drum turns, at most rhoA |c_k| g 2 R, are left out), and the stored ring's mass is counted
+    /// per metre of groove it covers (rhoA per metre of s_k - c_k), not per metre of the
+    /// stretched material on it.
     /// @throws std::invalid_argument if node is not a wrapped Driven end node.
     void setGrip(int node);
     bool grips(int node) const;  ///< true if setGrip(node) was called
@@ -420,7 +427,8 @@ public:
     double wrapAngle(const RopeData<Dim>& data, int node) const;
     /// The external coordinate of Driven or Slipping node k, the material coordinate of the
     /// sheave's surface where the rope arrives on it [m]: drivenS's entry at a point node,
-    /// Y_s + sigma R phi_in at a wrapped one (WrapStationMap), from the last
+    /// Y_s + sigma R phi_in at a wrapped one (WrapStationMap; at a gripping drum (setGrip) the
+    /// rope's s_k, its creep c_k included, and surfaceRate its sdot_k = v / lambda_k), from the last
     /// solveDependentCoordinates on data from node positions (the NodeMatrix forms).
     /// @throws std::invalid_argument if node is neither Driven nor Slipping or data holds no such evaluation.
     double surfaceCoordinate(const RopeData<Dim>& data, int node) const;

@@ -113,7 +113,8 @@ struct DeviationSheave {
 
 /// A winch drum at a rope end: a MobilizedBody::Pin (drive it with a Motion, a torque, a brake...),
 /// its radius R [m] > 0, the rope stored on it at pin angle 0 [m] >= 0 (the stored rope is
-/// ropeOnDrum - sense R theta; the run ends when it reaches 0), the payout sense (+1: a positive
+/// ropeOnDrum - sense R theta at a point drum, plus the tangent point's roll and the grip's creep
+/// at a wrapped one, below; the run ends when it reaches 0), the payout sense (+1: a positive
 /// pin angle pays rope out) and the point on the pin axis where the rope node sits (drum body
 /// frame, default its origin).
 ///
@@ -128,7 +129,8 @@ struct DeviationSheave {
 /// the groove and turns with the drum (its kinetic and gravity energies are those of one layer of
 /// it, the partial turn included; RopeModel::setStoredRope), whatever the tangent point does.
 /// A wrapped drum grips the rope where it leaves the groove (RopeModel::setGrip): the material
-/// there moves with the groove's surface, sdot = (surface speed) / lambda with lambda =
+/// there moves with the groove's surface, sdot = v / lambda with v = Ydot_s + sigma R phidot the
+/// groove's rate at the tangent point (the drum's surface speed plus the tangent point's roll) and lambda =
 /// sqrt(1 + 2 eps) the fall's stretch there, so the rope is wound on at its strain and a load
 /// hoisted straight up is not pulled sideways; the relation is not holonomic, so the state holds
 /// the rope's creep c against the unstretched groove (s = s_ref - sense R theta + sigma R phi + c
@@ -139,8 +141,8 @@ struct DeviationSheave {
 /// rope was wound on; its amount is short of the rope wound on by the creep c (of order eps of
 /// it), whose mass is held at the height where it was wound (its weight's energy is part of the
 /// held energy too: the rope's mass is conserved and the drum's torque does not depend on the
-/// height datum; the creep's mass does not turn with the drum). A wound metre covers 1 m of
-/// groove.
+/// height datum; the creep's mass does not turn with the drum). The stored ring's mass is
+/// counted per metre of groove it covers.
 struct WinchDrum {
     SimTK::MobilizedBody body;  ///< the drum: a MobilizedBody::Pin
     double radius = 0;          ///< R [m], > 0
@@ -285,8 +287,9 @@ struct TractionSheave {
 ///       turns the pin (torque sense R (P_a - P_b)) and dissipates (P_a - P_b) v_slip >= 0.
 ///     Transitions are events (TractionMode): stick -> slip when the ratio reaches a limit, slip ->
 ///     stick when the slip rate returns to zero; s_k is continuous through both.
-/// Driven nodes: the material coordinate tracks R theta exactly (a holonomic tie), i.e. the rope
-/// on the drum or sheave is taken as inextensible. Rope leaves a span at the strain it has there;
+/// Driven nodes (all but a wrapped WinchDrum, see the end of this paragraph): the material
+/// coordinate tracks R theta exactly (a holonomic tie), i.e. the rope on the drum or sheave is
+/// taken as inextensible. Rope leaves a span at the strain it has there;
 /// its strain energy leaves the model with it, through the rope's generalized force on s, so the
 /// energy balance stays exact: the work of whatever drives the pin equals the change of the
 /// system's mechanical energy (MotionWorkMeter, PinnedNodeHandle::getPower). Tracking
