@@ -69,7 +69,7 @@ struct NodeSpec {
 };
 
 /// The flat record of a node (see NodeSpec).
-NodeSpec toNodeSpec(const NodeSpec& node);
+NodeSpec toNodeSpec(const RopeNode& node);
 
 /// A node whose material coordinate turns with a pin (WinchDrum, TurningSheave, TractionSheave):
 /// s_k = sRef + g(theta) (RopeModel's Driven nodes), g the node's DrivenLaw and theta its
