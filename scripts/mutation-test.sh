@@ -44,6 +44,12 @@
 #  14 arc-length       the rope on a groove measured as R alpha / 2: a wrapped sheave's arc length
 #                      and a gripping groove's (drum, turning sheave) R phi halved in the station map,
 #                      consistently in its value, Jacobian and bias (WrapStationMap)
+#  15 grip-stretch     a wrapped drum does not grip its rope: the rope leaves the groove at the groove's
+#                      rate (1 / lambda -> 1 in RopeModel::applyGripRates; no creep, the same bias)
+#  16 creep-weight     the grip's creep has no weight: the creep's mass held at the tangent point's
+#                      height (its energy rate and its force on s) dropped (RopeModel::applyGripTerms)
+#  17 bias-inertia     the RopeMomentum slip law and the stick friction drop the station map's bias
+#                      inertia J^T M b (a gripping drum's stretch rate; TractionSheaveRun)
 #
 # How long it takes. On 2 cores shared with other work (Debian bookworm, g++ 12), under `nice`:
 # about 9 min for the first build of a copy, 2.5-4 min per run of the suite (350 tests), under a
@@ -112,7 +118,7 @@ done
 # FILE has no such marker or the edit leaves any marked line unchanged. Each changed line gets a
 # /* MUTANT */ comment (the restore checks that none is left).
 names=(rope-weight linear-strain qv-forces sheave-sense mode-accel arc-mass arc-qv-forces wrap-jacobian
-    up-direction ring-speed capstan-exponent rhoa-v2 tight-side arc-length)
+    up-direction ring-speed capstan-exponent rhoa-v2 tight-side arc-length grip-stretch creep-weight bias-inertia)
 descriptions=(
     "SpanModel gravity -> 0 (the rope material has no weight)"
     "AxialLaw: Green strain eps -> engineering strain lambda - 1 (energy and force)"
@@ -128,6 +134,9 @@ descriptions=(
     "rhoA v^2 dropped from the capstan law and from the stick limit"
     "RopeMomentum slip: tight side swapped (sigma > 0 ? P_a : P_b -> P_b : P_a)"
     "WrapStationMap: the rope on a groove R alpha -> R alpha / 2 (arcs and gripped rope)"
+    "wrapped drum's grip: sdot = v / lambda -> v (RopeModel::applyGripRates)"
+    "the grip's creep weightless: its held weight's energy and force dropped (RopeModel)"
+    "RopeMomentum slip and stick friction without the station map's bias inertia J^T M b"
 )
 
 mutant_1() {
@@ -221,6 +230,19 @@ mutant_14() {
     site plugin/element/src/WrapStationMap.cpp arc-length '
         s/return rope\.arc\(k\)\.radius\(\) \*/return 0.5 * rope.arc(k).radius() */ or
         s/= arc\.radius\(\) \* alpha;/= 0.5 * arc.radius() * alpha;/' || return 1
+}
+
+mutant_15() {
+    site plugin/element/src/RopeModel.cpp grip-stretch 's/= 1\.0 \/ std::sqrt\(stretch2\);/= 1.0 + 0.0 * stretch2;/' || return 1
+}
+
+mutant_16() {
+    site plugin/element/src/RopeModel.cpp creep-weight 's/if \(hasRing\)/if (false \&\& hasRing)/' || return 1
+}
+
+mutant_17() {
+    site plugin/simbody/src/nodes/TractionSheaveRun.cpp bias-inertia 's/\? data\.nodeMassBias\[external\] : 0\.0/? 0.0 * data.nodeMassBias[external] : 0.0/' ||
+        return 1
 }
 
 # The Perl half of `site`: ARGV = FILE WRITE; prints "markers changed unchanged-line-numbers".

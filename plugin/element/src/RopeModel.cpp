@@ -751,7 +751,7 @@ void RopeModel<Dim>::applyGripRates(const Eigen::VectorXd& x, const Eigen::Vecto
         if (!(stretch2 > 0))
             throw std::domain_error("RopeModel: the span at gripping node " + std::to_string(k) +
                                     " is compressed to zero length at its end (stretch^2 = " + std::to_string(stretch2) + ")");
-        const double inv = 1.0 / std::sqrt(stretch2);
+        const double inv = 1.0 / std::sqrt(stretch2);  // mutation-site: grip-stretch
         const double v = m.xdot[row];
         ws.gripSurfaceSpeeds[static_cast<Eigen::Index>(g)] = v;
         ws.gripInverseStretch[static_cast<Eigen::Index>(g)] = inv;
@@ -1015,7 +1015,7 @@ void RopeModel<Dim>::applyGripTerms(const Eigen::VectorXd& x, const Eigen::Vecto
         // conserved, and no force depends on the height datum.
         bool hasRing = false;
         for (const Storage& st : storage_) hasRing = hasRing || st.node == k;
-        if (hasRing) {
+        if (hasRing) {  // mutation-site: creep-weight
             const Eigen::Matrix<double, Dim, 1> rT =
                 ws.spanQ[j].template segment<Dim>(end == SpanEnd::First ? span.r1Index() : span.r2Index());
             const double phiT = -span.gravity().dot(rT), rhoA = properties().massPerLength;

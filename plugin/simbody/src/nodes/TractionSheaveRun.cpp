@@ -133,6 +133,7 @@ namespace {
 // gripping drum's material acceleration d(v / lambda)/dt, a rolling tangent point's).
 double stationBiasInertia(const RopeRecord& r, const RopeCache& c, int external) {
     return Guts::withRope(r, c, [&](const auto&, const auto& data) {
+        // mutation-site: bias-inertia
         return data.nodeMassBias.size() > external ? data.nodeMassBias[external] : 0.0;
     });
 }
